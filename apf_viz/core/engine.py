@@ -1,0 +1,427 @@
+"""The Look-Compute-Move engine: robot phases, one step of events at a time, outcomes, time travel.
+
+Each robot cycles idle → looked (holds its snapshot) → computed (its new light is visible from this
+event on, it holds a pending move) → idle after its Move. A robot therefore has exactly one enabled event
+at any time, and a scheduler chooses *robots*, never phases: the engine, not the scheduler and not the
+algorithm, decides what an activation does.
+
+A *step* activates a set of robots at once (one robot for ASYNC; a round's Looks, Computes or Moves for
+FSYNC/SSYNC). Moves in one step are simultaneous: two robots ending on one point, swapping across an edge,
+or moving onto a robot that stays are collisions. A collision stops the run and is not applied.
+
+Every step is recorded in :class:`~apf_viz.core.history.History`; :meth:`Engine.seek` restores any
+earlier step from a checkpoint and re-applies the recorded choices, which reproduces the run exactly
+because algorithms are deterministic.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import Literal
+
+import numpy as np
+
+from apf_viz.core.algorithm import Algorithm, Decision, Pattern
+from apf_viz.core.frames import move_to_global, offsets_to_local
+from apf_viz.core.grid import Point, visible_from
+from apf_viz.core.history import Event, History, StepRecord
+from apf_viz.core.pattern_match import matches_pattern
+from apf_viz.core.view import Seen, Snapshot
+
+LightSemantics = Literal["compute", "lc-atomic"]
+Outcome = Literal["formed", "stuck", "limit", "collision"]
+
+_DECISION_CACHE_LIMIT = 200_000
+
+
+class Phase(IntEnum):
+    """Where a robot is in its cycle; its next event is LOOK, COMPUTE or MOVE respectively."""
+
+    IDLE = 0
+    LOOKED = 1
+    COMPUTED = 2
+
+
+NEXT_EVENT = {Phase.IDLE: "look", Phase.LOOKED: "compute", Phase.COMPUTED: "move"}
+
+
+@dataclass
+class EngineState:
+    """Everything that changes during a run; copied whole for checkpoints."""
+
+    positions: np.ndarray  # shape (k, 2), int64, global frame
+    lights: list[str]
+    phase: np.ndarray  # shape (k,), int8 values of Phase
+    snapshot: list[Snapshot | None]
+    seen: list[tuple[int, ...] | None]  # who each robot saw at its Look (for traces and ghosts)
+    look_step: np.ndarray  # shape (k,): step index of each robot's latest Look
+    look_version: list[int]  # configuration version at each robot's latest Look
+    pending: list[Decision | None]
+    last_act: np.ndarray  # shape (k,): step index of each robot's latest event (fairness)
+    last_cycle_end: np.ndarray  # shape (k,): step index of each robot's latest Move (round-robin)
+    steps: int = 0
+    events: int = 0
+    moves: int = 0
+    cycles: int = 0
+    round: int = 0
+    outcome: Outcome | None = None
+    lights_used: set[str] = field(default_factory=set)
+    # Bumped on every move or light change: a cached view older than this may be out of date.
+    version: int = 0
+
+    def copy(self) -> EngineState:
+        return EngineState(
+            positions=self.positions.copy(),
+            lights=list(self.lights),
+            phase=self.phase.copy(),
+            snapshot=list(self.snapshot),
+            seen=list(self.seen),
+            look_step=self.look_step.copy(),
+            look_version=list(self.look_version),
+            pending=list(self.pending),
+            last_act=self.last_act.copy(),
+            last_cycle_end=self.last_cycle_end.copy(),
+            steps=self.steps,
+            events=self.events,
+            moves=self.moves,
+            cycles=self.cycles,
+            round=self.round,
+            outcome=self.outcome,
+            lights_used=set(self.lights_used),
+            version=self.version,
+        )
+
+
+class EngineError(ValueError):
+    """A request the engine cannot carry out (bad robot index, mixed phases in one step, run over)."""
+
+
+class Engine:
+    """One run of an algorithm from a start configuration towards a pattern.
+
+    Args:
+        robots: start positions, global frame, distinct.
+        pattern: target points (any translation; the algorithm embeds it).
+        algorithm: the pure decision function every robot runs.
+        y_up: per robot, whether its local +y is the global +y (the adversary's flips); all True if None.
+        light_semantics: ``"compute"`` (a new light is visible from the end of Compute) or
+            ``"lc-atomic"`` (Look and Compute are one atomic event).
+        max_events: the run ends with outcome ``limit`` after this many events (None: no limit).
+        checkpoint_every: steps between state checkpoints used by :meth:`seek`.
+    """
+
+    def __init__(
+        self,
+        robots: Sequence[Point],
+        pattern: Sequence[Point],
+        algorithm: Algorithm,
+        *,
+        y_up: Sequence[bool] | None = None,
+        light_semantics: LightSemantics = "compute",
+        max_events: int | None = None,
+        checkpoint_every: int = 64,
+    ) -> None:
+        k = len(robots)
+        if k == 0:
+            raise EngineError("a run needs at least one robot")
+        if len({tuple(p) for p in robots}) != k:
+            raise EngineError("two robots start on the same point")
+        self.k = k
+        self.start: tuple[Point, ...] = tuple((int(x), int(y)) for x, y in robots)
+        self.pattern: Pattern = tuple((int(x), int(y)) for x, y in pattern)
+        self.algorithm = algorithm
+        self.y_up: tuple[bool, ...] = tuple(bool(b) for b in y_up) if y_up is not None else (True,) * k
+        if len(self.y_up) != k:
+            raise EngineError(f"y_up has {len(self.y_up)} entries for {k} robots")
+        self.light_semantics: LightSemantics = light_semantics
+        self.max_events = max_events
+        self.checkpoint_every = checkpoint_every
+        self._decisions: dict[Snapshot, Decision] = {}
+        self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
+        self.state = self._initial_state()
+        self.history = History(self.state.copy())
+        self._occupied = self._occupancy()
+        self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
+        self._probe_hint = 0
+
+    # ------------------------------------------------------------------ read-only views
+    @property
+    def positions(self) -> np.ndarray:
+        """Current positions, shape (k, 2), global frame. Do not mutate."""
+        return self.state.positions
+
+    @property
+    def outcome(self) -> Outcome | None:
+        return self.state.outcome
+
+    @property
+    def finished(self) -> bool:
+        return self.state.outcome is not None
+
+    @property
+    def step_index(self) -> int:
+        """Number of steps applied so far (the position on the timeline)."""
+        return self.state.steps
+
+    def next_event(self, robot: int) -> str:
+        """``"look"``, ``"compute"`` or ``"move"``: what activating this robot does next."""
+        return NEXT_EVENT[Phase(int(self.state.phase[robot]))]
+
+    def visible(self, robot: int) -> np.ndarray:
+        """Indices of the robots this robot sees now."""
+        return visible_from(self.state.positions, robot)
+
+    def look(self, robot: int) -> Snapshot:
+        """The snapshot this robot would take now (no event is recorded)."""
+        st = self.state
+        ids = self.visible(robot)
+        return self._snapshot(robot, ids, st)
+
+    def decide(self, view: Snapshot) -> Decision:
+        """The algorithm's decision on a view, memoised: the algorithm is pure, so a view seen before
+        (by any robot, at any time) costs a dictionary look-up, not a recompute."""
+        hit = self._decisions.get(view)
+        if hit is not None:
+            return hit
+        self.decide_calls += 1
+        decision = self.algorithm.decide(view, self.pattern)
+        if decision.light not in self.algorithm.lights:
+            raise EngineError(f"algorithm {self.algorithm.name!r} set unknown light {decision.light!r}")
+        if len(self._decisions) >= _DECISION_CACHE_LIMIT:
+            self._decisions.clear()
+        self._decisions[view] = decision
+        return decision
+
+    # ------------------------------------------------------------------ stepping
+    def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:
+        """Activate these robots simultaneously; each runs its next phase. Returns the events."""
+        if self.finished:
+            raise EngineError(f"the run is over ({self.state.outcome})")
+        robots = tuple(int(r) for r in robots)
+        if not robots:
+            raise EngineError("a step activates at least one robot")
+        if len(set(robots)) != len(robots) or not all(0 <= r < self.k for r in robots):
+            raise EngineError(f"bad robot selection {robots} for {self.k} robots")
+        phases = {int(self.state.phase[r]) for r in robots}
+        if len(phases) != 1:
+            raise EngineError("robots activated together must be in the same phase")
+        record = StepRecord(robots=robots, round=round)
+        events = self._apply(record)
+        self.history.record(self.state.steps, record, events)
+        if self.state.steps % self.checkpoint_every == 0:
+            self.history.checkpoint(self.state.steps, self.state.copy())
+        return events
+
+    def _apply(self, record: StepRecord) -> list[Event]:
+        st = self.state
+        phase = st.phase[record.robots[0]]
+        if phase == Phase.IDLE:
+            events = [self._look(r, record.round) for r in record.robots]
+            if self.light_semantics == "lc-atomic":
+                events += [self._compute(r, record.round) for r in record.robots]
+        elif phase == Phase.LOOKED:
+            events = [self._compute(r, record.round) for r in record.robots]
+        else:
+            events = self._move(record.robots, record.round)
+        st.steps += 1
+        st.events += len(events)
+        if record.round is not None:
+            st.round = max(st.round, record.round)
+        st.last_act[list(record.robots)] = st.steps
+        self._update_outcome()
+        return events
+
+    def _look(self, r: int, round: int | None) -> Event:
+        st = self.state
+        ids = self.visible(r)
+        snap = self._snapshot(r, ids, st)
+        st.snapshot[r] = snap
+        st.seen[r] = tuple(int(i) for i in ids)
+        st.look_step[r] = st.steps + 1
+        st.look_version[r] = st.version
+        st.phase[r] = Phase.LOOKED
+        return Event(robot=r, phase="look", sees=st.seen[r], round=round)
+
+    def _snapshot(self, r: int, ids: np.ndarray, st: EngineState) -> Snapshot:
+        local = offsets_to_local(st.positions[ids] - st.positions[r], self.y_up[r]).tolist()
+        seen = sorted(Seen(dx, dy, st.lights[i]) for (dx, dy), i in zip(local, ids.tolist(), strict=True))
+        return Snapshot(st.lights[r], tuple(seen))
+
+    def _compute(self, r: int, round: int | None) -> Event:
+        st = self.state
+        snap = st.snapshot[r]
+        assert snap is not None
+        decision = self.decide(snap)
+        st.pending[r] = decision
+        st.phase[r] = Phase.COMPUTED
+        if decision.light != st.lights[r]:
+            st.lights[r] = decision.light
+            st.lights_used.add(decision.light)
+            st.version += 1
+        gmove = move_to_global(decision.move, self.y_up[r])
+        return Event(
+            robot=r,
+            phase="compute",
+            light=decision.light,
+            move=gmove,
+            rule=decision.rule or None,
+            round=round,
+        )
+
+    def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
+        st = self.state
+        targets: dict[int, Point] = {}
+        for r in robots:
+            decision = st.pending[r]
+            assert decision is not None
+            gmove = move_to_global(decision.move, self.y_up[r])
+            x, y = (int(v) for v in st.positions[r])
+            if gmove is None:
+                targets[r] = (x, y)
+            else:
+                dx, dy = gmove.delta
+                targets[r] = (x + dx, y + dy)
+        collided = self._collisions(targets)
+        events = [
+            Event(robot=r, phase="move", to=targets[r], round=round, collision=r in collided) for r in robots
+        ]
+        if collided:
+            st.outcome = "collision"
+            return events
+        movers = [r for r in robots if targets[r] != tuple(int(v) for v in st.positions[r])]
+        for r in movers:
+            del self._occupied[(int(st.positions[r][0]), int(st.positions[r][1]))]
+        for r in movers:
+            st.positions[r] = targets[r]
+            self._occupied[targets[r]] = r
+        if movers:
+            st.moves += len(movers)
+            st.version += 1
+        for r in robots:
+            self._finish_cycle(r)
+        return events
+
+    def _collisions(self, targets: dict[int, Point]) -> set[int]:
+        """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""
+        st = self.state
+        bad: set[int] = set()
+        by_target: dict[Point, int] = {}
+        for r, t in targets.items():
+            if t in by_target:
+                bad.update((r, by_target[t]))
+            by_target[t] = r
+        for r, t in targets.items():
+            here = (int(st.positions[r][0]), int(st.positions[r][1]))
+            if t == here:
+                continue
+            other = self._occupied.get(t)
+            if other is None:
+                continue
+            if other not in targets or targets[other] == t:
+                bad.update((r, other))  # onto a robot that is not leaving
+            elif targets[other] == here:
+                bad.update((r, other))  # swap across an edge
+        return bad
+
+    def _finish_cycle(self, r: int) -> None:
+        st = self.state
+        decision = st.pending[r]
+        assert decision is not None
+        # A cycle that changed nothing on a still-current view proves this robot quiescent for now.
+        if decision.move is None and st.look_version[r] == st.version:
+            self._probe[r] = (st.version, True)
+        st.phase[r] = Phase.IDLE
+        st.pending[r] = None
+        st.snapshot[r] = None
+        st.seen[r] = None
+        st.cycles += 1
+        st.last_cycle_end[r] = st.steps + 1
+
+    # ------------------------------------------------------------------ outcomes
+    def _update_outcome(self) -> None:
+        st = self.state
+        if st.outcome is not None:
+            return
+        if self._quiescent():
+            st.outcome = "formed" if matches_pattern(self.current_points(), self.pattern) else "stuck"
+        elif self.max_events is not None and st.events >= self.max_events:
+            st.outcome = "limit"
+
+    def _quiescent(self) -> bool:
+        """True when no robot can change anything, whatever the scheduler does from here: every robot's
+        held snapshot (if it has Looked) and its view of the current configuration both lead to "same
+        light, stay", and no move is pending. (Under stale-first robots are rarely all idle at once, so
+        "all idle" is not required; an idle robot is the special case with nothing held.)
+
+        Probes of the current view are cached per configuration version, and the robot found active last
+        time is probed first, so a busy run pays at most one Look per configuration change."""
+        order = list(range(self._probe_hint, self.k)) + list(range(self._probe_hint))
+        for r in order:
+            if not self._robot_quiescent(r):
+                self._probe_hint = r
+                return False
+        return True
+
+    def _robot_quiescent(self, r: int) -> bool:
+        st = self.state
+        phase = st.phase[r]
+        if phase == Phase.COMPUTED and st.pending[r].move is not None:
+            return False
+        if phase == Phase.LOOKED and not self.decide(st.snapshot[r]).is_noop(st.lights[r]):
+            return False
+        version, noop = self._probe[r]
+        if version != st.version:
+            noop = self.decide(self.look(r)).is_noop(st.lights[r])
+            self._probe[r] = (st.version, noop)
+        return noop
+
+    def current_points(self) -> list[Point]:
+        return [(int(x), int(y)) for x, y in self.state.positions]
+
+    # ------------------------------------------------------------------ time travel
+    def seek(self, step: int) -> None:
+        """Go to the state after ``step`` steps of the recorded history (0 = the start).
+
+        The steps after it stay recorded until a different step is taken from here (a branch)."""
+        if not 0 <= step <= self.history.length:
+            raise EngineError(f"step {step} is outside the recorded history 0..{self.history.length}")
+        base, state = self.history.checkpoint_before(step)
+        self.state = state.copy()
+        self._occupied = self._occupancy()
+        self._probe = [(-1, False)] * self.k
+        for i in range(base, step):
+            self._apply(self.history.steps[i].record)
+
+    def back(self, n: int = 1) -> None:
+        """Undo the last ``n`` steps."""
+        self.seek(max(0, self.state.steps - n))
+
+    def redo(self) -> list[Event] | None:
+        """Re-apply the next recorded step after a :meth:`seek`, if there is one."""
+        if self.state.steps >= self.history.length:
+            return None
+        record = self.history.steps[self.state.steps].record
+        return self.step(record.robots, round=record.round)
+
+    # ------------------------------------------------------------------ internals
+    def _initial_state(self) -> EngineState:
+        k = self.k
+        first = self.algorithm.lights[0]
+        return EngineState(
+            positions=np.array(self.start, dtype=np.int64).reshape(k, 2),
+            lights=[first] * k,
+            phase=np.zeros(k, dtype=np.int8),
+            snapshot=[None] * k,
+            seen=[None] * k,
+            look_step=np.zeros(k, dtype=np.int64),
+            look_version=[-1] * k,
+            pending=[None] * k,
+            last_act=np.zeros(k, dtype=np.int64),
+            last_cycle_end=np.zeros(k, dtype=np.int64),
+            lights_used={first},
+        )
+
+    def _occupancy(self) -> dict[Point, int]:
+        return {(int(x), int(y)): i for i, (x, y) in enumerate(self.state.positions)}

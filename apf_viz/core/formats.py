@@ -1,0 +1,269 @@
+"""Files: robots, pattern and trace (JSON / JSON Lines), as pydantic models with one-line errors.
+
+Every problem with an input file becomes an :class:`InputError` whose message names the file and the
+problem in one line; the CLI prints it and exits 2, the UI shows it as a notification. Writes are atomic:
+a temporary file in the same folder, then a rename.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
+
+from apf_viz.core.grid import Direction, Point
+from apf_viz.core.history import Event
+
+TRACE_FORMAT = "apf-viz-trace"
+TRACE_VERSION = 1
+MAX_INPUT_BYTES = 5_000_000
+
+
+class InputError(ValueError):
+    """A bad input file or value; ``str(e)`` is a one-line message naming the file and the problem."""
+
+
+GridPoint = Annotated[tuple[StrictInt, StrictInt], Field(description="[x, y] on the grid")]
+
+
+def _no_duplicates(points: Sequence[tuple[int, int]], what: str) -> None:
+    seen: set[tuple[int, int]] = set()
+    for p in points:
+        if p in seen:
+            raise ValueError(f"duplicate {what} at ({p[0]}, {p[1]})")
+        seen.add(p)
+
+
+class RobotsFile(BaseModel):
+    """``{"robots": [[x, y], ...], "y_up": [true, false, ...]}``; ``y_up`` is optional."""
+
+    model_config = ConfigDict(extra="forbid")
+    robots: list[GridPoint] = Field(min_length=1)
+    y_up: list[StrictBool] | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> RobotsFile:
+        _no_duplicates(self.robots, "robot")
+        if self.y_up is not None and len(self.y_up) != len(self.robots):
+            raise ValueError(f"y_up has {len(self.y_up)} entries for {len(self.robots)} robots")
+        return self
+
+
+class PatternFile(BaseModel):
+    """``{"name": "...", "points": [[x, y], ...]}``; ``name`` is optional."""
+
+    model_config = ConfigDict(extra="forbid")
+    name: str | None = None
+    points: list[GridPoint] = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _check(self) -> PatternFile:
+        _no_duplicates(self.points, "pattern point")
+        return self
+
+
+class TraceHeader(BaseModel):
+    """The first line of a trace file."""
+
+    model_config = ConfigDict(extra="forbid")
+    format: Literal["apf-viz-trace"]
+    version: Literal[1]
+    robots: list[GridPoint] = Field(min_length=1)
+    y_up: list[StrictBool] | None = None
+    pattern: list[GridPoint] = Field(min_length=1)
+    scheduler: str
+    seed: StrictInt | None = None
+    algorithm: str
+    light_semantics: Literal["compute", "lc-atomic"] = "compute"
+    options: dict[str, Any] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _check(self) -> TraceHeader:
+        _no_duplicates(self.robots, "robot")
+        _no_duplicates(self.pattern, "pattern point")
+        if self.y_up is not None and len(self.y_up) != len(self.robots):
+            raise ValueError(f"y_up has {len(self.y_up)} entries for {len(self.robots)} robots")
+        return self
+
+
+class TraceEvent(BaseModel):
+    """One event line of a trace, global frame."""
+
+    model_config = ConfigDict(extra="forbid")
+    robot: StrictInt = Field(ge=0)
+    phase: Literal["look", "compute", "move"]
+    sees: list[StrictInt] | None = None
+    light: str | None = None
+    move: Literal["left", "right", "up", "down"] | None = None
+    rule: str | None = None
+    to: GridPoint | None = None
+    round: StrictInt | None = None
+    collision: bool | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> TraceEvent:
+        required = {"look": "sees", "compute": "light", "move": "to"}[self.phase]
+        if getattr(self, required) is None:
+            raise ValueError(f"a {self.phase} event needs {required!r}")
+        return self
+
+    def to_event(self) -> Event:
+        return Event(
+            robot=self.robot,
+            phase=self.phase,
+            sees=tuple(self.sees) if self.sees is not None else None,
+            light=self.light,
+            move=Direction(self.move) if self.move else None,
+            rule=self.rule,
+            to=tuple(self.to) if self.to is not None else None,
+            round=self.round,
+            collision=bool(self.collision),
+        )
+
+
+def event_to_json(e: Event) -> dict[str, Any]:
+    """The trace line of an event (only the fields its phase uses)."""
+    out: dict[str, Any] = {"robot": e.robot, "phase": e.phase}
+    if e.phase == "look":
+        out["sees"] = list(e.sees or ())
+    elif e.phase == "compute":
+        out["light"] = e.light
+        out["move"] = e.move.value if e.move else None
+        if e.rule:
+            out["rule"] = e.rule
+    else:
+        out["to"] = list(e.to) if e.to else None
+        if e.collision:
+            out["collision"] = True
+    if e.round is not None:
+        out["round"] = e.round
+    return out
+
+
+# ---------------------------------------------------------------------------------------------- reading
+def _one_line(err: ValidationError) -> str:
+    first = err.errors()[0]
+    loc = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in first["loc"]).lstrip(".")
+    msg = first["msg"].removeprefix("Value error, ")
+    more = f" (and {err.error_count() - 1} more problems)" if err.error_count() > 1 else ""
+    return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
+
+
+def _read_text(path: Path | str) -> str:
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+        if size > MAX_INPUT_BYTES:
+            raise InputError(f"{p}: file is too large ({size} bytes, limit {MAX_INPUT_BYTES})")
+        return p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{p}: no such file") from None
+    except IsADirectoryError:
+        raise InputError(f"{p}: is a directory, not a file") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{p}: not UTF-8 text") from None
+    except OSError as e:
+        raise InputError(f"{p}: cannot read ({e.strerror})") from None
+
+
+def _parse_json(text: str, where: str) -> Any:
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{where}: not valid JSON ({e.msg} at line {e.lineno} column {e.colno})") from None
+
+
+def _validate(model: type[BaseModel], data: Any, where: str) -> Any:
+    try:
+        return model.model_validate(data)
+    except ValidationError as e:
+        raise InputError(f"{where}: {_one_line(e)}") from None
+
+
+def parse_robots(text: str, where: str = "robots") -> RobotsFile:
+    return _validate(RobotsFile, _parse_json(text, where), where)
+
+
+def parse_pattern(text: str, where: str = "pattern") -> PatternFile:
+    return _validate(PatternFile, _parse_json(text, where), where)
+
+
+def load_robots(path: Path | str) -> RobotsFile:
+    return parse_robots(_read_text(path), str(path))
+
+
+def load_pattern(path: Path | str) -> PatternFile:
+    return parse_pattern(_read_text(path), str(path))
+
+
+def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Event]]:
+    lines = [(n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip()]
+    if not lines:
+        raise InputError(f"{where}: empty trace file")
+    n0, first = lines[0]
+    header = _validate(TraceHeader, _parse_json(first, f"{where}:{n0}"), f"{where}:{n0}")
+    k = len(header.robots)
+    events = []
+    for n, line in lines[1:]:
+        ev = _validate(TraceEvent, _parse_json(line, f"{where}:{n}"), f"{where}:{n}")
+        if ev.robot >= k:
+            raise InputError(f"{where}:{n}: robot {ev.robot} does not exist ({k} robots)")
+        if ev.sees is not None and any(not 0 <= s < k for s in ev.sees):
+            raise InputError(f"{where}:{n}: sees a robot that does not exist ({k} robots)")
+        events.append(ev.to_event())
+    return header, events
+
+
+def load_trace(path: Path | str) -> tuple[TraceHeader, list[Event]]:
+    return parse_trace(_read_text(path), str(path))
+
+
+def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "pattern") -> None:
+    """The pattern must have one point per robot (paper: n = k)."""
+    if len(pattern.points) != len(robots.robots):
+        raise InputError(
+            f"{pattern_name}: the pattern has {len(pattern.points)} points but there are "
+            f"{len(robots.robots)} robots"
+        )
+
+
+# ---------------------------------------------------------------------------------------------- writing
+def write_atomic(path: Path | str, text: str) -> None:
+    """Write the whole file or nothing: a temp file in the same folder, fsync, then rename over."""
+    p = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or ".")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, p)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def robots_json(robots: Iterable[Point], y_up: Sequence[bool] | None = None) -> str:
+    data: dict[str, Any] = {"robots": [list(p) for p in robots]}
+    if y_up is not None:
+        data["y_up"] = list(y_up)
+    return json.dumps(data) + "\n"
+
+
+def pattern_json(points: Iterable[Point], name: str | None = None) -> str:
+    data: dict[str, Any] = {}
+    if name:
+        data["name"] = name
+    data["points"] = [list(p) for p in points]
+    return json.dumps(data) + "\n"
+
+
+def trace_text(header: TraceHeader, events: Iterable[Event]) -> str:
+    lines = [header.model_dump_json(exclude_none=True)]
+    lines += [json.dumps(event_to_json(e)) for e in events]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,108 @@
+"""Driving a run: a scheduler chooses, the engine steps, until an outcome. Also traces and replay."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from apf_viz.core.engine import Engine, EngineError
+from apf_viz.core.formats import InputError, TraceHeader
+from apf_viz.core.grid import Point
+from apf_viz.core.history import Event, StepRecord
+from apf_viz.core.schedulers import Scheduler, step_rng
+
+
+def advance(engine: Engine, scheduler: Scheduler, seed: int, steps: int | None = None) -> int:
+    """Let the scheduler drive the engine for ``steps`` steps, or until the run ends. Returns steps taken."""
+    taken = 0
+    while not engine.finished and (steps is None or taken < steps):
+        record = scheduler.choose(engine, step_rng(seed, engine.step_index))
+        engine.step(record.robots, round=record.round)
+        taken += 1
+    return taken
+
+
+@dataclass(frozen=True)
+class RunSummary:
+    """What ``apf-viz run --json`` prints."""
+
+    outcome: str
+    final: list[Point]
+    moves: int
+    events: int
+    cycles: int
+    lights_used: list[str]
+
+    @classmethod
+    def of(cls, engine: Engine) -> RunSummary:
+        st = engine.state
+        order = {name: i for i, name in enumerate(engine.algorithm.lights)}
+        return cls(
+            outcome=st.outcome or "running",
+            final=engine.current_points(),
+            moves=st.moves,
+            events=st.events,
+            cycles=st.cycles,
+            lights_used=sorted(st.lights_used, key=lambda s: order.get(s, len(order))),
+        )
+
+
+def trace_header(
+    engine: Engine, scheduler: str, seed: int | None, options: dict | None = None
+) -> TraceHeader:
+    return TraceHeader(
+        format="apf-viz-trace",
+        version=1,
+        robots=[list(p) for p in engine.start],
+        y_up=list(engine.y_up),
+        pattern=[list(p) for p in engine.pattern],
+        scheduler=scheduler,
+        seed=seed,
+        algorithm=engine.algorithm.name,
+        light_semantics=engine.light_semantics,
+        options=options or {},
+    )
+
+
+def steps_of_trace(events: Sequence[Event], lc_atomic: bool) -> list[StepRecord]:
+    """Regroup trace events into engine steps: consecutive events of one synchronous round and phase
+    form one step; under lc-atomic a Look and the Compute the engine adds to it are one step."""
+    steps: list[StepRecord] = []
+    i = 0
+    while i < len(events):
+        e = events[i]
+        j = i + 1
+        if e.round is not None:
+            while j < len(events) and events[j].round == e.round and events[j].phase == e.phase:
+                j += 1
+        robots = tuple(ev.robot for ev in events[i:j])
+        if lc_atomic and e.phase == "look":
+            n = j - i
+            tail = events[j : j + n]
+            if len(tail) != n or any(
+                t.phase != "compute" or t.robot != r for t, r in zip(tail, robots, strict=True)
+            ):
+                raise InputError(
+                    f"trace: under lc-atomic the Look of robot {e.robot} must be followed by its Compute"
+                )
+            j += n
+        steps.append(StepRecord(robots, e.round))
+        i = j
+    return steps
+
+
+def replay(engine: Engine, events: Sequence[Event], where: str = "trace") -> None:
+    """Apply a recorded schedule to a fresh engine and check that every event comes out identical."""
+    done = 0
+    for record in steps_of_trace(events, engine.light_semantics == "lc-atomic"):
+        try:
+            produced = engine.step(record.robots, round=record.round)
+        except EngineError as e:
+            raise InputError(f"{where}: event {done + 1} cannot be replayed: {e}") from None
+        for got in produced:
+            want = events[done]
+            if got != want:
+                raise InputError(f"{where}: event {done + 1} differs on replay (recorded {want}, got {got})")
+            done += 1
+    if done != len(events):
+        raise InputError(f"{where}: {len(events) - done} events after the run ended")

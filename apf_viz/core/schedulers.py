@@ -1,0 +1,170 @@
+"""The adversaries: who acts next. They choose among robots; the engine decides what an activation does.
+
+A scheduler is stateless: :meth:`Scheduler.choose` reads the engine and a random generator seeded from
+``(seed, step index)``. So a run is reproducible from its seed, and going back in time then stepping again
+makes the same choices (pick a robot by hand, or change the seed, to branch).
+
+Every scheduler is fair with an explicit bound: a robot that has not had an event for ``starve_bound``
+steps (default ``4·k``, at least 16) is served before anyone else.
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Protocol
+
+import numpy as np
+
+from apf_viz.core.engine import Phase
+from apf_viz.core.history import StepRecord
+
+if TYPE_CHECKING:
+    from apf_viz.core.engine import Engine
+
+SCHEDULERS = ("fsync", "ssync", "async", "round-robin", "stale-first", "manual")
+
+
+class Scheduler(Protocol):
+    name: str
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        """The next step: robots to activate together (all in the same phase) and the round if any."""
+        ...
+
+
+def starve_bound(engine: Engine) -> int:
+    return max(16, 4 * engine.k)
+
+
+def _most_starved(engine: Engine) -> int | None:
+    """The robot waiting longest, if it has waited past the fairness bound."""
+    st = engine.state
+    r = int(np.argmin(st.last_act))  # ties: the lowest index
+    return r if st.steps - st.last_act[r] >= starve_bound(engine) else None
+
+
+class AsyncScheduler:
+    """ASYNC: one Look, Compute or Move of a uniformly random robot per step."""
+
+    name = "async"
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        r = _most_starved(engine)
+        return StepRecord((rng.randrange(engine.k) if r is None else r,))
+
+
+class RoundRobinScheduler:
+    """Sequential: robots in index order, each performing a whole cycle (Look, Compute, Move)."""
+
+    name = "round-robin"
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        st = engine.state
+        busy = np.flatnonzero(st.phase)
+        if busy.size:
+            return StepRecord((int(busy[0]),))
+        return StepRecord((int(np.argmin(st.last_cycle_end)),))
+
+
+class StaleFirstScheduler:
+    """An ASYNC adversary that maximises staleness: everyone Looks and Computes as early as possible,
+    and Moves are delayed until no other event is possible; then the robot holding the *oldest* snapshot
+    moves. Every move is thus made on a snapshot taken before as many other moves as possible."""
+
+    name = "stale-first"
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        st = engine.state
+        starved = _most_starved(engine)
+        if starved is not None:
+            return StepRecord((starved,))
+        early = np.flatnonzero(st.phase != Phase.COMPUTED)
+        if early.size:
+            return StepRecord((int(early[rng.randrange(early.size)]),))
+        return StepRecord((int(np.argmin(st.look_step)),))
+
+
+class _RoundScheduler:
+    """Shared shape of FSYNC and SSYNC: a round is all chosen robots Looking, then Computing, then
+    Moving simultaneously. The round in progress is read off the robots' phases."""
+
+    name = ""
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        st = engine.state
+        for phase in (Phase.LOOKED, Phase.COMPUTED):
+            group = np.flatnonzero(st.phase == phase)
+            if group.size:
+                return StepRecord(tuple(group.tolist()), round=st.round)
+        return StepRecord(self.subset(engine, rng), round=st.round + 1)
+
+    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+        raise NotImplementedError
+
+
+class FsyncScheduler(_RoundScheduler):
+    """FSYNC: every robot in every round."""
+
+    name = "fsync"
+
+    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+        return tuple(range(engine.k))
+
+
+class SsyncScheduler(_RoundScheduler):
+    """SSYNC: each round a random non-empty subset (each robot with probability 1/2), plus every robot
+    that has waited past the fairness bound."""
+
+    name = "ssync"
+
+    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+        st = engine.state
+        bound = starve_bound(engine)
+        chosen = {r for r in range(engine.k) if rng.random() < 0.5 or st.steps - st.last_act[r] >= bound}
+        if not chosen:
+            chosen = {rng.randrange(engine.k)}
+        return tuple(sorted(chosen))
+
+
+@dataclass
+class ManualScheduler:
+    """The caller plays the adversary: :meth:`pick` queues robots; each step runs the next one's phase.
+    With nothing queued it falls back to ``fallback`` (None: refuse)."""
+
+    fallback: Scheduler | None = None
+    name: str = "manual"
+
+    def __post_init__(self) -> None:
+        self._queue: list[int] = []
+
+    def pick(self, robot: int) -> None:
+        self._queue.append(robot)
+
+    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+        if self._queue:
+            return StepRecord((self._queue.pop(0),))
+        if self.fallback is None:
+            raise LookupError("manual scheduler: no robot picked")
+        return self.fallback.choose(engine, rng)
+
+
+def make_scheduler(name: str) -> Scheduler:
+    """A scheduler by its CLI name (see :data:`SCHEDULERS`)."""
+    table: dict[str, type] = {
+        "fsync": FsyncScheduler,
+        "ssync": SsyncScheduler,
+        "async": AsyncScheduler,
+        "round-robin": RoundRobinScheduler,
+        "stale-first": StaleFirstScheduler,
+        "manual": ManualScheduler,
+    }
+    try:
+        return table[name]()
+    except KeyError:
+        raise ValueError(f"unknown scheduler {name!r}; choose one of {', '.join(SCHEDULERS)}") from None
+
+
+def step_rng(seed: int, step: int) -> random.Random:
+    """The generator a scheduler uses at this step: a function of (seed, step) only."""
+    return random.Random(seed * 1_000_003 + step)

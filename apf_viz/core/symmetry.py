@@ -1,0 +1,32 @@
+"""Theorem 1 (paper §3): APF is solvable iff the start is not mirror-symmetric about a horizontal line K
+that passes through no robot.
+
+Only a horizontal axis matters because the robots agree on left and right, and a finite set can be
+symmetric about at most one horizontal line: y = (y_min + y_max) / 2.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from fractions import Fraction
+
+from apf_viz.core.grid import Point
+
+
+def unsolvable_axis(robots: Iterable[Point]) -> Fraction | None:
+    """The axis y = c of the unsolvable symmetry of Theorem 1, or None if the start is solvable."""
+    pts = set(robots)
+    if not pts:
+        return None
+    ys = [y for _, y in pts]
+    c2 = min(ys) + max(ys)  # twice the only candidate axis
+    if any(2 * y == c2 for y in ys):
+        return None  # the axis passes through a robot
+    if all((x, c2 - y) in pts for x, y in pts):
+        return Fraction(c2, 2)
+    return None
+
+
+def describe_axis(c: Fraction) -> str:
+    value = str(c.numerator) if c.denominator == 1 else f"{float(c):g}"
+    return f"y = {value}"
