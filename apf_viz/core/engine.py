@@ -208,8 +208,9 @@ class Engine:
         if len(phases) != 1:
             raise EngineError("robots activated together must be in the same phase")
         record = StepRecord(robots=robots, round=round)
+        position = self.state.steps
         events = self._apply(record)
-        self.history.record(self.state.steps, record, events)
+        self.history.record(position, record, events)
         if self.state.steps % self.checkpoint_every == 0:
             self.history.checkpoint(self.state.steps, self.state.copy())
         return events

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 from apf_viz.core.engine import Engine, EngineError
-from apf_viz.core.formats import InputError, TraceHeader
+from apf_viz.core.formats import InputError, TraceHeader, event_to_json
 from apf_viz.core.grid import Point
 from apf_viz.core.history import Event, StepRecord
 from apf_viz.core.schedulers import Scheduler, step_rng
@@ -95,6 +96,14 @@ def replay(engine: Engine, events: Sequence[Event], where: str = "trace") -> Non
     """Apply a recorded schedule to a fresh engine and check that every event comes out identical."""
     done = 0
     for record in steps_of_trace(events, engine.light_semantics == "lc-atomic"):
+        want = events[done]
+        if engine.finished:
+            raise InputError(f"{where}: event {done + 1} comes after the run ended ({engine.outcome})")
+        if engine.next_event(want.robot) != want.phase:
+            raise InputError(
+                f"{where}: event {done + 1}: robot {want.robot} cannot {want.phase} now, "
+                f"its next event is {engine.next_event(want.robot)}"
+            )
         try:
             produced = engine.step(record.robots, round=record.round)
         except EngineError as e:
@@ -102,7 +111,8 @@ def replay(engine: Engine, events: Sequence[Event], where: str = "trace") -> Non
         for got in produced:
             want = events[done]
             if got != want:
-                raise InputError(f"{where}: event {done + 1} differs on replay (recorded {want}, got {got})")
+                recorded, produced_now = json.dumps(event_to_json(want)), json.dumps(event_to_json(got))
+                raise InputError(
+                    f"{where}: event {done + 1} differs on replay: recorded {recorded}, got {produced_now}"
+                )
             done += 1
-    if done != len(events):
-        raise InputError(f"{where}: {len(events) - done} events after the run ended")

@@ -1,0 +1,47 @@
+"""Visibility: the O(k) nearest-per-direction Look equals the lattice-walk oracle."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from apf_viz.core.grid import Direction, visible_from, visible_from_naive
+
+points_sets = st.sets(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=1, max_size=40)
+
+
+@settings(max_examples=300, deadline=None)
+@given(points_sets, st.data())
+def test_visibility_equals_oracle(points, data):
+    pts = sorted(points)
+    i = data.draw(st.integers(0, len(pts) - 1))
+    fast = visible_from(np.array(pts, dtype=np.int64), i).tolist()
+    assert fast == visible_from_naive(pts, i)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.sets(st.tuples(st.integers(-1000, 1000), st.integers(-1000, 1000)), min_size=2, max_size=30))
+def test_visibility_equals_oracle_on_a_wide_grid(points):
+    pts = sorted(points)
+    for i in range(len(pts)):
+        assert visible_from(np.array(pts), i).tolist() == visible_from_naive(pts, i)
+
+
+def test_a_robot_hides_the_ones_behind_it():
+    pts = [(0, 0), (1, 0), (2, 0), (2, 1), (4, 2), (0, 5)]
+    # (2,0) is behind (1,0); (4,2) is behind (2,1); (0,5) is in plain view.
+    assert visible_from(np.array(pts), 0).tolist() == [1, 3, 5]
+
+
+def test_visibility_is_symmetric_between_two_robots():
+    pts = [(0, 0), (3, 6), (1, 2), (5, 1)]
+    arr = np.array(pts)
+    for i in range(len(pts)):
+        for j in visible_from(arr, i).tolist():
+            assert i in visible_from(arr, j).tolist()
+
+
+def test_direction_deltas_round_trip():
+    for d in Direction:
+        assert Direction.from_delta(*d.delta) is d

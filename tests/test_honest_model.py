@@ -1,0 +1,94 @@
+"""The model is honest: an algorithm gets only the local view, in its own frame."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from apf_viz.core.algorithm import Decision
+from apf_viz.core.engine import Engine
+from apf_viz.core.frames import move_to_global, to_local
+from apf_viz.core.grid import Direction
+from apf_viz.core.view import Seen, Snapshot
+
+
+class Spy:
+    """Records every argument it is given, and decides by hashing the view (any function would do)."""
+
+    name = "spy"
+    lights = ("off", "terminal1", "done")
+
+    def __init__(self) -> None:
+        self.calls: list[tuple] = []
+
+    def decide(self, view, pattern) -> Decision:
+        self.calls.append((view, pattern))
+        below = sum(1 for s in view.robots if s.dy < 0)
+        move = Direction.UP if below % 2 else (Direction.LEFT if view.robots else None)
+        return Decision("terminal1" if below else "done", move, f"{below} below")
+
+
+START = [(0, 0), (2, 1), (3, -2), (5, 0), (1, 4)]
+
+
+def _views_and_decisions(points, y_up):
+    spy = Spy()
+    engine = Engine(points, START, spy, y_up=y_up)
+    out = []
+    for r in range(len(points)):
+        engine.step([r])  # Look
+        engine.step([r])  # Compute
+        out.append((engine.state.snapshot[r], engine.state.pending[r], engine.history.events()[-1].move))
+    return out, spy
+
+
+def test_same_local_view_under_two_placements_gives_the_same_decision():
+    """Translate the whole configuration and mirror it in y while flipping every robot's y-axis:
+    every robot's view is then identical, and so must be every decision (and the local move)."""
+    a, _ = _views_and_decisions(START, [True, False, True, True, False])
+    moved = [(x + 17, -y - 40) for x, y in START]
+    b, _ = _views_and_decisions(moved, [False, True, False, False, True])
+    for (view_a, dec_a, gmove_a), (view_b, dec_b, gmove_b) in zip(a, b, strict=True):
+        assert view_a == view_b
+        assert dec_a == dec_b
+        # The same local move is a mirrored global move.
+        assert gmove_b == move_to_global(gmove_a, False)
+
+
+def test_the_algorithm_receives_nothing_but_a_snapshot_and_the_pattern():
+    _, spy = _views_and_decisions(START, [True] * 5)
+    assert spy.calls
+    for view, pattern in spy.calls:
+        assert type(view) is Snapshot
+        assert set(view._fields) == {"light", "robots"}
+        assert all(type(s) is Seen and set(s._fields) == {"dx", "dy", "light"} for s in view.robots)
+        assert all(isinstance(s.dx, int) and isinstance(s.dy, int) for s in view.robots)
+        assert pattern == tuple(START)
+        # The robot itself is the origin: it never appears in its own view.
+        assert all((s.dx, s.dy) != (0, 0) for s in view.robots)
+
+
+def test_view_order_carries_no_identity():
+    """Renumbering the robots changes no view: robot 0 of A and robot 2 of B stand on the same point."""
+    perm = [START[i] for i in (4, 2, 0, 3, 1)]
+    a = Engine(START, START, Spy())
+    b = Engine(perm, START, Spy())
+    assert a.look(0) == b.look(2)
+    a.step([0])
+    b.step([2])
+    assert a.state.snapshot[0] == b.state.snapshot[2]
+
+
+def test_a_flipped_robot_sees_y_mirrored_and_its_up_is_global_down():
+    assert to_local((2, 3), y_up=False) == (2, -3)
+    assert move_to_global(Direction.UP, False) is Direction.DOWN
+    assert move_to_global(Direction.LEFT, False) is Direction.LEFT
+    assert move_to_global(None, False) is None
+
+
+@pytest.mark.parametrize("module", ["apf_viz.core", "apf_viz.algorithms", "apf_viz.cli"])
+def test_the_core_never_imports_viser(module):
+    code = f"import sys, {module}; import apf_viz.core.run; sys.exit('viser' in sys.modules)"
+    assert subprocess.run([sys.executable, "-c", code]).returncode == 0
