@@ -45,3 +45,13 @@ def test_visibility_is_symmetric_between_two_robots():
 def test_direction_deltas_round_trip():
     for d in Direction:
         assert Direction.from_delta(*d.delta) is d
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    st.sets(st.tuples(st.integers(-(2**22), 2**22), st.integers(-(2**22), 2**22)), min_size=2, max_size=12)
+)
+def test_visibility_equals_oracle_beyond_the_packed_key_range(points):
+    pts = sorted(points)
+    for i in range(len(pts)):
+        assert visible_from(np.array(pts), i).tolist() == visible_from_naive(pts, i)

@@ -44,8 +44,8 @@ _DELTAS: dict[Direction, Point] = {
     Direction.DOWN: (0, -1),
 }
 
-# Primitive directions are packed into one int64 key; offsets beyond ±2**30 are not a grid we simulate.
-_KEY_SHIFT = np.int64(1 << 31)
+# Above this offset span the packed sort key could overflow int64; a two-key sort is used instead.
+_PACKED_SPAN_LIMIT = 1 << 20
 
 
 def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
@@ -55,20 +55,33 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
         positions: shape (k, 2), distinct integer points.
         i: the observer's index.
 
-    Vectorised "nearest robot per primitive direction": O(k log k) in numpy, no lattice walk.
+    "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
+    (direction, distance g), and the first of each direction wins. No lattice point is visited.
     """
-    offsets = positions - positions[i]
-    others = np.flatnonzero(np.any(offsets != 0, axis=1))
-    if others.size == 0:
-        return others
-    d = offsets[others]
-    g = np.gcd(d[:, 0], d[:, 1])
-    key = (d[:, 0] // g) * _KEY_SHIFT + (d[:, 1] // g)
-    order = np.lexsort((g, key))  # by direction, nearest first
+    k = positions.shape[0]
+    if k == 1:
+        return np.empty(0, dtype=np.intp)
+    off = positions - positions[i]
+    dx, dy = off[:, 0], off[:, 1]
+    g = np.gcd(dx, dy)
+    g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
+    span = int(np.abs(off).max()) + 1
+    if span < _PACKED_SPAN_LIMIT:
+        w = 2 * span + 1
+        key = (dx // g + span) * w + (dy // g + span)
+        packed = key * span + g  # by direction, nearest first
+        packed[i] = -1
+        order = np.argsort(packed, kind="stable")
+    else:
+        key = (dx // g) * (1 << 31) + (dy // g)
+        key[i] = np.iinfo(np.int64).min
+        order = np.lexsort((g, key))
     sorted_key = key[order]
-    first = np.ones(sorted_key.size, dtype=bool)
-    first[1:] = sorted_key[1:] != sorted_key[:-1]
-    return np.sort(others[order[first]])
+    first = np.empty(k, dtype=bool)
+    first[0] = False  # the observer
+    first[1] = True
+    np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
+    return np.sort(order[first])
 
 
 def visible_from_naive(points: list[Point], i: int) -> list[int]:
