@@ -1,0 +1,80 @@
+"""Auditing runs of the paper's algorithm: the invariants the issue and the paper promise, checked from
+outside the engine's own verdict (used by the end-to-end tests and the soak)."""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass, field
+
+from apf_viz.core.engine import Engine
+from apf_viz.core.grid import Point
+from apf_viz.core.schedulers import make_scheduler, step_rng
+from apf_viz.core.symmetry import unsolvable_axis
+
+
+@dataclass
+class Audit:
+    outcome: str
+    problems: list[str] = field(default_factory=list)
+    max_leaders: int = 0
+    lights_used: set[str] = field(default_factory=set)
+    moves: int = 0
+    events: int = 0
+
+    @property
+    def ok(self) -> bool:
+        return not self.problems
+
+
+def same_shape(points: list[Point], pattern: list[Point]) -> bool:
+    """Independent of the engine: equal up to translation or translation after a mirror in y."""
+
+    def canon(ps: list[Point]) -> list[Point]:
+        x0 = min(p[0] for p in ps)
+        y0 = min(p[1] for p in ps)
+        return sorted((x - x0, y - y0) for x, y in ps)
+
+    return canon(points) in (canon(pattern), canon([(x, -y) for x, y in pattern]))
+
+
+def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
+    """Run to the end, checking after every step: at most one robot ever has light ``leader``."""
+    sched = make_scheduler(scheduler)
+    audit = Audit(outcome="running")
+    while not engine.finished:
+        record = sched.choose(engine, step_rng(seed, engine.step_index))
+        engine.step(record.robots, round=record.round)
+        leaders = engine.state.lights.count("leader")
+        audit.max_leaders = max(audit.max_leaders, leaders)
+    st = engine.state
+    audit.outcome = st.outcome or "running"
+    audit.lights_used = set(st.lights_used)
+    audit.moves, audit.events = st.moves, st.events
+    if audit.outcome != "formed":
+        audit.problems.append(f"outcome {audit.outcome}")
+    if audit.max_leaders > 1:
+        audit.problems.append(f"{audit.max_leaders} robots had light leader at once")
+    if len(audit.lights_used) > 8:
+        audit.problems.append(f"{len(audit.lights_used)} lights used")
+    if any(light != "done" for light in st.lights):
+        audit.problems.append(f"not all done at the end: {sorted(set(st.lights))}")
+    if not same_shape(engine.current_points(), list(engine.pattern)):
+        if audit.outcome == "formed":
+            audit.problems.append("the engine says formed but the shape differs")
+        else:
+            audit.problems.append("final positions are not the pattern")
+    return audit
+
+
+def random_solvable_start(k: int, rng: random.Random, box: int | None = None) -> list[Point]:
+    side = box or max(3, int((3 * k) ** 0.5) + 1)
+    cells = [(x, y) for x in range(side) for y in range(side)]
+    while True:
+        pts = rng.sample(cells, k)
+        if unsolvable_axis(pts) is None:
+            return pts
+
+
+def random_pattern(k: int, rng: random.Random, box: int | None = None) -> list[Point]:
+    side = box or max(3, int((3 * k) ** 0.5) + 1)
+    return rng.sample([(x, y) for x in range(side) for y in range(side)], k)

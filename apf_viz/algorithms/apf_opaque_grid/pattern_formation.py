@@ -1,0 +1,185 @@
+"""Algorithm 3, *Pattern Formation from Leader Configuration*, with LineMove and TargetMove.
+
+The leader r₀ fixes the coordinate system: r₀ is at (0, −1) and +y points into the open half that holds
+the other robots. The followers first form a compact line (1, −1) … (n−1, −1) on L_H(r₀), then leave it one
+by one, left end first, for targets t_0 … t_{n−1}; the leader fills t_{n−1} last.
+
+Embedding of the drawn pattern (the paper leaves it open, B16): translate it so that min y = 1 and
+min x = 0. Row 0 (L_H1) stays free for travelling robots, row −1 holds the line, and every target is above
+both, so no path of LineMove or TargetMove crosses a placed robot. Targets are ordered top row first,
+right to left within a row, so t_{n−1} is the bottom-left target and each robot travels below every
+robot already done.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
+from apf_viz.core.algorithm import Decision, Pattern
+from apf_viz.core.grid import Direction, Point
+from apf_viz.core.view import Seen, Snapshot
+
+
+@lru_cache(maxsize=64)
+def embedded_targets(pattern: Pattern) -> tuple[Point, ...]:
+    """t_0 … t_{n−1}: the pattern translated to min x = 0, min y = 1, sorted by (−y, −x)."""
+    mx = min(x for x, _ in pattern)
+    my = min(y for _, y in pattern)
+    placed = [(x - mx, y - my + 1) for x, y in pattern]
+    return tuple(sorted(placed, key=lambda p: (-p[1], -p[0])))
+
+
+@dataclass(frozen=True)
+class LeaderFrame:
+    """The coordinate system agreed through the leader: a robot's local offsets mapped to it.
+
+    ``origin`` is the local offset of the frame's (0, 0); ``s`` is +1 if the local +y is the frame's +y."""
+
+    origin: Point
+    s: int
+
+    def of(self, robot: Seen) -> Point:
+        return (robot.dx - self.origin[0], self.s * (robot.dy - self.origin[1]))
+
+    @property
+    def me(self) -> Point:
+        return (-self.origin[0], -self.s * self.origin[1])
+
+    def local_move(self, fx: int, fy: int) -> Direction:
+        return Direction.from_delta(fx, self.s * fy)
+
+
+def follower_frame(view: Snapshot, leader: Seen) -> LeaderFrame:
+    """The frame of a robot that sees the leader at local (lx, ly): r₀ ↦ (0, −1), +y away from r₀'s row
+    towards the other robots. On r₀'s own row the side is read off any visible robot off that row; with
+    none (the line is complete) the robot takes its own +y: the pattern may then form mirrored."""
+    lx, ly = leader.dx, leader.dy
+    if ly != 0:
+        s = 1 if ly < 0 else -1
+    else:
+        off_row = [r for r in view.robots if r.dy != ly]
+        s = (1 if off_row[0].dy > ly else -1) if off_row else 1
+    # frame(p) = (p.dx − lx, s·(p.dy − ly) − 1) = (p.dx − ox, s·(p.dy − oy)) with oy = ly + s.
+    return LeaderFrame((lx, ly + s), s)
+
+
+def _step_towards(frame: LeaderFrame, me: Point, goal: Point, horizontal_first: bool) -> Direction:
+    dx, dy = goal[0] - me[0], goal[1] - me[1]
+    if horizontal_first and dx:
+        return frame.local_move(1 if dx > 0 else -1, 0)
+    if dy:
+        return frame.local_move(0, 1 if dy > 0 else -1)
+    return frame.local_move(1 if dx > 0 else -1, 0)
+
+
+def line_move(frame: LeaderFrame, j: int, light: str) -> Decision:
+    """LineMove(j): down to L_H1 (row 0), along it to (j, 0), then down into (j, −1)."""
+    x, y = frame.me
+    if y == 0:
+        if x == j:
+            return Decision(light, frame.local_move(0, -1), f"LineMove({j}): at ({j}, 0) → move to ({j}, −1)")
+        step = frame.local_move(1 if j > x else -1, 0)
+        return Decision(light, step, f"LineMove({j}): on L_H1 → move horizontally towards ({j}, 0)")
+    return Decision(light, frame.local_move(0, -1), f"LineMove({j}): above L_H1 → move down towards L_H1")
+
+
+def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decision:
+    """TargetMove(j): up to L_{t_j−1} (the row below t_j), along it to below t_j, then up into t_j."""
+    x, y = frame.me
+    tx, ty = target
+    name = f"TargetMove({j}) to t_{j} = ({tx}, {ty})"
+    if (x, y) == target:
+        return Decision("done", None, f"{name}: at t_{j} → done")
+    if y == ty - 1:
+        if x == tx:
+            return Decision(light, frame.local_move(0, 1), f"{name}: below t_{j} → move up into it")
+        step = frame.local_move(1 if tx > x else -1, 0)
+        return Decision(light, step, f"{name}: on L_(t_j−1) → move horizontally")
+    step = frame.local_move(0, 1 if ty - 1 > y else -1)
+    return Decision(light, step, f"{name}: move vertically towards L_(t_j−1)")
+
+
+def pattern_formation_off(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
+    """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader."""
+    leader = next((s for s in view.robots if s.light == "leader"), None)
+    if leader is None:
+        return stay(view, "Phase 3 (off): the leader is not in sight → wait")
+    targets = embedded_targets(pattern)
+    n = len(targets)
+    frame = follower_frame(view, leader)
+    x, y = frame.me
+    placed = [(frame.of(s), s) for s in view.robots if s is not leader]
+    if y > -1:
+        leftmost = not any(p[1] == y and p[0] < x for p, _ in placed)
+        between = any(-1 < p[1] < y for p, _ in placed)
+        if leftmost and not between:
+            line = sorted(p[0] for p, _ in placed if p[1] == -1)
+            i = len(line)
+            if i == 0:
+                if any(s.light == "done" for _, s in placed) or ("N2" in res and n == 2):
+                    return _to_target(frame, n - 2, targets, "line empty, a done robot in sight")
+                return line_move(frame, 1, "off")
+            if line == list(range(1, i + 1)):
+                return line_move(frame, i + 1, "off")
+            if line == list(range(n - i, n)):
+                return _to_target(frame, n - i - 2, targets, f"{i} robots left on the line")
+            return stay(view, "Phase 3 (off): the line is neither growing nor shrinking as expected → wait")
+        return stay(view, "Phase 3 (off): not the leftmost of the lowest row above the line → wait")
+    if y == -1:
+        blocking = {"off"} if "P3" not in res else None
+        above = [s for p, s in placed if p[1] > -1]
+        waiting_for = [s for s in above if (s.light in blocking if blocking else s.light != "done")]
+        if not waiting_for:
+            return Decision(
+                "off",
+                frame.local_move(0, 1),
+                f"Phase 3 (off): left end of the line at ({x}, −1) → move to ({x}, 0)",
+            )
+        return stay(view, "Phase 3 (off): on the line, robots above are not done → wait")
+    return stay(view, "Phase 3 (off): below the leader's row → wait")
+
+
+def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str) -> Decision:
+    if not 0 <= j < len(targets):
+        return Decision("off", None, f"Phase 3 (off): {why}, but t_{j} does not exist → wait")
+    decision = target_move(frame, j, targets[j], "off")
+    return Decision(decision.light, decision.move, f"Phase 3 (off): {why} → {decision.rule}")
+
+
+def pattern_formation_leader(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
+    """Algorithm 3, r.light = leader (lines 23–27): wait for the others, then fill t_{n−1}."""
+    targets = embedded_targets(pattern)
+    n = len(targets)
+    pending = [s for s in view.robots if (s.light != "done" if "P3" in res else s.light == "off")]
+    if pending:
+        return stay(view, "Phase 3 (leader): robots are still forming → wait")
+    if n == 1:
+        return Decision("done", None, "Phase 3 (leader): alone, the pattern is one point → done")
+    done = [s for s in view.robots if s.light == "done"]
+    if not done:
+        return stay(view, "Phase 3 (leader): no done robot in sight → wait")
+    s = _up_towards(done)
+    if "LA" in res:
+        frame = _anchored_frame(done, targets[n - 2], s)
+    else:
+        frame = LeaderFrame((0, s), s)  # the paper's frame: r₀ itself is always (0, −1)
+    decision = target_move(frame, n - 1, targets[n - 1], "leader")
+    return Decision(decision.light, decision.move, f"Phase 3 (leader): all others done → {decision.rule}")
+
+
+def _up_towards(done: list[Seen]) -> int:
+    """The frame's +y as seen by the leader: towards the done robots off its row (+1 if none is)."""
+    off_row = [d for d in done if d.dy != 0]
+    return (1 if off_row[0].dy > 0 else -1) if off_row else 1
+
+
+def _anchored_frame(done: list[Seen], t_prev: Point, s: int) -> LeaderFrame:
+    """LA: the leader is oblivious, so it re-derives the frame from t_{n−2}, the leftmost robot of the
+    lowest visible done row, instead of from its own position. (With s unknown, i.e. every visible done
+    robot on the leader's row, the leader is on t_{n−1}'s row and its frame point does not depend on s.)"""
+    lowest = min(s * d.dy for d in done)
+    b = min((d for d in done if s * d.dy == lowest), key=lambda d: d.dx)
+    # b is at frame point t_prev, so the frame's origin in local terms is b − (t_prev.x, s·t_prev.y).
+    return LeaderFrame((b.dx - t_prev[0], b.dy - s * t_prev[1]), s)
