@@ -135,7 +135,21 @@ def test_run_json_output_trace_and_replay(write_json, tmp_path, capsys):
 def test_not_formed_exits_1(write_json, capsys):
     robots = write_json("r.json", GOOD_ROBOTS)
     pattern = write_json("p.json", {"points": [[0, 0], [0, 1], [0, 2], [0, 3], [0, 4]]})
-    assert main(["run", "--robots", str(robots), "--pattern", str(pattern), "--json"]) == 1
+    assert (
+        main(
+            [
+                "run",
+                "--robots",
+                str(robots),
+                "--pattern",
+                str(pattern),
+                "--json",
+                "--algorithm",
+                "compact-left",
+            ]
+        )
+        == 1
+    )
     assert json.loads(capsys.readouterr().out)["outcome"] == "stuck"
 
 

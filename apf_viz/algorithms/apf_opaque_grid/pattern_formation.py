@@ -161,10 +161,8 @@ def pattern_formation_leader(view: Snapshot, pattern: Pattern, res: frozenset[st
     if not done:
         return stay(view, "Phase 3 (leader): no done robot in sight → wait")
     s = _up_towards(done)
-    if "LA" in res:
-        frame = _anchored_frame(done, targets[n - 2], s)
-    else:
-        frame = LeaderFrame((0, s), s)  # the paper's frame: r₀ itself is always (0, −1)
+    # Without LA, the paper's frame: r₀ itself is always (0, −1).
+    frame = _anchored_frame(done, targets[n - 2], s) if "LA" in res else LeaderFrame((0, s), s)
     decision = target_move(frame, n - 1, targets[n - 1], "leader")
     return Decision(decision.light, decision.move, f"Phase 3 (leader): all others done → {decision.rule}")
 
