@@ -120,6 +120,8 @@ def test_run_json_output_trace_and_replay(write_json, tmp_path, capsys):
             "5",
             "--scheduler",
             "stale-first",
+            "--algorithm",
+            "compact-left",
         ]
     )
     out = json.loads(capsys.readouterr().out)
