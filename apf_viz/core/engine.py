@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import IntEnum
+from itertools import chain, repeat
 from typing import Literal
 
 import numpy as np
@@ -31,6 +32,7 @@ from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Seen, Snapshot
 
 LightSemantics = Literal["compute", "lc-atomic"]
+
 Outcome = Literal["formed", "stuck", "limit", "collision"]
 
 _DECISION_CACHE_LIMIT = 200_000
@@ -44,7 +46,9 @@ class Phase(IntEnum):
     COMPUTED = 2
 
 
-NEXT_EVENT = {Phase.IDLE: "look", Phase.LOOKED: "compute", Phase.COMPUTED: "move"}
+NEXT_EVENT = ("look", "compute", "move")  # indexed by Phase
+# Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
+_IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 
 
 @dataclass
@@ -167,7 +171,7 @@ class Engine:
 
     def next_event(self, robot: int) -> str:
         """``"look"``, ``"compute"`` or ``"move"``: what activating this robot does next."""
-        return NEXT_EVENT[Phase(int(self.state.phase[robot]))]
+        return NEXT_EVENT[self.state.phase[robot]]
 
     def visible(self, robot: int) -> np.ndarray:
         """Indices of the robots this robot sees now."""
@@ -218,11 +222,11 @@ class Engine:
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
         phase = st.phase[record.robots[0]]
-        if phase == Phase.IDLE:
+        if phase == _IDLE:
             events = [self._look(r, record.round) for r in record.robots]
             if self.light_semantics == "lc-atomic":
                 events += [self._compute(r, record.round) for r in record.robots]
-        elif phase == Phase.LOOKED:
+        elif phase == _LOOKED:
             events = [self._compute(r, record.round) for r in record.robots]
         else:
             events = self._move(record.robots, record.round)
@@ -230,7 +234,8 @@ class Engine:
         st.events += len(events)
         if record.round is not None:
             st.round = max(st.round, record.round)
-        st.last_act[list(record.robots)] = st.steps
+        for r in record.robots:
+            st.last_act[r] = st.steps
         self._update_outcome()
         return events
 
@@ -239,16 +244,21 @@ class Engine:
         ids = self.visible(r)
         snap = self._snapshot(r, ids, st)
         st.snapshot[r] = snap
-        st.seen[r] = tuple(int(i) for i in ids)
+        st.seen[r] = tuple(ids.tolist())
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
-        st.phase[r] = Phase.LOOKED
+        st.phase[r] = _LOOKED
         return Event(robot=r, phase="look", sees=st.seen[r], round=round)
 
     def _snapshot(self, r: int, ids: np.ndarray, st: EngineState) -> Snapshot:
-        local = offsets_to_local(st.positions[ids] - st.positions[r], self.y_up[r]).tolist()
-        seen = sorted(Seen(dx, dy, st.lights[i]) for (dx, dy), i in zip(local, ids.tolist(), strict=True))
-        return Snapshot(st.lights[r], tuple(seen))
+        local = offsets_to_local(st.positions[ids] - st.positions[r], self.y_up[r])
+        order = np.lexsort((local[:, 1], local[:, 0]))  # by (dx, dy): the order carries no identity
+        lights = st.lights
+        dxs, dys = local[order, 0].tolist(), local[order, 1].tolist()
+        seen_lights = [lights[i] for i in ids[order].tolist()]
+        # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
+        robots = tuple(map(tuple.__new__, repeat(Seen), zip(dxs, dys, seen_lights, strict=True)))
+        return Snapshot(lights[r], robots)
 
     def _compute(self, r: int, round: int | None) -> Event:
         st = self.state
@@ -256,7 +266,7 @@ class Engine:
         assert snap is not None
         decision = self.decide(snap)
         st.pending[r] = decision
-        st.phase[r] = Phase.COMPUTED
+        st.phase[r] = _COMPUTED
         if decision.light != st.lights[r]:
             st.lights[r] = decision.light
             st.lights_used.add(decision.light)
@@ -333,7 +343,7 @@ class Engine:
         # A cycle that changed nothing on a still-current view proves this robot quiescent for now.
         if decision.move is None and st.look_version[r] == st.version:
             self._probe[r] = (st.version, True)
-        st.phase[r] = Phase.IDLE
+        st.phase[r] = _IDLE
         st.pending[r] = None
         st.snapshot[r] = None
         st.seen[r] = None
@@ -358,8 +368,7 @@ class Engine:
 
         Probes of the current view are cached per configuration version, and the robot found active last
         time is probed first, so a busy run pays at most one Look per configuration change."""
-        order = list(range(self._probe_hint, self.k)) + list(range(self._probe_hint))
-        for r in order:
+        for r in chain(range(self._probe_hint, self.k), range(self._probe_hint)):
             if not self._robot_quiescent(r):
                 self._probe_hint = r
                 return False
@@ -368,9 +377,9 @@ class Engine:
     def _robot_quiescent(self, r: int) -> bool:
         st = self.state
         phase = st.phase[r]
-        if phase == Phase.COMPUTED and st.pending[r].move is not None:
+        if phase == _COMPUTED and st.pending[r].move is not None:
             return False
-        if phase == Phase.LOOKED and not self.decide(st.snapshot[r]).is_noop(st.lights[r]):
+        if phase == _LOOKED and not self.decide(st.snapshot[r]).is_noop(st.lights[r]):
             return False
         version, noop = self._probe[r]
         if version != st.version:

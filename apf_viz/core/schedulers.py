@@ -10,7 +10,6 @@ steps (default ``4·k``, at least 16) is served before anyone else.
 
 from __future__ import annotations
 
-import random
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
@@ -28,7 +27,7 @@ SCHEDULERS = ("fsync", "ssync", "async", "round-robin", "stale-first", "manual")
 class Scheduler(Protocol):
     name: str
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         """The next step: robots to activate together (all in the same phase) and the round if any."""
         ...
 
@@ -49,7 +48,7 @@ class AsyncScheduler:
 
     name = "async"
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         r = _most_starved(engine)
         return StepRecord((rng.randrange(engine.k) if r is None else r,))
 
@@ -59,7 +58,7 @@ class RoundRobinScheduler:
 
     name = "round-robin"
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
         busy = np.flatnonzero(st.phase)
         if busy.size:
@@ -74,12 +73,12 @@ class StaleFirstScheduler:
 
     name = "stale-first"
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
         starved = _most_starved(engine)
         if starved is not None:
             return StepRecord((starved,))
-        early = np.flatnonzero(st.phase != Phase.COMPUTED)
+        early = np.flatnonzero(st.phase != int(Phase.COMPUTED))
         if early.size:
             return StepRecord((int(early[rng.randrange(early.size)]),))
         return StepRecord((int(np.argmin(st.look_step)),))
@@ -91,15 +90,15 @@ class _RoundScheduler:
 
     name = ""
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
-        for phase in (Phase.LOOKED, Phase.COMPUTED):
+        for phase in (int(Phase.LOOKED), int(Phase.COMPUTED)):
             group = np.flatnonzero(st.phase == phase)
             if group.size:
                 return StepRecord(tuple(group.tolist()), round=st.round)
         return StepRecord(self.subset(engine, rng), round=st.round + 1)
 
-    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+    def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
         raise NotImplementedError
 
 
@@ -108,7 +107,7 @@ class FsyncScheduler(_RoundScheduler):
 
     name = "fsync"
 
-    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+    def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
         return tuple(range(engine.k))
 
 
@@ -118,7 +117,7 @@ class SsyncScheduler(_RoundScheduler):
 
     name = "ssync"
 
-    def subset(self, engine: Engine, rng: random.Random) -> tuple[int, ...]:
+    def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
         st = engine.state
         bound = starve_bound(engine)
         chosen = {r for r in range(engine.k) if rng.random() < 0.5 or st.steps - st.last_act[r] >= bound}
@@ -141,7 +140,7 @@ class ManualScheduler:
     def pick(self, robot: int) -> None:
         self._queue.append(robot)
 
-    def choose(self, engine: Engine, rng: random.Random) -> StepRecord:
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         if self._queue:
             return StepRecord((self._queue.pop(0),))
         if self.fallback is None:
@@ -165,6 +164,33 @@ def make_scheduler(name: str) -> Scheduler:
         raise ValueError(f"unknown scheduler {name!r}; choose one of {', '.join(SCHEDULERS)}") from None
 
 
-def step_rng(seed: int, step: int) -> random.Random:
+class StepRandom:
+    """A small, fast generator (splitmix64) seeded from (seed, step): schedulers create one per step, and
+    ``random.Random`` costs more to seed than a whole ASYNC step."""
+
+    __slots__ = ("_state",)
+    _MASK = (1 << 64) - 1
+
+    def __init__(self, seed: int, step: int) -> None:
+        self._state = (seed * 0x9E3779B97F4A7C15 + step * 0xBF58476D1CE4E5B9 + 1) & self._MASK
+
+    def _next(self) -> int:
+        self._state = (self._state + 0x9E3779B97F4A7C15) & self._MASK
+        z = self._state
+        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & self._MASK
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & self._MASK
+        return z ^ (z >> 31)
+
+    def random(self) -> float:
+        return (self._next() >> 11) / float(1 << 53)
+
+    def randrange(self, n: int) -> int:
+        return self._next() % n  # bias below 2**-40 for any n we simulate
+
+    def choice(self, seq):
+        return seq[self.randrange(len(seq))]
+
+
+def step_rng(seed: int, step: int) -> StepRandom:
     """The generator a scheduler uses at this step: a function of (seed, step) only."""
-    return random.Random(seed * 1_000_003 + step)
+    return StepRandom(seed, step)
