@@ -17,6 +17,7 @@ class Audit:
     outcome: str
     problems: list[str] = field(default_factory=list)
     max_leaders: int = 0
+    max_leader1: int = 0
     lights_used: set[str] = field(default_factory=set)
     moves: int = 0
     events: int = 0
@@ -44,8 +45,9 @@ def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
     while not engine.finished:
         record = sched.choose(engine, step_rng(seed, engine.step_index))
         engine.step(record.robots, round=record.round)
-        leaders = engine.state.lights.count("leader")
-        audit.max_leaders = max(audit.max_leaders, leaders)
+        lights = engine.state.lights
+        audit.max_leaders = max(audit.max_leaders, lights.count("leader"))
+        audit.max_leader1 = max(audit.max_leader1, lights.count("leader1"))
     st = engine.state
     audit.outcome = st.outcome or "running"
     audit.lights_used = set(st.lights_used)
