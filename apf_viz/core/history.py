@@ -52,6 +52,7 @@ class History:
 
     def __init__(self, initial: EngineState) -> None:
         self.steps: list[RecordedStep] = []
+        self.generation = 0  # bumped when a branch drops recorded steps (caches of prefixes use it)
         self._checkpoint_steps: list[int] = [0]
         self._checkpoints: dict[int, EngineState] = {0: initial}
 
@@ -67,6 +68,7 @@ class History:
             if self.steps[position] == step:
                 return
             del self.steps[position:]
+            self.generation += 1
             self._drop_checkpoints_after(position)
         self.steps.append(step)
 

@@ -1,0 +1,1 @@
+"""The visualiser: a thin viser layer over the pure core (session, scene, panels, app)."""

@@ -1,0 +1,173 @@
+"""Builds the viser server around one shared :class:`Session`, and serves it.
+
+Threads: viser runs callbacks on its own threads; they only call the session and ask for a render.
+One render thread owns the scene: it advances the run while playing and draws at most ``FPS`` frames a
+second, each frame one atomic update, so clicks stay responsive while the engine plays.
+"""
+
+from __future__ import annotations
+
+import argparse
+import threading
+import time
+from pathlib import Path
+
+import viser
+
+from apf_viz.core.formats import InputError, load_pattern, load_robots, load_trace
+from apf_viz.ui.panels import DEMO_DIR, Panels
+from apf_viz.ui.scene import SceneRenderer, cell_of_ray
+from apf_viz.ui.session import Session
+
+FPS = 30
+DEMO_START = DEMO_DIR / "starts" / "demo-10.json"
+DEMO_PATTERN = DEMO_DIR / "heart.json"
+
+
+class App:
+    """The visualiser: server, scene, panels and the play/render loop."""
+
+    def __init__(
+        self, session: Session, host: str = "127.0.0.1", port: int = 8080, verbose: bool = True
+    ) -> None:
+        self.session = session
+        self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
+        self.renderer = SceneRenderer(self.server)
+        self.panels = Panels(self.server, session, self.request_render, self.notify_all)
+        self._dirty = threading.Event()
+        self._stop = threading.Event()
+        self._framed: tuple[float, float, float, float] | None = None
+        self.frames = 0
+        self.server.scene.on_click()(self._on_click)
+        self._render()
+        self.renderer.frame_initial_camera(self.server.initial_camera)
+        self._framed = self.renderer.bounds
+        self._thread = threading.Thread(target=self._loop, name="apf-viz-render", daemon=True)
+        self._thread.start()
+
+    @property
+    def port(self) -> int:
+        return self.server.get_port()
+
+    def request_render(self) -> None:
+        self._dirty.set()
+
+    def notify_all(self, title: str, body: str, error: bool = False) -> None:
+        for client in self.server.get_clients().values():
+            client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=2)
+        self.server.stop()
+
+    # ------------------------------------------------------------------ events
+    def _on_click(self, event) -> None:
+        cell = cell_of_ray(event.ray_origin, event.ray_direction)
+        if cell is not None:
+            try:
+                self.session.click(cell)
+            except Exception as err:  # a click must never kill the server
+                self.notify_all("Click failed", str(err), True)
+        self.request_render()
+
+    # ------------------------------------------------------------------ loop
+    def _loop(self) -> None:
+        budget = 0.0
+        last = time.perf_counter()
+        while not self._stop.is_set():
+            self._dirty.wait(timeout=1.0 / FPS)
+            now = time.perf_counter()
+            s = self.session
+            if s.playing:
+                budget += (now - last) * s.speed
+                steps = int(budget)
+                budget -= steps
+                for _ in range(min(steps, 5000)):
+                    if not s.step():
+                        s.playing = False
+                        break
+                self._dirty.set()
+            else:
+                budget = 0.0
+            last = now
+            if self._dirty.is_set():
+                self._dirty.clear()
+                self._render()
+                time.sleep(max(0.0, 1.0 / FPS - (time.perf_counter() - now)))
+
+    def _render(self) -> None:
+        view = self.session.view()
+        for message in self._drain():
+            self.notify_all("apf-viz", message, True)
+        with self.server.atomic():
+            self.renderer.render(view)
+            self.panels.refresh(view)
+        self.frames += 1
+        if self._needs_reframe():
+            self.renderer.frame_initial_camera(self.server.initial_camera)
+            for client in self.server.get_clients().values():
+                self.renderer.frame_camera(client.camera)
+            self._framed = self.renderer.bounds
+
+    def _drain(self) -> list[str]:
+        with self.session.lock:
+            out, self.session.messages = self.session.messages, []
+        return out
+
+    def _needs_reframe(self) -> bool:
+        """Keep the run framed as it grows: re-frame when something leaves the framed box."""
+        b = self.renderer.bounds
+        if self._framed is None:
+            self._framed = b
+            return False
+        f = self._framed
+        return b[0] < f[0] - 2 or b[1] < f[1] - 2 or b[2] > f[2] + 2 or b[3] > f[3] + 2
+
+
+def demo_session(algorithm: str = "apf-opaque-grid") -> Session:
+    robots = load_robots(DEMO_START)
+    pattern = load_pattern(DEMO_PATTERN)
+    return Session(
+        [tuple(p) for p in robots.robots],
+        [tuple(p) for p in pattern.points],
+        y_up=robots.y_up,
+        algorithm=algorithm,
+        seed=1,
+    )
+
+
+def session_from_args(args: argparse.Namespace) -> Session:
+    algorithm = args.algorithm or "apf-opaque-grid"
+    if args.trace:
+        session = demo_session(algorithm)
+        path = Path(args.trace)
+        header, _ = load_trace(path)  # validates the file with a one-line error before the UI starts
+        session.load_trace(path.name, path.read_bytes())
+        session.scheduler_name = "manual" if header.scheduler == "manual" else header.scheduler
+        return session
+    robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
+    pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)
+    if len(robots.robots) != len(pattern.points):
+        raise InputError(
+            f"{args.pattern or DEMO_PATTERN}: the pattern has {len(pattern.points)} points but there are "
+            f"{len(robots.robots)} robots"
+        )
+    return Session(
+        [tuple(p) for p in robots.robots],
+        [tuple(p) for p in pattern.points],
+        y_up=robots.y_up,
+        algorithm=algorithm,
+    )
+
+
+def serve(args: argparse.Namespace) -> int:
+    session = session_from_args(args)
+    app = App(session, host=args.host, port=args.port, verbose=False)
+    print(f"apf-viz: serving on http://{args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        app.stop()
+    return 0

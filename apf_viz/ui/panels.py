@@ -1,0 +1,251 @@
+"""The GUI: folders of controls wired to the :class:`Session` with one-line callbacks.
+
+Labels are part of the interface (people and the browser tests find controls by them): Step, Back,
+Play/Pause, Speed, Reset, Timeline, Scheduler, Seed, Event, Mode, and the file buttons.
+Callbacks ignore programmatic updates (``event.client is None``), so refreshing a value from the
+session never feeds back into it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import viser
+import viser.uplot
+
+from apf_viz.core.formats import InputError
+from apf_viz.ui.scene import LIGHT_COLORS
+from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
+
+MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
+MODE_LABELS = {v: k for k, v in MODES.items()}
+DEMO_DIR = Path(__file__).resolve().parent.parent.parent / "demo_patterns"
+
+
+def demo_files(sub: str = "") -> dict[str, Path]:
+    folder = DEMO_DIR / sub if sub else DEMO_DIR
+    return {p.stem: p for p in sorted(folder.glob("*.json"))}
+
+
+class Panels:
+    """Builds the GUI once; :meth:`refresh` shows a new view; ``notify`` reaches every browser."""
+
+    def __init__(
+        self,
+        server: viser.ViserServer,
+        session: Session,
+        changed: Callable[[], None],
+        notify: Callable[[str, str, bool], None],
+    ) -> None:
+        self.server, self.session, self.changed, self.notify = server, session, changed, notify
+        gui = server.gui
+        gui.configure_theme(control_width="large")
+        with gui.add_folder("Run"):
+            row = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
+            row.on_click(self._on_control)
+            self.controls = row
+            self.speed = gui.add_slider(
+                "Speed", min=1, max=500, step=1, initial_value=10, hint="steps per second"
+            )
+            self.speed.on_update(lambda e: self._set_speed(e))
+            self.timeline = gui.add_slider(
+                "Timeline",
+                min=0,
+                max=1,
+                step=1,
+                initial_value=0,
+                hint="scrub the history; stepping from the past branches",
+            )
+            self.timeline.on_update(self._on_timeline)
+            self.event = gui.add_number("Event", initial_value=0, disabled=True)
+            self.stats = gui.add_markdown("")
+            self.banner = gui.add_markdown("")
+        with gui.add_folder("Adversary"):
+            self.scheduler = gui.add_dropdown(
+                "Scheduler", tuple(SCHEDULER_LABELS), initial_value=self._scheduler_label()
+            )
+            self.scheduler.on_update(self._on_scheduler)
+            self.seed = gui.add_number("Seed", initial_value=session.seed, step=1)
+            self.seed.on_update(self._on_seed)
+            self.next_phase = gui.add_markdown("")
+        with gui.add_folder("Selected robot"):
+            self.caption = gui.add_markdown("")
+        with gui.add_folder("Edit"):
+            self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
+            self.mode.on_update(self._on_mode)
+            self.counts = gui.add_markdown("")
+            gui.add_button("Clear pattern").on_click(self._guard(lambda e: self.session.clear_pattern()))
+        with gui.add_folder("Files"):
+            self.demo = gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+            self.demo.on_update(self._on_demo_pattern)
+            self.demo_start = gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
+            self.demo_start.on_update(self._on_demo_start)
+            for label, loader in (
+                ("Upload robots", session.load_robots),
+                ("Upload pattern", session.load_pattern),
+                ("Upload trace", session.load_trace),
+            ):
+                gui.add_upload_button(label, mime_type="*/*").on_upload(self._uploader(loader))
+            for label, name, make in (
+                ("Download robots", "robots.json", session.robots_file),
+                ("Download pattern", "pattern.json", session.pattern_file),
+                ("Download trace", "trace.jsonl", session.trace_file),
+            ):
+                gui.add_button(label).on_click(self._downloader(name, make))
+        with gui.add_folder("Moves over events"):
+            self.plot = gui.add_uplot(
+                (np.array([0.0]), np.array([0.0])),
+                ({"label": "event"}, {"label": "moves", "stroke": "#d33", "width": 2}),
+                aspect=2.0,
+            )
+        with gui.add_folder("Lights"):
+            gui.add_html(self._legend())
+
+    # ------------------------------------------------------------------ callbacks
+    def _guard(self, fn: Callable) -> Callable:
+        """Run a callback under a notification for bad input; always re-render afterwards."""
+
+        def wrapped(event) -> None:
+            try:
+                fn(event)
+            except (InputError, ValueError) as err:
+                self.notify("Not loaded", str(err), True)
+            self.changed()
+
+        return wrapped
+
+    def _on_control(self, event) -> None:
+        value = event.target.value
+        s = self.session
+        if value == "Step":
+            s.playing = False
+            s.step()
+        elif value == "Back":
+            s.playing = False
+            s.back()
+        elif value in ("Play", "Pause"):
+            s.playing = not s.playing
+        elif value == "Reset":
+            s.reset()
+        self.changed()
+
+    def _set_speed(self, event) -> None:
+        if event.client is not None:
+            self.session.speed = float(self.speed.value)
+
+    def _on_timeline(self, event) -> None:
+        if event.client is not None:
+            self.session.playing = False
+            self.session.seek(int(self.timeline.value))
+            self.changed()
+
+    def _on_scheduler(self, event) -> None:
+        if event.client is not None:
+            self.session.set_scheduler(self.scheduler.value)
+            self.changed()
+
+    def _on_seed(self, event) -> None:
+        if event.client is not None:
+            self.session.set_seed(int(self.seed.value))
+
+    def _on_mode(self, event) -> None:
+        if event.client is None:
+            return
+        # A refused switch queues its reason as a session message: every browser is told once.
+        if self.session.set_mode(MODES[self.mode.value]):  # type: ignore[arg-type]
+            self.mode.value = MODE_LABELS[self.session.mode]
+        self.changed()
+
+    def _on_demo_pattern(self, event) -> None:
+        if event.client is None or self.demo.value == "—":
+            return
+        path = demo_files()[self.demo.value]
+        self._guard(lambda e: self.session.load_pattern(path.name, path.read_bytes()))(event)
+
+    def _on_demo_start(self, event) -> None:
+        if event.client is None or self.demo_start.value == "—":
+            return
+        path = demo_files("starts")[self.demo_start.value]
+        self._guard(lambda e: self.session.load_robots(path.name, path.read_bytes()))(event)
+
+    def _uploader(self, loader: Callable[[str, bytes], None]) -> Callable:
+        def on_upload(event) -> None:
+            f = event.target.value
+            self._guard(lambda e: loader(f.name, f.content))(event)
+
+        return on_upload
+
+    def _downloader(self, filename: str, make: Callable[[], str]) -> Callable:
+        def on_click(event) -> None:
+            if event.client is not None:
+                event.client.send_file_download(filename, make().encode("utf-8"))
+
+        return on_click
+
+    # ------------------------------------------------------------------ showing a view
+    def refresh(self, view: SessionView) -> None:
+        s = self.session
+        self.controls.options = ("Step", "Back", "Pause" if s.playing else "Play", "Reset")
+        self.timeline.max = max(1, view.history_length)
+        self.timeline.value = view.steps
+        self.event.value = view.event
+        self.stats.content = (
+            f"Moves **{view.moves}** · cycles **{view.cycles}** · step {view.steps}/{view.history_length}  \n"
+            f"Stage: **{view.stage}** · moves/(k·D) = {view.moves_per_kD:.3f}  \n"
+            f"Lights in use: {', '.join(view.lights_in_use)}"
+        )
+        self.banner.content = self._banner(view)
+        self.caption.content = view.caption
+        self.counts.content = self._counts(view)
+        if self.mode.value != MODE_LABELS[view.mode]:
+            self.mode.value = MODE_LABELS[view.mode]
+        if self.scheduler.value != self._scheduler_label():
+            self.scheduler.value = self._scheduler_label()
+        self.next_phase.content = self._next_phases(view)
+        series = np.array(view.move_series, dtype=np.float64).reshape(-1, 2)
+        if len(series) > 600:  # keep the chart light: sample evenly, always keep the latest point
+            idx = np.unique(np.linspace(0, len(series) - 1, 600).astype(int))
+            series = series[idx]
+        self.plot.data = (series[:, 0], series[:, 1])
+
+    def _scheduler_label(self) -> str:
+        return next(k for k, v in SCHEDULER_LABELS.items() if v == self.session.scheduler_name)
+
+    @staticmethod
+    def _banner(view: SessionView) -> str:
+        if view.outcome is None:
+            return ""
+        icon = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}.get(view.outcome, "")
+        return f"## {icon} {view.outcome.upper()}"
+
+    @staticmethod
+    def _counts(view: SessionView) -> str:
+        if view.mode == "edit-pattern":
+            return f"Targets: **{view.draft_count}** / {view.robot_count} robots — click cells to toggle"
+        if view.mode == "edit-robots":
+            axis = f"  \n⚠ symmetric about y = {view.axis:g}: unsolvable" if view.axis is not None else ""
+            return f"Robots: **{view.robot_count}** — click: add, flip y, remove{axis}"
+        return f"Pattern: {len(view.targets)} targets for {len(view.robots)} robots"
+
+    def _next_phases(self, view: SessionView) -> str:
+        if self.session.scheduler_name != "manual":
+            return ""
+        counts: dict[str, list[int]] = {}
+        for i, r in enumerate(view.robots):
+            counts.setdefault(r.next_event, []).append(i)
+        parts = [
+            f"{phase}: {', '.join(map(str, rs[:20]))}{'…' if len(rs) > 20 else ''}"
+            for phase, rs in sorted(counts.items())
+        ]
+        return "Manual — click a robot to run its next phase.  \n" + "  \n".join(parts)
+
+    @staticmethod
+    def _legend() -> str:
+        cells = "".join(
+            f'<div style="display:flex;align-items:center;gap:6px;margin:2px 0">'
+            f'<span style="width:12px;height:12px;border-radius:6px;background:rgb{c}"></span>{name}</div>'
+            for name, c in LIGHT_COLORS.items()
+        )
+        return f'<div style="font-size:0.85em">{cells}</div>'

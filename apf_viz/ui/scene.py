@@ -1,0 +1,352 @@
+"""The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
+
+Robots, their phase halos, targets and ghosts are batched meshes (one message each however many robots);
+rays, K, frames, y-axes and pending moves are line-segment sets. Handles are created once and updated in
+place; a set is re-created only when its size changes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import viser
+
+from apf_viz.ui.session import SessionView
+
+LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
+    "off": (150, 150, 150),
+    "terminal1": (50, 110, 255),
+    "symmetric": (160, 80, 220),
+    "decider": (0, 190, 200),
+    "call": (255, 150, 0),
+    "leader1": (255, 80, 170),
+    "leader": (220, 30, 30),
+    "done": (40, 170, 60),
+}
+PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
+ROBOT_RADIUS = 0.34
+Z = 0.3  # robots sit on the grid, their centres this high
+
+
+def light_color(light: str) -> tuple[int, int, int]:
+    if light in LIGHT_COLORS:
+        return LIGHT_COLORS[light]
+    h = abs(hash(light))  # a plug-in algorithm's own lights: a stable colour per name
+    return (h % 200 + 30, (h // 200) % 200 + 30, (h // 40000) % 200 + 30)
+
+
+def _icosphere() -> tuple[np.ndarray, np.ndarray]:
+    """A low-poly sphere (20 faces): cheap enough for thousands of instances."""
+    t = (1 + 5**0.5) / 2
+    v = np.array(
+        [
+            (-1, t, 0),
+            (1, t, 0),
+            (-1, -t, 0),
+            (1, -t, 0),
+            (0, -1, t),
+            (0, 1, t),
+            (0, -1, -t),
+            (0, 1, -t),
+            (t, 0, -1),
+            (t, 0, 1),
+            (-t, 0, -1),
+            (-t, 0, 1),
+        ],
+        dtype=np.float32,
+    )
+    v /= np.linalg.norm(v[0])
+    faces = np.array(
+        [
+            (0, 11, 5),
+            (0, 5, 1),
+            (0, 1, 7),
+            (0, 7, 10),
+            (0, 10, 11),
+            (1, 5, 9),
+            (5, 11, 4),
+            (11, 10, 2),
+            (10, 7, 6),
+            (7, 1, 8),
+            (3, 9, 4),
+            (3, 4, 2),
+            (3, 2, 6),
+            (3, 6, 8),
+            (3, 8, 9),
+            (4, 9, 5),
+            (2, 4, 11),
+            (6, 2, 10),
+            (8, 6, 7),
+            (9, 8, 1),
+        ],
+        dtype=np.uint32,
+    )
+    return _subdivide(v, faces)
+
+
+def _subdivide(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One loop of midpoint subdivision, pushed onto the unit sphere (20 → 80 faces)."""
+    verts = [tuple(p) for p in v]
+    index: dict[tuple[int, int], int] = {}
+
+    def mid(a: int, b: int) -> int:
+        key = (min(a, b), max(a, b))
+        if key not in index:
+            m = (v[a] + v[b]) / 2
+            verts.append(tuple(m / np.linalg.norm(m)))
+            index[key] = len(verts) - 1
+        return index[key]
+
+    out = []
+    for a, b, c in faces.tolist():
+        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+        out += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+    return np.array(verts, dtype=np.float32), np.array(out, dtype=np.uint32)
+
+
+def _tile(size: float, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """A flat square tile (a thin box) centred on the origin."""
+    s, h = size / 2, height
+    v = np.array([(x, y, z) for z in (0, h) for y in (-s, s) for x in (-s, s)], dtype=np.float32)
+    f = np.array(
+        [
+            (0, 2, 1),
+            (1, 2, 3),
+            (4, 5, 6),
+            (5, 7, 6),
+            (0, 1, 4),
+            (1, 5, 4),
+            (2, 6, 3),
+            (3, 6, 7),
+            (0, 4, 2),
+            (2, 4, 6),
+            (1, 3, 5),
+            (3, 7, 5),
+        ],
+        dtype=np.uint32,
+    )
+    return v, f
+
+
+def _xyz(points, z: float) -> np.ndarray:
+    arr = np.asarray(points, dtype=np.float32).reshape(-1, 2)
+    return np.column_stack([arr, np.full(len(arr), z, dtype=np.float32)])
+
+
+class SceneRenderer:
+    """Draws session views into one viser server's scene."""
+
+    def __init__(self, server: viser.ViserServer) -> None:
+        self.server = server
+        self.scene = server.scene
+        self.scene.set_up_direction("+z")
+        self._sphere = _icosphere()
+        self._tile = _tile(0.8, 0.02)
+        self._halo = _tile(0.9, 0.01)
+        self._counts: dict[str, int] = {}
+        self._handles: dict[str, object] = {}
+        self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)
+        self._grid_key: tuple[int, int, int, int] | None = None
+        self.framed_pose = self.camera_pose()  # the pose browsers were last sent (tests project with it)
+
+    # ------------------------------------------------------------------ batched helpers
+    def _batched(
+        self, name: str, mesh, positions: np.ndarray, colors: np.ndarray, *, opacity=None, scale: float = 1.0
+    ) -> None:
+        n = len(positions)
+        handle = self._handles.get(name)
+        if n == 0:
+            if handle is not None:
+                handle.remove()  # type: ignore[attr-defined]
+                del self._handles[name]
+            return
+        if handle is None or self._counts.get(name) != n:
+            if handle is not None:
+                handle.remove()  # type: ignore[attr-defined]
+            vertices, faces = mesh
+            self._handles[name] = self.scene.add_batched_meshes_simple(
+                name,
+                vertices * scale,
+                faces,
+                batched_wxyzs=np.tile(np.array([1, 0, 0, 0], dtype=np.float32), (n, 1)),
+                batched_positions=positions,
+                batched_colors=colors,
+                opacity=opacity,
+                lod="off",
+                cast_shadow=False,
+                receive_shadow=False,
+            )
+            self._counts[name] = n
+        else:
+            handle.batched_positions = positions  # type: ignore[attr-defined]
+            handle.batched_colors = colors  # type: ignore[attr-defined]
+
+    def _segments(
+        self, name: str, segments: np.ndarray, color: tuple[int, int, int], thickness: float
+    ) -> None:
+        handle = self._handles.pop(name, None)
+        if handle is not None:
+            handle.remove()  # type: ignore[attr-defined]
+        if len(segments):
+            self._handles[name] = self.scene.add_line_segments(
+                name, segments.astype(np.float32), color, thickness=thickness
+            )
+
+    # ------------------------------------------------------------------ drawing
+    def render(self, view: SessionView) -> None:
+        """Draw one frame; the caller wraps it in ``server.atomic()``."""
+        editing_robots = view.mode == "edit-robots"
+        pts = np.array([r.position for r in view.robots], dtype=np.float32).reshape(-1, 2)
+        self._update_bounds(pts, view)
+        self._grid()
+        colors = np.array([light_color(r.light) for r in view.robots], dtype=np.uint8).reshape(-1, 3)
+        self._batched("/robots", self._sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS)
+        halo = np.array([PHASE_COLORS[r.phase] for r in view.robots], dtype=np.uint8).reshape(-1, 3)
+        self._batched("/phase", self._halo, _xyz(pts, 0.0), halo)
+        targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
+        target_color = (240, 90, 170) if view.mode == "edit-pattern" else (80, 200, 90)
+        self._batched(
+            "/targets",
+            self._tile,
+            _xyz(targets, 0.005),
+            np.tile(np.array(target_color, dtype=np.uint8), (len(targets), 1)),
+            opacity=0.6,
+        )
+        ghosts = np.array(view.ghosts, dtype=np.float32).reshape(-1, 2)
+        self._batched(
+            "/ghosts",
+            self._sphere,
+            _xyz(ghosts, Z),
+            np.tile(np.array((120, 120, 255), dtype=np.uint8), (len(ghosts), 1)),
+            opacity=0.35,
+            scale=ROBOT_RADIUS * 0.8,
+        )
+        self._segments("/rays", self._rays(view), (250, 200, 0), 0.04)
+        self._segments("/y_axes", self._y_axes(view), (60, 60, 60), 0.03)
+        self._segments("/pending", self._pending(view), (230, 40, 40), 0.06)
+        self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 0.05)
+        axis = view.axis if editing_robots else None
+        self._segments("/axis", self._horizontal(axis), (255, 0, 0), 0.08)
+        self._segments("/leader_frame", self._frame(view), (30, 30, 30), 0.06)
+
+    def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
+        extra = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
+        allp = np.vstack([pts, extra]) if len(extra) else pts
+        if len(allp) == 0:
+            allp = np.zeros((1, 2), dtype=np.float32)
+        lo, hi = allp.min(axis=0), allp.max(axis=0)
+        self.bounds = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+    def _grid(self) -> None:
+        x0, y0, x1, y1 = self.bounds
+        key = (int(np.floor(x0)) - 6, int(np.floor(y0)) - 6, int(np.ceil(x1)) + 6, int(np.ceil(y1)) + 6)
+        if (
+            self._grid_key is not None
+            and all(a <= b for a, b in zip(self._grid_key[:2], key[:2], strict=True))
+            and all(a >= b for a, b in zip(self._grid_key[2:], key[2:], strict=True))
+        ):
+            return
+        key = (key[0] - 6, key[1] - 6, key[2] + 6, key[3] + 6)  # grow with room to spare
+        key = (key[0], key[1], key[2] + (key[2] - key[0]) % 2, key[3] + (key[3] - key[1]) % 2)
+        self._grid_key = key
+        w, h = key[2] - key[0], key[3] - key[1]  # even, so the centre and every line is an integer
+        # Grid lines pass through integer points: robots sit on the lattice points.
+        self.scene.add_grid(
+            "/grid",
+            width=w,
+            height=h,
+            cell_size=1.0,
+            section_size=5.0,
+            plane="xy",
+            position=(key[0] + w / 2, key[1] + h / 2, -0.01),
+            cell_color=(215, 215, 215),
+            section_color=(170, 170, 170),
+        )
+
+    @staticmethod
+    def _rays(view: SessionView) -> np.ndarray:
+        if not view.rays:
+            return np.zeros((0, 2, 3))
+        a = np.array(view.rays, dtype=np.float32)
+        return np.concatenate([a, np.full((len(a), 2, 1), Z, dtype=np.float32)], axis=2)
+
+    @staticmethod
+    def _y_axes(view: SessionView) -> np.ndarray:
+        """Each robot's own +y: a short stick (up if not flipped, down if flipped)."""
+        if not view.robots:
+            return np.zeros((0, 2, 3))
+        p = np.array([r.position for r in view.robots], dtype=np.float32)
+        sign = np.array([1.0 if r.y_up else -1.0 for r in view.robots], dtype=np.float32)
+        start = np.column_stack([p, np.full(len(p), Z + 0.3)])
+        end = start + np.column_stack([np.zeros(len(p)), 0.45 * sign, np.zeros(len(p))])
+        return np.stack([start, end], axis=1)
+
+    @staticmethod
+    def _pending(view: SessionView) -> np.ndarray:
+        segs = [
+            ((*r.position, Z + 0.35), (*r.pending, Z + 0.35)) for r in view.robots if r.pending is not None
+        ]
+        return np.array(segs, dtype=np.float32).reshape(-1, 2, 3)
+
+    def _horizontal(self, y: float | None) -> np.ndarray:
+        if y is None:
+            return np.zeros((0, 2, 3))
+        x0, _, x1, _ = self.bounds
+        return np.array([[(x0 - 2, y, 0.05), (x1 + 2, y, 0.05)]], dtype=np.float32)
+
+    @staticmethod
+    def _frame(view: SessionView) -> np.ndarray:
+        if view.leader_frame is None:
+            return np.zeros((0, 2, 3))
+        (ox, oy), s = view.leader_frame
+        z = 0.08
+        return np.array(
+            [
+                [(ox, oy, z), (ox + 2, oy, z)],
+                [(ox + 2, oy, z), (ox + 1.7, oy + 0.2, z)],
+                [(ox, oy, z), (ox, oy + 2 * s, z)],
+                [(ox, oy + 2 * s, z), (ox + 0.2, oy + 1.7 * s, z)],
+            ],
+            dtype=np.float32,
+        )
+
+    # ------------------------------------------------------------------ camera
+    def camera_pose(self) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
+        """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between)."""
+        x0, y0, x1, y1 = self.bounds
+        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+        extent = max(x1 - x0, y1 - y0, 6) + 4
+        fov = float(np.deg2rad(50))
+        h = extent / (2 * np.tan(fov / 2))
+        cx += 0.25 * extent  # the control panel covers the right of the canvas: keep the run left of it
+        # A little south of straight above: the orbit controls need a direction that is not "up".
+        return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
+
+    def frame_initial_camera(self, initial) -> None:
+        """The pose new browsers start from (and "Reset View" returns to)."""
+        position, look_at, fov = self.framed_pose = self.camera_pose()
+        initial.fov = fov
+        initial.up = (0.0, 0.0, 1.0)
+        initial.position = position
+        initial.look_at = look_at
+
+    def frame_camera(self, camera) -> None:
+        """Move a connected browser's camera to the whole run (position first: it drags look_at along)."""
+        position, look_at, fov = self.camera_pose()
+        try:
+            camera.fov = fov
+            camera.position = position
+            camera.look_at = look_at
+        except AssertionError:
+            pass  # the browser has not reported its camera yet; its initial pose is already right
+
+
+def cell_of_ray(origin, direction) -> tuple[int, int] | None:
+    """The grid cell a click ray hits on the plane z = 0 (robots are small, so the cell is enough)."""
+    ox, oy, oz = origin
+    dx, dy, dz = direction
+    if abs(dz) < 1e-9:
+        return None
+    t = -oz / dz
+    if t < 0:
+        return None
+    return (round(ox + t * dx), round(oy + t * dy))

@@ -1,0 +1,182 @@
+"""The visualiser's Session, without a browser: stepping, time travel, manual picks, edits, files."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from apf_viz.core.formats import InputError
+from apf_viz.ui.app import demo_session
+from apf_viz.ui.session import Session
+
+START = [(0, 0), (0, 2), (1, 0), (1, 3)]
+PATTERN = [(0, 0), (1, 0), (2, 0), (3, 0)]
+
+
+def session(**kw) -> Session:
+    return Session(START, PATTERN, y_up=[True] * 4, **kw)
+
+
+def test_step_back_seek_and_branch():
+    s = session()
+    for _ in range(30):
+        assert s.step()
+    v = s.view()
+    assert v.steps == 30 and v.event >= 30 and v.history_length == 30
+    s.back()
+    assert s.view().steps == 29 and s.view().history_length == 30
+    s.seek(10)
+    assert s.view().steps == 10
+    s.set_scheduler("Manual")
+    robot = s.engine.history.steps[10].record.robots[0]
+    other = (robot + 1) % 4
+    s.click(s.engine.current_points()[other])  # a different choice from step 10: a branch
+    assert s.view().history_length == 11 and s.selected == other
+
+
+def test_reset_rebuilds_the_start():
+    s = session()
+    for _ in range(40):
+        s.step()
+    s.reset()
+    v = s.view()
+    assert v.steps == 0 and [r.position for r in v.robots] == START
+
+
+def test_manual_click_runs_the_robots_next_phase():
+    s = session(scheduler="manual")
+    p = s.engine.current_points()[2]
+    assert s.click(p) == "robot 2: look"
+    assert s.click(p) == "robot 2: compute"
+    assert s.view().robots[2].phase == "computed"
+    assert s.click(p) == "robot 2: move"
+    assert s.view().robots[2].phase == "idle"
+    assert s.click((50, 50)) == "nothing here" and s.selected is None
+
+
+def test_in_other_schedulers_a_click_selects_and_shows_rays():
+    s = session()
+    s.click(START[3])
+    v = s.view()
+    assert v.selected == 3
+    assert {b for _, b in v.rays} == {(0, 2), (1, 0), (0, 0)}  # (1, 3) sees all three
+
+
+def test_ghosts_show_a_stale_snapshot():
+    s = session(scheduler="manual")
+    s.click(START[2])  # robot 2 looks
+    s.click(START[0])  # robot 0 (terminal on L_1) looks, computes and moves left
+    s.click(START[0])
+    s.click(START[0])
+    assert s.engine.current_points()[0] == (-1, 0)
+    s.selected = 2
+    v = s.view()
+    assert (0, 0) in v.ghosts  # where robot 2 saw robot 0, which has moved since
+    assert "stale" in v.caption
+
+
+def test_edit_pattern_toggles_cells_and_validates_the_size():
+    s = session()
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    for cell in [(0, 0), (1, 0), (2, 0)]:
+        s.click(cell)
+    assert s.view().draft_count == 3
+    problem = s.set_mode("run")
+    assert problem and "3 points but there are 4 robots" in problem
+    assert s.mode == "edit-pattern" and s.view().draft_count == 3  # nothing lost
+    s.click((0, 1))
+    s.click((5, 5))
+    s.click((5, 5))  # toggled off again
+    assert s.set_mode("run") is None
+    assert sorted(s.pattern) == [(0, 0), (0, 1), (1, 0), (2, 0)] and s.view().steps == 0
+
+
+def test_edit_robots_adds_flips_removes_and_rejects_an_unsolvable_start():
+    s = session()
+    s.set_mode("edit-robots")
+    assert s.click((5, 5)) == "added robot (5, 5)"
+    assert s.click((5, 5)) == "robot (5, 5): y-axis flipped"
+    assert s.click((5, 5)) == "removed robot (5, 5)"
+    for cell in START:
+        s.click(cell)  # each becomes flipped
+    s.click((0, 0))
+    s.click((0, 2))  # removes two robots: now (1, 0), (1, 3)
+    s.click((1, 0))
+    s.click((1, 0))  # removed
+    s.draft_robots, s.draft_y_up = [(0, 0), (0, 1)], [True, True]
+    s.draft_pattern = [(0, 0), (1, 0)]
+    problem = s.set_mode("run")
+    assert problem and "y = 0.5" in problem and s.view().axis == 0.5
+    s.draft_robots.append((3, 0))
+    s.draft_y_up.append(False)
+    s.draft_pattern.append((2, 0))
+    assert s.set_mode("run") is None
+    assert s.engine.k == 3 and s.engine.y_up == (True, True, False)
+
+
+def test_uploads_bad_files_leave_the_run_untouched():
+    s = session()
+    for _ in range(12):
+        s.step()
+    before = s.view()
+    for loader, content, message in [
+        (s.load_pattern, b"{not json", "not valid JSON"),
+        (s.load_robots, json.dumps({"robots": [[0, 0], [0, 0]]}).encode(), "duplicate robot"),
+        (s.load_trace, b'{"format": "x"}', "format"),
+        (s.load_pattern, b"\xff\xfe", "not UTF-8"),
+        (s.load_pattern, b" " * 3_000_000, "too large"),
+    ]:
+        with pytest.raises(InputError, match=message):
+            loader("f.json", content)
+    after = s.view()
+    assert after.steps == before.steps and after.robots == before.robots
+
+
+def test_upload_a_pattern_of_the_wrong_size_keeps_it_as_a_draft():
+    s = session()
+    s.load_pattern("p.json", json.dumps({"points": [[0, 0], [1, 1]]}).encode())
+    assert s.mode == "edit-pattern" and s.view().draft_count == 2
+    assert s.messages and "2 points for 4 robots" in s.messages[-1]
+
+
+def test_download_and_reupload_round_trip():
+    s = session()
+    for _ in range(60):
+        s.step()
+    trace = s.trace_file().encode()
+    robots = s.robots_file().encode()
+    pattern = s.pattern_file().encode()
+    t = session()
+    t.load_trace("t.jsonl", trace)
+    assert t.engine.history.length == 60
+    t.seek(60)
+    assert t.view().robots == s.view().robots
+    u = session()
+    u.load_pattern("p.json", pattern)
+    u.load_robots("r.json", robots)
+    assert u.robots == s.robots and u.pattern == s.pattern
+
+
+def test_view_shows_line_K_leader_frame_targets_and_stats():
+    s = Session(
+        [(0, 0), (0, 2), (1, 0), (1, 2), (2, 5)], [*PATTERN, (4, 0)], y_up=[True] * 5, scheduler="fsync"
+    )
+    seen_K = seen_frame = False
+    while not s.engine.finished:
+        s.step()
+        v = s.view()
+        seen_K |= v.line_K is not None
+        if v.leader_frame is not None:
+            seen_frame = True
+            (ox, oy), sign = v.leader_frame
+            assert len(v.targets) == 5 and all(sign * (y - oy) >= 1 for _, y in v.targets)
+    v = s.view()
+    assert seen_K and seen_frame and v.outcome == "formed" and v.stage == "targets"
+    assert v.moves_per_kD > 0 and v.move_series[-1][1] == v.moves
+
+
+def test_demo_session_is_the_built_in_demo():
+    s = demo_session()
+    assert s.engine.k == 10 and len(s.pattern) == 10

@@ -1,0 +1,214 @@
+"""The visualiser in a real headless Chromium (Debian's /usr/bin/chromium, driven by Playwright).
+
+Screenshots go to test-output/; look at them. The server runs in-process on a free port, so tests can
+also read the shared Session to check that a click reached the engine.
+"""
+
+from __future__ import annotations
+
+import socket
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from apf_viz.ui.app import App, demo_session
+
+playwright = pytest.importorskip("playwright.sync_api")
+CHROMIUM = "/usr/bin/chromium"
+OUT = Path(__file__).resolve().parent.parent / "test-output"
+ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+VIEWPORT = {"width": 1400, "height": 900}
+
+if not Path(CHROMIUM).exists():  # the README's test command installs it; say so instead of skipping quietly
+    pytest.fail(
+        f"{CHROMIUM} is missing: run bash scripts/test.sh, which installs Debian's chromium", pytrace=False
+    )
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def app() -> Iterator[App]:
+    a = App(demo_session(), port=free_port(), verbose=False)
+    yield a
+    a.stop()
+
+
+def open_page(browser, app: App):
+    page = browser.new_page(viewport=VIEWPORT)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for(timeout=30_000)
+    time.sleep(1.0)  # the first frames of the scene
+    return page
+
+
+def event_value(page) -> int:
+    return int(page.get_by_label("Event").input_value())
+
+
+def wait_for(predicate, timeout: float = 10.0) -> None:
+    end = time.time() + timeout
+    while time.time() < end:
+        if predicate():
+            return
+        time.sleep(0.1)
+    raise AssertionError("condition not met in time")
+
+
+def shot(page, name: str) -> Path:
+    OUT.mkdir(exist_ok=True)
+    path = OUT / f"{name}.png"
+    page.screenshot(path=str(path))
+    return path
+
+
+def screen_of(app: App, page, cell: tuple[int, int]) -> tuple[float, float]:
+    """Project a grid point through the initial (top-down) camera onto the page."""
+    position, look_at, fov = app.renderer.framed_pose
+    p, target = np.array(position), np.array(look_at)
+    f = (target - p) / np.linalg.norm(target - p)
+    r = np.cross(f, [0.0, 0.0, 1.0])
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    d = np.array([cell[0], cell[1], 0.0]) - p
+    box = page.locator("canvas").first.bounding_box()
+    w, h = box["width"], box["height"]
+    t = np.tan(fov / 2)
+    ndc_x = (d @ r) / ((d @ f) * t * (w / h))
+    ndc_y = (d @ u) / ((d @ f) * t)
+    return box["x"] + (1 + ndc_x) * w / 2, box["y"] + (1 - ndc_y) * h / 2
+
+
+def test_page_connects_and_the_canvas_is_not_blank(browser, app):
+    page = open_page(browser, app)
+    path = shot(page, "connected")
+    canvas = page.locator("canvas").first.screenshot()
+    from io import BytesIO
+
+    from PIL import Image
+
+    pixels = np.asarray(Image.open(BytesIO(canvas)).convert("RGB"), dtype=np.int32)
+    assert pixels.std() > 5, "the canvas is blank"
+    colours = {tuple(c) for c in pixels.reshape(-1, 3)[::97]}
+    assert len(colours) > 20
+    assert path.exists()
+    page.close()
+
+
+def test_step_advances_event_and_back_restores_it(browser, app):
+    page = open_page(browser, app)
+    assert event_value(page) == 0
+    page.get_by_role("button", name="Step").click()
+    wait_for(lambda: event_value(page) == 1)
+    for _ in range(4):
+        page.get_by_role("button", name="Step").click()
+    wait_for(lambda: event_value(page) == 5)
+    page.get_by_role("button", name="Back").click()
+    wait_for(lambda: event_value(page) == 4)
+    assert app.session.view().steps == 4
+    shot(page, "after-step-back")
+    page.close()
+
+
+def test_play_turns_into_pause_and_runs(browser, app):
+    page = open_page(browser, app)
+    page.get_by_role("button", name="Play").click()
+    page.get_by_role("button", name="Pause").wait_for(timeout=5000)
+    wait_for(lambda: event_value(page) > 5)
+    page.get_by_role("button", name="Pause").click()
+    page.get_by_role("button", name="Play").wait_for(timeout=5000)
+    time.sleep(0.5)
+    frozen = event_value(page)
+    time.sleep(0.7)
+    assert event_value(page) == frozen
+    page.close()
+
+
+def test_manual_mode_a_click_on_a_robot_runs_its_next_phase(browser, app):
+    page = open_page(browser, app)
+    page.get_by_label("Scheduler").click()
+    page.get_by_role("option", name="Manual").click()
+    wait_for(lambda: app.session.scheduler_name == "manual")
+    robot = 4
+    cell = app.session.engine.current_points()[robot]
+    x, y = screen_of(app, page, cell)
+    page.mouse.click(x, y)
+    wait_for(lambda: app.session.engine.next_event(robot) == "compute")
+    page.mouse.click(x, y)
+    wait_for(lambda: app.session.engine.next_event(robot) == "move")
+    wait_for(lambda: event_value(page) == 2)
+    assert all(app.session.engine.next_event(r) == "look" for r in range(10) if r != robot)
+    page.get_by_text("Manual — click a robot").wait_for(timeout=5000)
+    shot(page, "manual-click")
+    page.close()
+
+
+def test_edit_pattern_clicks_change_the_target_count(browser, app):
+    page = open_page(browser, app)
+    page.get_by_role("combobox", name="Mode").click()
+    page.get_by_role("option", name="Edit pattern").click()
+    wait_for(lambda: app.session.mode == "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    page.get_by_text("Targets: 0 / 10 robots").wait_for(timeout=5000)
+    for cell in [(1, 1), (2, 1), (3, 1)]:
+        x, y = screen_of(app, page, cell)
+        page.mouse.click(x, y)
+        time.sleep(0.2)
+    page.get_by_text("Targets: 3 / 10 robots").wait_for(timeout=5000)
+    assert sorted(app.session.draft_pattern) == [(1, 1), (2, 1), (3, 1)]
+    shot(page, "edit-pattern")
+    # Back to Run with 3 targets for 10 robots: refused, the drawing is kept.
+    page.get_by_role("combobox", name="Mode").click()
+    page.get_by_role("option", name="Run").click()
+    page.get_by_text("the pattern has 3 points but there are 10 robots").wait_for(timeout=5000)
+    assert app.session.mode == "edit-pattern" and len(app.session.draft_pattern) == 3
+    page.close()
+
+
+def test_a_malformed_upload_shows_a_notification_and_keeps_the_run(browser, app, tmp_path):
+    page = open_page(browser, app)
+    page.get_by_role("button", name="Step").click()
+    wait_for(lambda: event_value(page) == 1)
+    bad = tmp_path / "broken.json"
+    bad.write_text('{"points": [[0, 0], [0, 0]]}')
+    with page.expect_file_chooser() as chooser:
+        page.get_by_role("button", name="Upload pattern").click()
+    chooser.value.set_files(str(bad))
+    page.get_by_text("duplicate pattern point at (0, 0)").wait_for(timeout=10_000)
+    shot(page, "bad-upload")
+    assert event_value(page) == 1 and app.session.view().steps == 1
+    page.close()
+
+
+def test_a_second_page_sees_the_first_pages_steps(browser, app):
+    first = open_page(browser, app)
+    second = open_page(browser, app)
+    for _ in range(3):
+        first.get_by_role("button", name="Step").click()
+    wait_for(lambda: event_value(second) == 3)
+    shot(second, "second-page")
+    first.close()
+    second.close()
