@@ -26,7 +26,7 @@ import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.frames import move_to_global, offsets_to_local
-from apf_viz.core.grid import Point, visible_from
+from apf_viz.core.grid import Point, nearest_per_direction, visible_from
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Seen, Snapshot
@@ -74,6 +74,7 @@ class EngineState:
     lights_used: set[str] = field(default_factory=set)
     # Bumped on every move or light change: a cached view older than this may be out of date.
     version: int = 0
+    starve_deadline: int = 0  # schedulers' cache: no robot is starved before this step
 
     def copy(self) -> EngineState:
         return EngineState(
@@ -95,6 +96,7 @@ class EngineState:
             outcome=self.outcome,
             lights_used=set(self.lights_used),
             version=self.version,
+            starve_deadline=self.starve_deadline,
         )
 
 
@@ -179,9 +181,7 @@ class Engine:
 
     def look(self, robot: int) -> Snapshot:
         """The snapshot this robot would take now (no event is recorded)."""
-        st = self.state
-        ids = self.visible(robot)
-        return self._snapshot(robot, ids, st)
+        return self._observe(robot)[0]
 
     def decide(self, view: Snapshot) -> Decision:
         """The algorithm's decision on a view, memoised: the algorithm is pure, so a view seen before
@@ -204,13 +204,13 @@ class Engine:
         if self.finished:
             raise EngineError(f"the run is over ({self.state.outcome})")
         robots = tuple(int(r) for r in robots)
-        if not robots:
-            raise EngineError("a step activates at least one robot")
-        if len(set(robots)) != len(robots) or not all(0 <= r < self.k for r in robots):
-            raise EngineError(f"bad robot selection {robots} for {self.k} robots")
-        phases = {int(self.state.phase[r]) for r in robots}
-        if len(phases) != 1:
-            raise EngineError("robots activated together must be in the same phase")
+        if len(robots) != 1 or not 0 <= robots[0] < self.k:  # the ASYNC case needs no more checks
+            if not robots:
+                raise EngineError("a step activates at least one robot")
+            if len(set(robots)) != len(robots) or not all(0 <= r < self.k for r in robots):
+                raise EngineError(f"bad robot selection {robots} for {self.k} robots")
+            if len({int(self.state.phase[r]) for r in robots}) != 1:
+                raise EngineError("robots activated together must be in the same phase")
         record = StepRecord(robots=robots, round=round)
         position = self.state.steps
         events = self._apply(record)
@@ -241,24 +241,33 @@ class Engine:
 
     def _look(self, r: int, round: int | None) -> Event:
         st = self.state
-        ids = self.visible(r)
-        snap = self._snapshot(r, ids, st)
+        snap, ids = self._observe(r)
         st.snapshot[r] = snap
-        st.seen[r] = tuple(ids.tolist())
+        st.seen[r] = tuple(sorted(ids))
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
         st.phase[r] = _LOOKED
         return Event(robot=r, phase="look", sees=st.seen[r], round=round)
 
-    def _snapshot(self, r: int, ids: np.ndarray, st: EngineState) -> Snapshot:
-        local = offsets_to_local(st.positions[ids] - st.positions[r], self.y_up[r])
-        order = np.lexsort((local[:, 1], local[:, 0]))  # by (dx, dy): the order carries no identity
+    def _observe(self, r: int) -> tuple[Snapshot, list[int]]:
+        """Robot r's snapshot and the indices of the robots in it: visibility is computed on the offsets
+        in r's own frame, so the one sort that finds the nearest robot per direction also gives the
+        snapshot its canonical, identity-free order."""
+        st = self.state
+        local = offsets_to_local(st.positions - st.positions[r], self.y_up[r])
+        order = nearest_per_direction(local, r)
+        ids = order.tolist()
         lights = st.lights
-        dxs, dys = local[order, 0].tolist(), local[order, 1].tolist()
-        seen_lights = [lights[i] for i in ids[order].tolist()]
+        seen = local[order]
         # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
-        robots = tuple(map(tuple.__new__, repeat(Seen), zip(dxs, dys, seen_lights, strict=True)))
-        return Snapshot(lights[r], robots)
+        robots = tuple(
+            map(
+                tuple.__new__,
+                repeat(Seen),
+                zip(seen[:, 0].tolist(), seen[:, 1].tolist(), [lights[i] for i in ids], strict=True),
+            )
+        )
+        return Snapshot(lights[r], robots), ids
 
     def _compute(self, r: int, round: int | None) -> Event:
         st = self.state
@@ -288,7 +297,7 @@ class Engine:
             decision = st.pending[r]
             assert decision is not None
             gmove = move_to_global(decision.move, self.y_up[r])
-            x, y = (int(v) for v in st.positions[r])
+            x, y = st.positions[r].tolist()
             if gmove is None:
                 targets[r] = (x, y)
             else:
@@ -301,9 +310,10 @@ class Engine:
         if collided:
             st.outcome = "collision"
             return events
-        movers = [r for r in robots if targets[r] != tuple(int(v) for v in st.positions[r])]
+        here = {r: tuple(st.positions[r].tolist()) for r in robots}
+        movers = [r for r in robots if targets[r] != here[r]]
         for r in movers:
-            del self._occupied[(int(st.positions[r][0]), int(st.positions[r][1]))]
+            del self._occupied[here[r]]
         for r in movers:
             st.positions[r] = targets[r]
             self._occupied[targets[r]] = r

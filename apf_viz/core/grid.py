@@ -54,18 +54,25 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
     Args:
         positions: shape (k, 2), distinct integer points.
         i: the observer's index.
+    """
+    return np.sort(nearest_per_direction(positions - positions[i], i))
+
+
+def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
+    """The visible robots, given every robot's offset from observer ``i`` (shape (k, 2); row i is 0).
 
     "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
-    (direction, distance g), and the first of each direction wins. No lattice point is visited.
+    (direction, distance g), and the first of each direction wins; no lattice point is visited.
+    The result is ordered by direction, a function of the offsets alone, so it carries no robot
+    identity: a snapshot built in this order is canonical.
     """
-    k = positions.shape[0]
+    k = offsets.shape[0]
     if k == 1:
         return np.empty(0, dtype=np.intp)
-    off = positions - positions[i]
-    dx, dy = off[:, 0], off[:, 1]
+    dx, dy = offsets[:, 0], offsets[:, 1]
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
-    span = int(np.abs(off).max()) + 1
+    span = int(np.abs(offsets).max()) + 1
     if span < _PACKED_SPAN_LIMIT:
         w = 2 * span + 1
         key = (dx // g + span) * w + (dy // g + span)
@@ -81,7 +88,7 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
     first[0] = False  # the observer
     first[1] = True
     np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
-    return np.sort(order[first])
+    return order[first]
 
 
 def visible_from_naive(points: list[Point], i: int) -> list[int]:

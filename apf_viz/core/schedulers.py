@@ -37,10 +37,17 @@ def starve_bound(engine: Engine) -> int:
 
 
 def _most_starved(engine: Engine) -> int | None:
-    """The robot waiting longest, if it has waited past the fairness bound."""
+    """The robot waiting longest, if it has waited past the fairness bound.
+
+    ``last_act`` only grows, so nobody can be starved before min(last_act) + bound: that deadline is
+    kept on the state (a stale, earlier value after a seek only costs one more scan)."""
     st = engine.state
+    if st.steps < st.starve_deadline:
+        return None
+    bound = starve_bound(engine)
     r = int(np.argmin(st.last_act))  # ties: the lowest index
-    return r if st.steps - st.last_act[r] >= starve_bound(engine) else None
+    st.starve_deadline = int(st.last_act[r]) + bound
+    return r if st.steps - st.last_act[r] >= bound else None
 
 
 class AsyncScheduler:

@@ -20,6 +20,7 @@ from apf_viz.ui.scene import SceneRenderer, cell_of_ray
 from apf_viz.ui.session import Session
 
 FPS = 30
+STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 DEMO_START = DEMO_DIR / "starts" / "demo-10.json"
 DEMO_PATTERN = DEMO_DIR / "heart.json"
 
@@ -73,6 +74,8 @@ class App:
 
     # ------------------------------------------------------------------ loop
     def _loop(self) -> None:
+        """Play advances ``speed`` steps a second, but never spends more than ``STEP_SHARE`` of a frame
+        stepping: a run too slow for the requested speed plays slower instead of starving the frames."""
         budget = 0.0
         last = time.perf_counter()
         while not self._stop.is_set():
@@ -80,10 +83,10 @@ class App:
             now = time.perf_counter()
             s = self.session
             if s.playing:
-                budget += (now - last) * s.speed
-                steps = int(budget)
-                budget -= steps
-                for _ in range(min(steps, 5000)):
+                budget = min(budget + (now - last) * s.speed, max(1.0, s.speed / FPS))
+                deadline = now + STEP_SHARE / FPS
+                while budget >= 1 and time.perf_counter() < deadline:
+                    budget -= 1
                     if not s.step():
                         s.playing = False
                         break

@@ -127,6 +127,13 @@ def _tile(size: float, height: float) -> tuple[np.ndarray, np.ndarray]:
     return v, f
 
 
+def _stick() -> tuple[np.ndarray, np.ndarray]:
+    """A thin bar from the origin to (0, 0.5): a robot's y-axis."""
+    w, h, z = 0.03, 0.5, 0.03
+    v = np.array([(x, y, zz) for zz in (0, z) for y in (0, h) for x in (-w, w)], dtype=np.float32)
+    return v, _tile(1.0, 1.0)[1]
+
+
 def _xyz(points, z: float) -> np.ndarray:
     arr = np.asarray(points, dtype=np.float32).reshape(-1, 2)
     return np.column_stack([arr, np.full(len(arr), z, dtype=np.float32)])
@@ -143,6 +150,8 @@ class SceneRenderer:
         self._tile = _tile(0.8, 0.02)
         self._halo = _tile(0.9, 0.01)
         self._counts: dict[str, int] = {}
+        self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
+        self._stick = _stick()
         self._handles: dict[str, object] = {}
         self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)
         self._grid_key: tuple[int, int, int, int] | None = None
@@ -150,15 +159,26 @@ class SceneRenderer:
 
     # ------------------------------------------------------------------ batched helpers
     def _batched(
-        self, name: str, mesh, positions: np.ndarray, colors: np.ndarray, *, opacity=None, scale: float = 1.0
+        self,
+        name: str,
+        mesh,
+        positions: np.ndarray,
+        colors: np.ndarray,
+        *,
+        opacity=None,
+        scale: float = 1.0,
+        scales: np.ndarray | None = None,
     ) -> None:
+        """Create, update (only what changed) or remove one batched mesh."""
         n = len(positions)
         handle = self._handles.get(name)
         if n == 0:
             if handle is not None:
                 handle.remove()  # type: ignore[attr-defined]
                 del self._handles[name]
+                self._last.pop(name, None)
             return
+        last = self._last.get(name)
         if handle is None or self._counts.get(name) != n:
             if handle is not None:
                 handle.remove()  # type: ignore[attr-defined]
@@ -169,6 +189,7 @@ class SceneRenderer:
                 faces,
                 batched_wxyzs=np.tile(np.array([1, 0, 0, 0], dtype=np.float32), (n, 1)),
                 batched_positions=positions,
+                batched_scales=scales,
                 batched_colors=colors,
                 opacity=opacity,
                 lod="off",
@@ -177,12 +198,23 @@ class SceneRenderer:
             )
             self._counts[name] = n
         else:
-            handle.batched_positions = positions  # type: ignore[attr-defined]
-            handle.batched_colors = colors  # type: ignore[attr-defined]
+            assert last is not None
+            if not np.array_equal(last[0], positions):
+                handle.batched_positions = positions  # type: ignore[attr-defined]
+            if not np.array_equal(last[1], colors):
+                handle.batched_colors = colors  # type: ignore[attr-defined]
+            if scales is not None and not np.array_equal(last[2], scales):
+                handle.batched_scales = scales  # type: ignore[attr-defined]
+        self._last[name] = (positions, colors, scales)
 
     def _segments(
         self, name: str, segments: np.ndarray, color: tuple[int, int, int], thickness: float
     ) -> None:
+        """Line segments are re-sent only when they change."""
+        last = self._last.get(name)
+        if last is not None and np.array_equal(last[0], segments):
+            return
+        self._last[name] = (segments, None, None)
         handle = self._handles.pop(name, None)
         if handle is not None:
             handle.remove()  # type: ignore[attr-defined]
@@ -221,7 +253,7 @@ class SceneRenderer:
             scale=ROBOT_RADIUS * 0.8,
         )
         self._segments("/rays", self._rays(view), (250, 200, 0), 0.04)
-        self._segments("/y_axes", self._y_axes(view), (60, 60, 60), 0.03)
+        self._y_axes(view, pts)
         self._segments("/pending", self._pending(view), (230, 40, 40), 0.06)
         self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 0.05)
         axis = view.axis if editing_robots else None
@@ -269,16 +301,13 @@ class SceneRenderer:
         a = np.array(view.rays, dtype=np.float32)
         return np.concatenate([a, np.full((len(a), 2, 1), Z, dtype=np.float32)], axis=2)
 
-    @staticmethod
-    def _y_axes(view: SessionView) -> np.ndarray:
-        """Each robot's own +y: a short stick (up if not flipped, down if flipped)."""
-        if not view.robots:
-            return np.zeros((0, 2, 3))
-        p = np.array([r.position for r in view.robots], dtype=np.float32)
-        sign = np.array([1.0 if r.y_up else -1.0 for r in view.robots], dtype=np.float32)
-        start = np.column_stack([p, np.full(len(p), Z + 0.3)])
-        end = start + np.column_stack([np.zeros(len(p)), 0.45 * sign, np.zeros(len(p))])
-        return np.stack([start, end], axis=1)
+    def _y_axes(self, view: SessionView, pts: np.ndarray) -> None:
+        """Each robot's own +y: a short stick pointing up, or down if the adversary flipped it (one
+        batched mesh; a flip is a per-instance scale of −1 in y)."""
+        scales = np.ones((len(pts), 3), dtype=np.float32)
+        scales[:, 1] = [1.0 if r.y_up else -1.0 for r in view.robots]
+        colors = np.tile(np.array((60, 60, 60), dtype=np.uint8), (len(pts), 1))
+        self._batched("/y_axes", self._stick, _xyz(pts, Z + 0.3), colors, scales=scales)
 
     @staticmethod
     def _pending(view: SessionView) -> np.ndarray:

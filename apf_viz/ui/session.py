@@ -503,10 +503,9 @@ class Session:
         if frame is not None:
             (ox, oy), s = frame
             return tuple((ox + x, oy + s * y) for x, y in targets)
-        xs = [p[0] for p in self.robots]
-        ys = [p[1] for p in self.robots]
-        dx = max(xs) + 3
-        return tuple((dx + x, min(ys) + y - 1) for x, y in targets)
+        x0 = max(p[0] for p in self.robots) + 3
+        y0 = min(p[1] for p in self.robots) - 1
+        return tuple((x0 + x, y0 + y) for x, y in targets)
 
     @staticmethod
     def _stage(lights: list[str]) -> str:

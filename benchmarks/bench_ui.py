@@ -1,0 +1,109 @@
+"""Visualiser benchmarks, measured in a real headless Chromium:
+
+- scene update rate while playing with 1,000 robots (target ≥ 20 updates/s): how often the browser's
+  `Event` number changes per second (each change is one rendered frame reaching the page);
+- click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event.
+
+Run: python benchmarks/bench_ui.py [--robots 1000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import socket
+import statistics
+import time
+
+from playwright.sync_api import sync_playwright
+
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.ui.app import App
+from apf_viz.ui.session import Session
+
+ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+]
+
+COUNT_CHANGES = """
+async ([ms]) => {
+  const input = [...document.querySelectorAll('label')].find(l => l.textContent === 'Event');
+  const el = document.getElementById(input.htmlFor);
+  let last = el.value, changes = 0;
+  const t0 = performance.now();
+  while (performance.now() - t0 < ms) {
+    await new Promise(r => requestAnimationFrame(r));
+    if (el.value !== last) { changes++; last = el.value; }
+  }
+  return changes / (ms / 1000);
+}
+"""
+
+WAIT_CHANGE = """
+async () => {
+  const input = [...document.querySelectorAll('label')].find(l => l.textContent === 'Event');
+  const el = document.getElementById(input.htmlFor);
+  const before = el.value, t0 = performance.now();
+  window.__clickAt = t0;
+  while (el.value === before && performance.now() - t0 < 5000) await new Promise(r => setTimeout(r, 1));
+  return performance.now() - t0;
+}
+"""
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--robots", type=int, default=1000)
+    args = ap.parse_args()
+    rng = random.Random(3)
+    start = random_solvable_start(args.robots, rng)
+    pattern = random_pattern(args.robots, rng)
+    session = Session(start, pattern, seed=1)
+    app = App(session, port=free_port(), verbose=False)
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        page.goto(f"http://127.0.0.1:{app.port}")
+        page.get_by_label("Event").wait_for(timeout=60_000)
+        time.sleep(2)
+        session.speed = 2000.0
+        session.playing = True
+        time.sleep(1)
+        rate = page.evaluate(COUNT_CHANGES, [5000])
+        session.playing = False
+        server_fps = app.frames
+        print(f"| scene updates/s in the browser while playing, {args.robots} robots | {rate:.1f} |")
+        session.set_scheduler("manual")
+        time.sleep(0.5)
+        latencies = []
+        for i in range(10):
+            r = i * 7 % args.robots
+            session.selected = r
+            t0 = time.perf_counter()
+            handle = page.evaluate_handle(WAIT_CHANGE)
+            session.click(session.engine.current_points()[r])
+            app.request_render()
+            latencies.append(handle.json_value())
+            _ = t0
+        print(
+            f"| click-to-update latency (median of 10), {args.robots} robots | "
+            f"{statistics.median(latencies):.0f} ms |"
+        )
+        print(f"(server rendered {server_fps} frames in all)")
+        browser.close()
+    app.stop()
+
+
+if __name__ == "__main__":
+    main()
