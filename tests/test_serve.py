@@ -1,0 +1,60 @@
+"""`apf-viz` with no command serves the demo; `serve --trace` replays; a bad file is one line, exit 2."""
+
+from __future__ import annotations
+
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+
+import pytest
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def serve(*args: str) -> tuple[subprocess.Popen, int]:
+    port = free_port()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "apf_viz.cli", *args, "--port", str(port)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    return proc, port
+
+
+def wait_for_page(port: int, proc: subprocess.Popen) -> str:
+    end = time.time() + 30
+    while time.time() < end:
+        assert proc.poll() is None, proc.stderr.read()
+        try:
+            with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=1) as r:
+                return r.read().decode()
+        except OSError:
+            time.sleep(0.2)
+    raise AssertionError("the server did not answer")
+
+
+@pytest.mark.parametrize("args", [(), ("serve", "--trace", "tests/gap_traces/E2.jsonl")])
+def test_serves_and_prints_its_address(args):
+    proc, port = serve(*args)
+    try:
+        page = wait_for_page(port, proc)
+        assert "<html" in page.lower()
+    finally:
+        proc.terminate()
+        out, _ = proc.communicate(timeout=10)
+    assert f"http://127.0.0.1:{port}" in out
+
+
+def test_serve_with_a_bad_file_is_one_line_and_exit_2(tmp_path):
+    bad = tmp_path / "r.json"
+    bad.write_text('{"robots": [[0, 0], [0, 0]]}')
+    proc, _ = serve("serve", "--robots", str(bad), "--pattern", "demo_patterns/pair-2.json")
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 2 and err.count("\n") == 1 and "duplicate robot at (0, 0)" in err
