@@ -1,0 +1,368 @@
+"""Exhaustive schedule exploration: every execution the adversary can produce from a small start.
+
+A state is the configuration with robot identities (fairness needs them), every robot's light and phase,
+and what a robot holds between events: after its Look the decision its snapshot leads to (the light is not
+yet shown), after its Compute the pending move. Holding the decision instead of the snapshot is exact:
+the algorithm is a pure function of the snapshot, and nothing else of the snapshot is used later.
+States are canonical up to translation (the algorithm sees offsets only, and moves are relative).
+
+ASYNC: from a state each robot's next event is one transition (k successors). SSYNC: each non-empty set
+of robots runs one atomic cycle (Looks, then Computes, then simultaneous Moves). FSYNC: everyone.
+
+Verdicts: ``collision``; ``escape`` (a robot left the box around start ∪ pattern, so the search is not
+finite); ``deadlock`` (a terminal state that is not the pattern); ``livelock`` (a strongly connected set of
+states, not all quiescent, in which every robot acts: a fair execution that never ends); ``budget`` (the
+state limit was hit first: nothing is proved); ``verified``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from itertools import combinations
+from math import gcd
+from typing import Literal
+
+from apf_viz.core.algorithm import Algorithm, Decision
+from apf_viz.core.frames import move_to_global
+from apf_viz.core.grid import Point
+from apf_viz.core.pattern_match import matches_pattern
+from apf_viz.core.view import Seen, Snapshot
+
+Verdict = Literal["verified", "collision", "escape", "deadlock", "livelock", "budget"]
+IDLE, LOOKED, COMPUTED = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class State:
+    """Canonical state: positions translated so that min x = min y = 0 (robots keep their indices)."""
+
+    positions: tuple[Point, ...]
+    lights: tuple[str, ...]
+    phases: tuple[int, ...]
+    held: tuple[Decision | None, ...]  # LOOKED: the decision its snapshot leads to; COMPUTED: pending move
+    origin: Point  # the translation removed (not part of equality)
+
+    def key(self) -> tuple:
+        return (self.positions, self.lights, self.phases, self.held)
+
+
+@dataclass
+class Result:
+    verdict: Verdict
+    states: int
+    transitions: int
+    seconds: float
+    schedule: list[tuple[int, ...]] = field(default_factory=list)  # robots per step, from the start
+    loop_start: int | None = None  # for a livelock: the step index where the repeated part begins
+    detail: str = ""
+
+
+def _canonical(positions: Sequence[Point], lights, phases, held, origin: Point) -> State:
+    mx = min(x for x, _ in positions)
+    my = min(y for _, y in positions)
+    pts = tuple((x - mx, y - my) for x, y in positions)
+    return State(pts, tuple(lights), tuple(phases), tuple(held), (origin[0] + mx, origin[1] + my))
+
+
+def _visible(positions: Sequence[Point], i: int) -> list[int]:
+    """Nearest robot per primitive direction (pure Python: the explorer's k is small)."""
+    x0, y0 = positions[i]
+    best: dict[Point, tuple[int, int]] = {}
+    for j, (x, y) in enumerate(positions):
+        if j == i:
+            continue
+        dx, dy = x - x0, y - y0
+        g = gcd(abs(dx), abs(dy))
+        d = (dx // g, dy // g)
+        if d not in best or g < best[d][0]:
+            best[d] = (g, j)
+    return [j for _, j in best.values()]
+
+
+class Explorer:
+    """Breadth-first search of the adversary's choices from one start (and one assignment of flips)."""
+
+    def __init__(
+        self,
+        algorithm: Algorithm,
+        robots: Sequence[Point],
+        pattern: Sequence[Point],
+        y_up: Sequence[bool],
+        *,
+        scheduler: Literal["async", "ssync", "fsync"] = "async",
+        max_states: int = 1_000_000,
+        margin: int | None = None,
+        progress: Callable[[int, int, float], None] | None = None,
+    ) -> None:
+        self.algorithm = algorithm
+        self.robots = [tuple(p) for p in robots]
+        self.pattern = tuple(tuple(p) for p in pattern)
+        self.y_up = tuple(y_up)
+        self.k = len(self.robots)
+        self.scheduler = scheduler
+        self.max_states = max_states
+        self.progress = progress
+        self._decisions: dict[Snapshot, Decision] = {}
+        pts = self.robots + list(self.pattern)
+        span = max(max(p[0] for p in pts) - min(p[0] for p in pts), max(p[1] for p in pts) - min(p[1] for p in pts))
+        # The paper's moves stay within O(kD) of the start; a box this much wider than start ∪ pattern is
+        # generous for the starts the explorer can handle, and keeps the state space finite.
+        self.margin = margin if margin is not None else 2 * (self.k + span) + 4
+        self._box = (
+            min(p[0] for p in self.robots) - self.margin,
+            min(p[1] for p in self.robots) - self.margin,
+            max(p[0] for p in self.robots) + self.margin,
+            max(p[1] for p in self.robots) + self.margin,
+        )
+
+    # ------------------------------------------------------------------ transitions
+    def initial(self) -> State:
+        first = self.algorithm.lights[0]
+        return _canonical(self.robots, [first] * self.k, [IDLE] * self.k, [None] * self.k, (0, 0))
+
+    def _decide(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
+        x0, y0 = positions[r]
+        s = 1 if self.y_up[r] else -1
+        seen = sorted(Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j]) for j in _visible(positions, r))
+        view = Snapshot(lights[r], tuple(seen))
+        d = self._decisions.get(view)
+        if d is None:
+            d = self._decisions[view] = self.algorithm.decide(view, self.pattern)
+        return d
+
+    def successors(self, st: State) -> list[tuple[tuple[int, ...], State | str]]:
+        """(robots acting, next state) pairs; a violation is a string instead of a state."""
+        if self.scheduler == "async":
+            return [((r,), self._event(st, r)) for r in range(self.k)]
+        groups = [tuple(range(self.k))] if self.scheduler == "fsync" else [
+            c for n in range(1, self.k + 1) for c in combinations(range(self.k), n)
+        ]
+        return [(g, self._round(st, g)) for g in groups]
+
+    def _event(self, st: State, r: int) -> State | str:
+        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
+        lights, phases, held = list(st.lights), list(st.phases), list(st.held)
+        if phases[r] == IDLE:
+            held[r] = self._decide(pos, lights, r)
+            phases[r] = LOOKED
+        elif phases[r] == LOOKED:
+            lights[r] = held[r].light
+            phases[r] = COMPUTED
+        else:
+            move = move_to_global(held[r].move, self.y_up[r])
+            if move is not None:
+                to = (pos[r][0] + move.delta[0], pos[r][1] + move.delta[1])
+                if to in pos:
+                    return f"collision: robot {r} moves onto robot {pos.index(to)} at {to}"
+                pos[r] = to
+                if not self._inside(to):
+                    return f"escape: robot {r} left the box at {to}"
+            phases[r], held[r] = IDLE, None
+        return _canonical(pos, lights, phases, held, (0, 0))
+
+    def _round(self, st: State, group: tuple[int, ...]) -> State | str:
+        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
+        lights = list(st.lights)
+        decisions = {r: self._decide(pos, lights, r) for r in group}
+        for r, d in decisions.items():
+            lights[r] = d.light
+        targets = {}
+        for r, d in decisions.items():
+            move = move_to_global(d.move, self.y_up[r])
+            targets[r] = pos[r] if move is None else (pos[r][0] + move.delta[0], pos[r][1] + move.delta[1])
+        new = list(pos)
+        for r, t in targets.items():
+            new[r] = t
+        if len(set(new)) < self.k:
+            return "collision: two robots on one point after the round"
+        for r, t in targets.items():
+            other = next((q for q in targets if q != r and targets[q] == pos[r] and t == pos[q]), None)
+            if other is not None:
+                return f"collision: robots {r} and {other} swap across an edge"
+            if not self._inside(t):
+                return f"escape: robot {r} left the box at {t}"
+        return _canonical(new, lights, [IDLE] * self.k, [None] * self.k, (0, 0))
+
+    def _inside(self, p: Point) -> bool:
+        x0, y0, x1, y1 = self._box
+        return x0 <= p[0] <= x1 and y0 <= p[1] <= y1
+
+    def quiescent(self, st: State) -> bool:
+        """No robot can change anything: every held decision and every decision on the current view
+        keeps the light and stays, and no move is pending."""
+        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
+        for r in range(self.k):
+            h = st.held[r]
+            if h is not None and (h.move is not None or (st.phases[r] == LOOKED and h.light != st.lights[r])):
+                return False
+            if not self._decide(pos, st.lights, r).is_noop(st.lights[r]):
+                return False
+        return True
+
+    # ------------------------------------------------------------------ search
+    def run(self) -> Result:
+        t0 = time.perf_counter()
+        start = self.initial()
+        index: dict[tuple, int] = {start.key(): 0}
+        states: list[State] = [start]
+        parent: list[tuple[int, tuple[int, ...]] | None] = [None]
+        edges: list[list[tuple[tuple[int, ...], int]]] = []
+        queue = deque([0])
+        transitions = 0
+        while queue:
+            i = queue.popleft()
+            st = states[i]
+            out: list[tuple[tuple[int, ...], int]] = []
+            for robots, nxt in self.successors(st):
+                transitions += 1
+                if isinstance(nxt, str):
+                    return self._fail("collision" if nxt.startswith("collision") else "escape", nxt, i, robots,
+                                      parent, len(states), transitions, t0)
+                key = nxt.key()
+                j = index.get(key)
+                if j is None:
+                    if len(states) >= self.max_states:
+                        return Result("budget", len(states), transitions, time.perf_counter() - t0,
+                                      detail=f"stopped at {self.max_states} states: nothing is proved")
+                    j = index[key] = len(states)
+                    states.append(nxt)
+                    parent.append((i, robots))
+                    queue.append(j)
+                out.append((robots, j))
+            edges.append(out)
+            if self.progress and len(edges) % 20_000 == 0:
+                self.progress(len(states), len(queue), time.perf_counter() - t0)
+        quiet = [self.quiescent(s) for s in states]
+        for i, s in enumerate(states):
+            if quiet[i] and not matches_pattern(self._absolute(s), self.pattern):
+                return self._fail("deadlock", "a terminal state that is not the pattern", i, None, parent,
+                                  len(states), transitions, t0)
+        loop = self._fair_cycle(edges, quiet)
+        seconds = time.perf_counter() - t0
+        if loop is not None:
+            entry, cycle = loop
+            stem = self._path(parent, entry)
+            return Result("livelock", len(states), transitions, seconds, stem + cycle, loop_start=len(stem),
+                          detail="a fair cycle of states that never becomes quiescent")
+        return Result("verified", len(states), transitions, seconds)
+
+    def _absolute(self, s: State) -> list[Point]:
+        return [(x + s.origin[0], y + s.origin[1]) for x, y in s.positions]
+
+    def _path(self, parent, i: int) -> list[tuple[int, ...]]:
+        steps = []
+        while parent[i] is not None:
+            i, robots = parent[i]
+            steps.append(robots)
+        return steps[::-1]
+
+    def _fail(self, verdict, detail, i, robots, parent, n, transitions, t0) -> Result:
+        schedule = self._path(parent, i) + ([robots] if robots is not None else [])
+        return Result(verdict, n, transitions, time.perf_counter() - t0, schedule, detail=detail)
+
+    def _fair_cycle(self, edges, quiet) -> tuple[int, list[tuple[int, ...]]] | None:
+        """A strongly connected component, not all quiescent, with an edge of every robot inside it;
+        returned as (entry state, a cycle from it that lets every robot act)."""
+        for comp in _sccs(edges):
+            members = set(comp)
+            if all(quiet[i] for i in comp):
+                continue
+            inner = [(i, robots, j) for i in comp for robots, j in edges[i] if j in members]
+            if not inner:
+                continue
+            actors = {r for _, robots, _ in inner for r in robots}
+            if actors != set(range(self.k)):
+                continue
+            entry = min(comp)
+            return entry, self._tour(entry, members, edges)
+        return None
+
+    def _tour(self, entry: int, members: set[int], edges) -> list[tuple[int, ...]]:
+        """Inside one component: from ``entry``, take an edge of every robot in turn, then come back."""
+        path: list[tuple[int, ...]] = []
+        here = entry
+        for r in range(self.k):
+            steps, here = self._bfs(here, members, edges, lambda robots, r=r: r in robots)
+            path += steps
+        steps, here = self._bfs(here, members, edges, None, target=entry)
+        return path + steps
+
+    @staticmethod
+    def _bfs(src, members, edges, want, target=None):
+        """Shortest path inside ``members`` ending with an edge satisfying ``want`` (or at ``target``)."""
+        if target is not None and src == target:
+            return [], src
+        prev = {src: None}
+        queue = deque([src])
+        while queue:
+            i = queue.popleft()
+            for robots, j in edges[i]:
+                if j not in members:
+                    continue
+                if want is not None and want(robots):
+                    steps = [robots]
+                    node = i
+                    while prev[node] is not None:
+                        node, rb = prev[node]
+                        steps.append(rb)
+                    return steps[::-1], j
+                if j not in prev:
+                    prev[j] = (i, robots)
+                    if target is not None and j == target:
+                        steps, node = [], j
+                        while prev[node] is not None:
+                            node, rb = prev[node]
+                            steps.append(rb)
+                        return steps[::-1], j
+                    queue.append(j)
+        raise AssertionError("component is not strongly connected")
+
+
+def _sccs(edges: list[list[tuple[tuple[int, ...], int]]]) -> list[list[int]]:
+    """Tarjan's algorithm, iterative."""
+    n = len(edges)
+    index = [-1] * n
+    low = [0] * n
+    on = [False] * n
+    stack: list[int] = []
+    out: list[list[int]] = []
+    counter = 0
+    for root in range(n):
+        if index[root] != -1:
+            continue
+        work = [(root, 0)]
+        while work:
+            v, pi = work.pop()
+            if pi == 0:
+                index[v] = low[v] = counter
+                counter += 1
+                stack.append(v)
+                on[v] = True
+            advanced = False
+            for p in range(pi, len(edges[v])):
+                w = edges[v][p][1]
+                if index[w] == -1:
+                    work.append((v, p + 1))
+                    work.append((w, 0))
+                    advanced = True
+                    break
+                if on[w]:
+                    low[v] = min(low[v], index[w])
+            if advanced:
+                continue
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on[w] = False
+                    comp.append(w)
+                    if w == v:
+                        break
+                out.append(comp)
+            if work:
+                u = work[-1][0]
+                low[u] = min(low[u], low[v])
+    return out
