@@ -136,6 +136,63 @@ def _cmd_random_robots(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_check(args: argparse.Namespace) -> int:
+    from apf_viz.explore.check import all_flips, check, write_counterexample
+
+    robots = load_robots(args.robots)
+    pattern = load_pattern(args.pattern)
+    check_sizes(robots, pattern, str(args.pattern))
+    algorithm = get_algorithm(args.algorithm)
+    points = [tuple(p) for p in robots.robots]
+    if args.flips == "all":
+        flips = all_flips(len(points))
+    else:
+        flips = [tuple(robots.y_up) if robots.y_up is not None else (True,) * len(points)]
+    result, y_up = check(
+        algorithm,
+        points,
+        [tuple(p) for p in pattern.points],
+        flips,
+        args.scheduler,
+        args.max_states,
+        progress=not args.json,
+    )
+    written = None
+    if result.verdict not in ("verified", "budget") and args.counterexample:
+        write_counterexample(
+            args.counterexample,
+            algorithm,
+            points,
+            [tuple(p) for p in pattern.points],
+            y_up,
+            args.scheduler,
+            result,
+        )
+        written = str(args.counterexample)
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "verdict": result.verdict,
+                    "states": result.states,
+                    "transitions": result.transitions,
+                    "seconds": round(result.seconds, 3),
+                    "detail": result.detail,
+                    "y_up": list(y_up),
+                    "schedule_length": len(result.schedule),
+                    "counterexample": written,
+                }
+            )
+        )
+    else:
+        print(
+            f"{result.verdict}: {result.states:,} states, {result.transitions:,} transitions, "
+            f"{result.seconds:.2f} s{'; ' + result.detail if result.detail else ''}"
+            f"{'; counterexample: ' + written if written else ''}"
+        )
+    return {"verified": 0, "budget": 4}.get(result.verdict, 1)
+
+
 def _cmd_serve(args: argparse.Namespace) -> int:
     from apf_viz.ui.app import serve  # viser is imported only when the UI is wanted
 
@@ -149,7 +206,10 @@ def build_parser() -> argparse.ArgumentParser:
             "Interactive workbench for asynchronous opaque luminous robots on the infinite grid. "
             "Without a command it serves the visualiser on a built-in demo."
         ),
-        epilog="Exit codes: 0 formed, 1 not formed, 2 bad input, 3 unsolvable start (Theorem 1).",
+        epilog=(
+            "Exit codes: 0 formed (check: verified), 1 not formed (check: a violation), 2 bad input, "
+            "3 unsolvable start (Theorem 1), 4 check: state budget exhausted."
+        ),
     )
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
 
@@ -208,6 +268,24 @@ def build_parser() -> argparse.ArgumentParser:
     rnd.add_argument("--out", type=Path, help="write to this file (atomically) instead of stdout")
     rnd.add_argument("--allow-unsolvable", action="store_true", help="do not redraw symmetric starts")
     rnd.set_defaults(func=_cmd_random_robots)
+
+    chk = sub.add_parser("check", help="explore every schedule of a small start (model checking)")
+    chk.add_argument("--robots", required=True, type=Path)
+    chk.add_argument("--pattern", required=True, type=Path)
+    chk.add_argument("--scheduler", default="async", choices=["async", "ssync", "fsync"])
+    chk.add_argument(
+        "--flips",
+        default="file",
+        choices=["all", "file"],
+        help="every assignment of y-axis flips, or the file's (default: file; none given = all up)",
+    )
+    chk.add_argument(
+        "--max-states", type=int, default=1_000_000, help="stop with verdict 'budget' beyond this"
+    )
+    chk.add_argument("--algorithm", default=DEFAULT_ALGORITHM)
+    chk.add_argument("--json", action="store_true")
+    chk.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
+    chk.set_defaults(func=_cmd_check)
 
     serve = sub.add_parser("serve", help="serve the visualiser (the default command)")
     _add_serve_options(serve)

@@ -107,7 +107,9 @@ class Explorer:
         self.progress = progress
         self._decisions: dict[Snapshot, Decision] = {}
         pts = self.robots + list(self.pattern)
-        span = max(max(p[0] for p in pts) - min(p[0] for p in pts), max(p[1] for p in pts) - min(p[1] for p in pts))
+        span = max(
+            max(p[0] for p in pts) - min(p[0] for p in pts), max(p[1] for p in pts) - min(p[1] for p in pts)
+        )
         # The paper's moves stay within O(kD) of the start; a box this much wider than start ∪ pattern is
         # generous for the starts the explorer can handle, and keeps the state space finite.
         self.margin = margin if margin is not None else 2 * (self.k + span) + 4
@@ -126,7 +128,9 @@ class Explorer:
     def _decide(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
         x0, y0 = positions[r]
         s = 1 if self.y_up[r] else -1
-        seen = sorted(Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j]) for j in _visible(positions, r))
+        seen = sorted(
+            Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j]) for j in _visible(positions, r)
+        )
         view = Snapshot(lights[r], tuple(seen))
         d = self._decisions.get(view)
         if d is None:
@@ -137,9 +141,11 @@ class Explorer:
         """(robots acting, next state) pairs; a violation is a string instead of a state."""
         if self.scheduler == "async":
             return [((r,), self._event(st, r)) for r in range(self.k)]
-        groups = [tuple(range(self.k))] if self.scheduler == "fsync" else [
-            c for n in range(1, self.k + 1) for c in combinations(range(self.k), n)
-        ]
+        groups = (
+            [tuple(range(self.k))]
+            if self.scheduler == "fsync"
+            else [c for n in range(1, self.k + 1) for c in combinations(range(self.k), n)]
+        )
         return [(g, self._round(st, g)) for g in groups]
 
     def _event(self, st: State, r: int) -> State | str:
@@ -219,14 +225,27 @@ class Explorer:
             for robots, nxt in self.successors(st):
                 transitions += 1
                 if isinstance(nxt, str):
-                    return self._fail("collision" if nxt.startswith("collision") else "escape", nxt, i, robots,
-                                      parent, len(states), transitions, t0)
+                    return self._fail(
+                        "collision" if nxt.startswith("collision") else "escape",
+                        nxt,
+                        i,
+                        robots,
+                        parent,
+                        len(states),
+                        transitions,
+                        t0,
+                    )
                 key = nxt.key()
                 j = index.get(key)
                 if j is None:
                     if len(states) >= self.max_states:
-                        return Result("budget", len(states), transitions, time.perf_counter() - t0,
-                                      detail=f"stopped at {self.max_states} states: nothing is proved")
+                        return Result(
+                            "budget",
+                            len(states),
+                            transitions,
+                            time.perf_counter() - t0,
+                            detail=f"stopped at {self.max_states} states: nothing is proved",
+                        )
                     j = index[key] = len(states)
                     states.append(nxt)
                     parent.append((i, robots))
@@ -238,15 +257,30 @@ class Explorer:
         quiet = [self.quiescent(s) for s in states]
         for i, s in enumerate(states):
             if quiet[i] and not matches_pattern(self._absolute(s), self.pattern):
-                return self._fail("deadlock", "a terminal state that is not the pattern", i, None, parent,
-                                  len(states), transitions, t0)
+                return self._fail(
+                    "deadlock",
+                    "a terminal state that is not the pattern",
+                    i,
+                    None,
+                    parent,
+                    len(states),
+                    transitions,
+                    t0,
+                )
         loop = self._fair_cycle(edges, quiet)
         seconds = time.perf_counter() - t0
         if loop is not None:
             entry, cycle = loop
             stem = self._path(parent, entry)
-            return Result("livelock", len(states), transitions, seconds, stem + cycle, loop_start=len(stem),
-                          detail="a fair cycle of states that never becomes quiescent")
+            return Result(
+                "livelock",
+                len(states),
+                transitions,
+                seconds,
+                stem + cycle,
+                loop_start=len(stem),
+                detail="a fair cycle of states that never becomes quiescent",
+            )
         return Result("verified", len(states), transitions, seconds)
 
     def _absolute(self, s: State) -> list[Point]:

@@ -1,0 +1,1 @@
+"""Exhaustive exploration of the adversary's schedules on small starts."""

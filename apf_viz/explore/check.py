@@ -1,0 +1,93 @@
+"""`apf-viz check`: run the explorer over the flips asked for, and turn a failure into a trace file."""
+
+from __future__ import annotations
+
+import itertools
+import sys
+from collections.abc import Sequence
+
+from apf_viz.core.algorithm import Algorithm
+from apf_viz.core.engine import Engine
+from apf_viz.core.formats import trace_text, write_atomic
+from apf_viz.core.grid import Point
+from apf_viz.core.run import trace_header
+from apf_viz.explore.explorer import Explorer, Result
+
+
+def check(
+    algorithm: Algorithm,
+    robots: Sequence[Point],
+    pattern: Sequence[Point],
+    flips: Sequence[Sequence[bool]],
+    scheduler: str,
+    max_states: int,
+    progress: bool = True,
+) -> tuple[Result, tuple[bool, ...]]:
+    """Explore each assignment of flips; stop at the first violation. States add up across flips."""
+    total_states = total_transitions = 0
+    seconds = 0.0
+    last: Result | None = None
+    for y_up in flips:
+        budget = max_states - total_states
+        ex = Explorer(
+            algorithm,
+            robots,
+            pattern,
+            y_up,
+            scheduler=scheduler,  # type: ignore[arg-type]
+            max_states=max(1, budget),
+            progress=_report if progress else None,
+        )
+        r = ex.run()
+        total_states += r.states
+        total_transitions += r.transitions
+        seconds += r.seconds
+        r.states, r.transitions, r.seconds = total_states, total_transitions, seconds
+        last = r
+        if r.verdict != "verified":
+            return r, tuple(y_up)
+    assert last is not None
+    return last, tuple(flips[-1])
+
+
+def all_flips(k: int) -> list[tuple[bool, ...]]:
+    return list(itertools.product((True, False), repeat=k))
+
+
+def _report(states: int, frontier: int, seconds: float) -> None:
+    print(
+        f"apf-viz check: {states:,} states, frontier {frontier:,}, "
+        f"{states / max(seconds, 1e-9):,.0f} states/s",
+        file=sys.stderr,
+        flush=True,
+    )
+
+
+def counterexample_engine(
+    algorithm: Algorithm, robots, pattern, y_up, scheduler: str, result: Result
+) -> Engine:
+    """Replay the explorer's schedule in the real engine (a livelock's loop is run twice)."""
+    e = Engine(robots, pattern, algorithm, y_up=y_up, max_events=10_000_000)
+    schedule = list(result.schedule)
+    if result.loop_start is not None:
+        schedule += schedule[result.loop_start :]
+    for n, robots_ in enumerate(schedule, 1):
+        if e.finished:
+            break
+        if scheduler == "async":
+            e.step(robots_)
+        else:
+            for _ in range(3):
+                if not e.finished:
+                    e.step(robots_, round=n)
+    return e
+
+
+def write_counterexample(path, algorithm, robots, pattern, y_up, scheduler, result: Result) -> Engine:
+    e = counterexample_engine(algorithm, robots, pattern, y_up, scheduler, result)
+    options = {"verdict": result.verdict, "detail": result.detail}
+    if result.loop_start is not None:
+        options["loop_starts_at_step"] = result.loop_start
+    header = trace_header(e, scheduler, None, options)
+    write_atomic(path, trace_text(header, e.history.events()))
+    return e
