@@ -27,7 +27,7 @@ from apf_viz.core.formats import (
     trace_text,
     write_atomic,
 )
-from apf_viz.core.run import RunSummary, advance, replay, trace_header
+from apf_viz.core.run import RunSummary, advance, engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
@@ -101,14 +101,7 @@ def _print_summary(summary: RunSummary, as_json: bool) -> None:
 
 def _cmd_replay(args: argparse.Namespace) -> int:
     header, events = load_trace(args.trace)
-    algorithm = get_algorithm(header.algorithm)
-    engine = Engine(
-        [tuple(p) for p in header.robots],
-        [tuple(p) for p in header.pattern],
-        algorithm,
-        y_up=header.y_up,
-        light_semantics=header.light_semantics,
-    )
+    engine = engine_for_trace(header, get_algorithm(header.algorithm))
     replay(engine, events, str(args.trace))
     summary = RunSummary.of(engine)
     _print_summary(summary, args.json)

@@ -6,6 +6,7 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.engine import Engine, EngineError
 from apf_viz.core.formats import InputError, TraceHeader, event_to_json
 from apf_viz.core.grid import Point
@@ -62,6 +63,18 @@ def trace_header(
         algorithm=engine.algorithm.name,
         light_semantics=engine.light_semantics,
         options=options or {},
+    )
+
+
+def engine_for_trace(header: TraceHeader, algorithm: Algorithm, max_events: int | None = None) -> Engine:
+    """A fresh engine with the trace's start, pattern, flips and light semantics."""
+    return Engine(
+        [tuple(p) for p in header.robots],
+        [tuple(p) for p in header.pattern],
+        algorithm,
+        y_up=header.y_up,
+        light_semantics=header.light_semantics,
+        max_events=max_events,
     )
 
 

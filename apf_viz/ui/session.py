@@ -30,7 +30,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.core.frames import move_to_global, to_local
 from apf_viz.core.grid import Point
-from apf_viz.core.run import replay, trace_header
+from apf_viz.core.run import engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
@@ -302,14 +302,8 @@ class Session:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
         text = self._decode(filename, content)
         header, events = parse_trace(text, filename)
-        algorithm = get_algorithm(header.algorithm)
-        engine = Engine(
-            [tuple(p) for p in header.robots],
-            [tuple(p) for p in header.pattern],
-            algorithm,
-            y_up=header.y_up,
-            light_semantics=header.light_semantics,
-            max_events=max(self.max_events, len(events) + 1),
+        engine = engine_for_trace(
+            header, get_algorithm(header.algorithm), max(self.max_events, len(events) + 1)
         )
         replay(engine, events, filename)
         with self.lock:
