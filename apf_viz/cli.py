@@ -149,6 +149,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         args.scheduler,
         args.max_states,
         progress=not args.json,
+        light_semantics=args.light_semantics,
     )
     written = None
     if result.verdict not in ("verified", "budget") and args.counterexample:
@@ -160,6 +161,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
             y_up,
             args.scheduler,
             result,
+            args.light_semantics,
         )
         written = str(args.counterexample)
     if args.json:
@@ -276,6 +278,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--max-states", type=int, default=1_000_000, help="stop with verdict 'budget' beyond this"
     )
     chk.add_argument("--algorithm", default=DEFAULT_ALGORITHM)
+    chk.add_argument("--light-semantics", default="compute", choices=["compute", "lc-atomic"])
     chk.add_argument("--json", action="store_true")
     chk.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
     chk.set_defaults(func=_cmd_check)

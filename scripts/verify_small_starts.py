@@ -27,6 +27,7 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--max-k", type=int, default=3)
     ap.add_argument("--algorithm", default="apf-opaque-grid")
+    ap.add_argument("--light-semantics", default="compute", choices=["compute", "lc-atomic"])
     args = ap.parse_args()
     algorithm = get_algorithm(args.algorithm)
     print("| k | start | solvable | verdict (all flips) | states | time |")
@@ -37,7 +38,16 @@ def main() -> None:
         pattern = [(i, 0) for i in range(k)]
         for start in starts(k):
             axis = unsolvable_axis(start)
-            r, y_up = check(algorithm, start, pattern, all_flips(k), "async", 2_000_000, progress=False)
+            r, y_up = check(
+                algorithm,
+                start,
+                pattern,
+                all_flips(k),
+                "async",
+                2_000_000,
+                progress=False,
+                light_semantics=args.light_semantics,
+            )
             verdict = r.verdict if r.verdict == "verified" else f"{r.verdict} (flips {list(y_up)})"
             summary[f"k={k} {'solvable' if axis is None else 'unsolvable'} {r.verdict}"] = (
                 summary.get(f"k={k} {'solvable' if axis is None else 'unsolvable'} {r.verdict}", 0) + 1

@@ -187,3 +187,16 @@ def test_the_explorers_finding_in_the_default_algorithm_replays():
     replay(e, events, str(path))
     assert e.state.lights.count("leader1") == 2 and e.outcome is None
     assert min(x for x, _ in e.current_points()) < -15
+
+
+def test_under_lc_atomic_the_lockstep_race_cannot_happen():
+    """The same start is verified when Look and Compute are atomic: the second leader1 came from a
+    terminal1 light that was pending, invisible, under the default semantics."""
+    algorithm = get_algorithm("apf-opaque-grid")
+    start, pattern = [(0, 0), (0, 2), (1, 0), (1, 3)], [(0, 0), (1, 0), (2, 0), (3, 0)]
+    assert (
+        Explorer(algorithm, start, pattern, [True] * 4, light_semantics="lc-atomic").run().verdict
+        == "verified"
+    )
+    compute = Explorer(algorithm, start, pattern, [True] * 4, max_states=400_000).run()
+    assert compute.verdict == "escape"

@@ -22,6 +22,7 @@ def check(
     scheduler: str,
     max_states: int,
     progress: bool = True,
+    light_semantics: str = "compute",
 ) -> tuple[Result, tuple[bool, ...]]:
     """Explore each assignment of flips; stop at the first violation. States add up across flips."""
     total_states = total_transitions = 0
@@ -37,6 +38,7 @@ def check(
             scheduler=scheduler,  # type: ignore[arg-type]
             max_states=max(1, budget),
             progress=_report if progress else None,
+            light_semantics=light_semantics,  # type: ignore[arg-type]
         )
         r = ex.run()
         total_states += r.states
@@ -64,10 +66,16 @@ def _report(states: int, frontier: int, seconds: float) -> None:
 
 
 def counterexample_engine(
-    algorithm: Algorithm, robots, pattern, y_up, scheduler: str, result: Result
+    algorithm: Algorithm,
+    robots,
+    pattern,
+    y_up,
+    scheduler: str,
+    result: Result,
+    light_semantics: str = "compute",
 ) -> Engine:
     """Replay the explorer's schedule in the real engine (a livelock's loop is run twice)."""
-    e = Engine(robots, pattern, algorithm, y_up=y_up, max_events=10_000_000)
+    e = Engine(robots, pattern, algorithm, y_up=y_up, max_events=10_000_000, light_semantics=light_semantics)  # type: ignore[arg-type]
     schedule = list(result.schedule)
     if result.loop_start is not None:
         schedule += schedule[result.loop_start :]
@@ -83,8 +91,10 @@ def counterexample_engine(
     return e
 
 
-def write_counterexample(path, algorithm, robots, pattern, y_up, scheduler, result: Result) -> Engine:
-    e = counterexample_engine(algorithm, robots, pattern, y_up, scheduler, result)
+def write_counterexample(
+    path, algorithm, robots, pattern, y_up, scheduler, result: Result, light_semantics: str = "compute"
+) -> Engine:
+    e = counterexample_engine(algorithm, robots, pattern, y_up, scheduler, result, light_semantics)
     options = {"verdict": result.verdict, "detail": result.detail}
     if result.loop_start is not None:
         options["loop_starts_at_step"] = result.loop_start

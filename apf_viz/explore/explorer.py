@@ -95,6 +95,7 @@ class Explorer:
         scheduler: Literal["async", "ssync", "fsync"] = "async",
         max_states: int = 1_000_000,
         margin: int | None = None,
+        light_semantics: Literal["compute", "lc-atomic"] = "compute",
         progress: Callable[[int, int, float], None] | None = None,
     ) -> None:
         self.algorithm = algorithm
@@ -105,6 +106,7 @@ class Explorer:
         self.scheduler = scheduler
         self.max_states = max_states
         self.progress = progress
+        self.lc_atomic = light_semantics == "lc-atomic"
         self._decisions: dict[Snapshot, Decision] = {}
         pts = self.robots + list(self.pattern)
         span = max(
@@ -154,6 +156,9 @@ class Explorer:
         if phases[r] == IDLE:
             held[r] = self._decide(pos, lights, r)
             phases[r] = LOOKED
+            if self.lc_atomic:  # Look and Compute are one event: the light shows from the Look
+                lights[r] = held[r].light
+                phases[r] = COMPUTED
         elif phases[r] == LOOKED:
             lights[r] = held[r].light
             phases[r] = COMPUTED
