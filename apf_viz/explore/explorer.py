@@ -35,7 +35,7 @@ Verdict = Literal["verified", "collision", "escape", "deadlock", "livelock", "bu
 IDLE, LOOKED, COMPUTED = 0, 1, 2
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class State:
     """Canonical state: positions translated so that min x = min y = 0 (robots keep their indices)."""
 
@@ -108,6 +108,7 @@ class Explorer:
         self.progress = progress
         self.lc_atomic = light_semantics == "lc-atomic"
         self._decisions: dict[Snapshot, Decision] = {}
+        self._by_configuration: dict[tuple, Decision] = {}
         pts = self.robots + list(self.pattern)
         span = max(
             max(p[0] for p in pts) - min(p[0] for p in pts), max(p[1] for p in pts) - min(p[1] for p in pts)
@@ -128,6 +129,15 @@ class Explorer:
         return _canonical(self.robots, [first] * self.k, [IDLE] * self.k, [None] * self.k, (0, 0))
 
     def _decide(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
+        """Robot r's decision on this configuration; memoised on (configuration, r): many states differ
+        only in phases and held decisions."""
+        key = (tuple(positions), tuple(lights), r)
+        d = self._by_configuration.get(key)
+        if d is None:
+            d = self._by_configuration[key] = self._decide_uncached(positions, lights, r)
+        return d
+
+    def _decide_uncached(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
         x0, y0 = positions[r]
         s = 1 if self.y_up[r] else -1
         seen = sorted(
@@ -151,28 +161,32 @@ class Explorer:
         return [(g, self._round(st, g)) for g in groups]
 
     def _event(self, st: State, r: int) -> State | str:
-        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
-        lights, phases, held = list(st.lights), list(st.phases), list(st.held)
+        phases, held = list(st.phases), list(st.held)
         if phases[r] == IDLE:
-            held[r] = self._decide(pos, lights, r)
+            # Decisions depend on offsets only: the canonical positions serve as well as absolute ones.
+            decision = self._decide(st.positions, st.lights, r)
+            held[r] = decision
             phases[r] = LOOKED
+            lights = st.lights
             if self.lc_atomic:  # Look and Compute are one event: the light shows from the Look
-                lights[r] = held[r].light
+                lights = (*lights[:r], decision.light, *lights[r + 1 :])
                 phases[r] = COMPUTED
-        elif phases[r] == LOOKED:
-            lights[r] = held[r].light
+            return State(st.positions, lights, tuple(phases), tuple(held), st.origin)
+        if phases[r] == LOOKED:
             phases[r] = COMPUTED
-        else:
-            move = move_to_global(held[r].move, self.y_up[r])
-            if move is not None:
-                to = (pos[r][0] + move.delta[0], pos[r][1] + move.delta[1])
-                if to in pos:
-                    return f"collision: robot {r} moves onto robot {pos.index(to)} at {to}"
-                pos[r] = to
-                if not self._inside(to):
-                    return f"escape: robot {r} left the box at {to}"
-            phases[r], held[r] = IDLE, None
-        return _canonical(pos, lights, phases, held, (0, 0))
+            lights = (*st.lights[:r], held[r].light, *st.lights[r + 1 :])
+            return State(st.positions, lights, tuple(phases), tuple(held), st.origin)
+        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
+        move = move_to_global(held[r].move, self.y_up[r])
+        if move is not None:
+            to = (pos[r][0] + move.delta[0], pos[r][1] + move.delta[1])
+            if to in pos:
+                return f"collision: robot {r} moves onto robot {pos.index(to)} at {to}"
+            pos[r] = to
+            if not self._inside(to):
+                return f"escape: robot {r} left the box at {to}"
+        phases[r], held[r] = IDLE, None
+        return _canonical(pos, st.lights, phases, held, (0, 0))
 
     def _round(self, st: State, group: tuple[int, ...]) -> State | str:
         pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
@@ -204,7 +218,7 @@ class Explorer:
     def quiescent(self, st: State) -> bool:
         """No robot can change anything: every held decision and every decision on the current view
         keeps the light and stays, and no move is pending."""
-        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
+        pos = st.positions  # decisions depend on offsets only
         for r in range(self.k):
             h = st.held[r]
             if h is not None and (h.move is not None or (st.phases[r] == LOOKED and h.light != st.lights[r])):
