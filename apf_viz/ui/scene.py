@@ -237,7 +237,7 @@ class SceneRenderer:
         targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
         # Opaque, pale tiles: a transparent batched mesh is depth-sorted per instance in the browser,
         # every frame, which costs more than everything else at 1,000 robots.
-        target_color = (245, 170, 210) if view.mode == "edit-pattern" else (190, 235, 190)
+        target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
         self._batched(
             "/targets",
             self._tile,
