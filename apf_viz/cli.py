@@ -27,6 +27,7 @@ from apf_viz.core.formats import (
     trace_text,
     write_atomic,
 )
+from apf_viz.core.frames import random_y_up
 from apf_viz.core.run import RunSummary, advance, engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
@@ -43,12 +44,6 @@ class _Parser(argparse.ArgumentParser):
 def _fail(message: str, code: int = EXIT_BAD_INPUT) -> NoReturn:
     print(f"apf-viz: error: {message}", file=sys.stderr)
     raise SystemExit(code)
-
-
-def random_y_up(k: int, seed: int) -> list[bool]:
-    """The adversary's flips when the robots file gives none: random, but a function of the seed."""
-    rng = random.Random(f"y_up:{seed}")
-    return [rng.random() < 0.5 for _ in range(k)]
 
 
 def _cmd_run(args: argparse.Namespace) -> int:

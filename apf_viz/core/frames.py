@@ -6,6 +6,8 @@ the global frame (engine, files, scene) and a robot's local frame only through t
 
 from __future__ import annotations
 
+import random
+
 import numpy as np
 
 from apf_viz.core.grid import Direction, Point
@@ -30,3 +32,9 @@ def move_to_global(move: Direction | None, y_up: bool) -> Direction | None:
 
 # A flip is an involution, so the same map takes a global move back to the local frame.
 move_to_local = move_to_global
+
+
+def random_y_up(k: int, seed: int) -> list[bool]:
+    """The adversary's flips when a start file gives none: random, but a function of the seed."""
+    rng = random.Random(f"y_up:{seed}")
+    return [rng.random() < 0.5 for _ in range(k)]

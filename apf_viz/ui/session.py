@@ -15,7 +15,6 @@ import numpy as np
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid import embedded_targets
-from apf_viz.cli import random_y_up
 from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.formats import (
     InputError,
@@ -28,7 +27,7 @@ from apf_viz.core.formats import (
     robots_json,
     trace_text,
 )
-from apf_viz.core.frames import move_to_global, to_local
+from apf_viz.core.frames import move_to_global, random_y_up, to_local
 from apf_viz.core.grid import Point
 from apf_viz.core.run import engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import make_scheduler, step_rng
