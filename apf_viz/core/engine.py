@@ -150,6 +150,7 @@ class Engine:
         self.history = History(self.state.copy())
         self._occupied = self._occupancy()
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
+        self._looks: dict[int, tuple[int, Snapshot, list[int]]] = {}  # robot → (version, snapshot, ids)
         self._probe_hint = 0
 
     # ------------------------------------------------------------------ read-only views
@@ -211,7 +212,12 @@ class Engine:
                 raise EngineError(f"bad robot selection {robots} for {self.k} robots")
             if len({int(self.state.phase[r]) for r in robots}) != 1:
                 raise EngineError("robots activated together must be in the same phase")
-        record = StepRecord(robots=robots, round=round)
+        return self.apply(StepRecord(robots=robots, round=round))
+
+    def apply(self, record: StepRecord) -> list[Event]:
+        """Apply a scheduler's choice as it is (the checks of :meth:`step` are the caller's)."""
+        if self.finished:
+            raise EngineError(f"the run is over ({self.state.outcome})")
         position = self.state.steps
         events = self._apply(record)
         self.history.record(position, record, events)
@@ -252,7 +258,17 @@ class Engine:
     def _observe(self, r: int) -> tuple[Snapshot, list[int]]:
         """Robot r's snapshot and the indices of the robots in it: visibility is computed on the offsets
         in r's own frame, so the one sort that finds the nearest robot per direction also gives the
-        snapshot its canonical, identity-free order."""
+        snapshot its canonical, identity-free order. A robot that looks again before anything changed
+        (same configuration version) gets its previous snapshot back."""
+        st = self.state
+        cached = self._looks.get(r)
+        if cached is not None and cached[0] == st.version:
+            return cached[1], cached[2]
+        snap, ids = self._observe_now(r)
+        self._looks[r] = (st.version, snap, ids)
+        return snap, ids
+
+    def _observe_now(self, r: int) -> tuple[Snapshot, list[int]]:
         st = self.state
         local = offsets_to_local(st.positions - st.positions[r], self.y_up[r])
         order = nearest_per_direction(local, r)
@@ -378,7 +394,9 @@ class Engine:
 
         Probes of the current view are cached per configuration version, and the robot found active last
         time is probed first, so a busy run pays at most one Look per configuration change."""
-        for r in chain(range(self._probe_hint, self.k), range(self._probe_hint)):
+        if not self._robot_quiescent(self._probe_hint):  # the usual case: the last active robot still is
+            return False
+        for r in chain(range(self._probe_hint + 1, self.k), range(self._probe_hint)):
             if not self._robot_quiescent(r):
                 self._probe_hint = r
                 return False
@@ -411,6 +429,7 @@ class Engine:
         self.state = state.copy()
         self._occupied = self._occupancy()
         self._probe = [(-1, False)] * self.k
+        self._looks = {}  # versions repeat on another branch: nothing cached may survive a seek
         for i in range(base, step):
             self._apply(self.history.steps[i].record)
 

@@ -64,6 +64,9 @@ class History:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the
         future (a redo); a different one branches: the old future is dropped."""
         step = RecordedStep(record, tuple(events))
+        if position == len(self.steps):
+            self.steps.append(step)
+            return
         if position < len(self.steps):
             if self.steps[position] == step:
                 return

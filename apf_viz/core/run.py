@@ -18,8 +18,7 @@ def advance(engine: Engine, scheduler: Scheduler, seed: int, steps: int | None =
     """Let the scheduler drive the engine for ``steps`` steps, or until the run ends. Returns steps taken."""
     taken = 0
     while not engine.finished and (steps is None or taken < steps):
-        record = scheduler.choose(engine, step_rng(seed, engine.step_index))
-        engine.step(record.robots, round=record.round)
+        engine.apply(scheduler.choose(engine, step_rng(seed, engine.step_index)))
         taken += 1
     return taken
 
