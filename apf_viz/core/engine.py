@@ -307,6 +307,8 @@ class Engine:
         )
 
     def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
+        if len(robots) == 1:
+            return self._move_one(robots[0], round)
         st = self.state
         targets: dict[int, Point] = {}
         for r in robots:
@@ -339,6 +341,26 @@ class Engine:
         for r in robots:
             self._finish_cycle(r)
         return events
+
+    def _move_one(self, r: int, round: int | None) -> list[Event]:
+        """The ASYNC case of :meth:`_move`: one robot, so a collision is only a move onto a robot."""
+        st = self.state
+        gmove = move_to_global(st.pending[r].move, self.y_up[r])
+        here = tuple(st.positions[r].tolist())
+        if gmove is None:
+            self._finish_cycle(r)
+            return [Event(robot=r, phase="move", to=here, round=round)]
+        to = (here[0] + gmove.delta[0], here[1] + gmove.delta[1])
+        if to in self._occupied:
+            st.outcome = "collision"
+            return [Event(robot=r, phase="move", to=to, round=round, collision=True)]
+        del self._occupied[here]
+        st.positions[r] = to
+        self._occupied[to] = r
+        st.moves += 1
+        st.version += 1
+        self._finish_cycle(r)
+        return [Event(robot=r, phase="move", to=to, round=round)]
 
     def _collisions(self, targets: dict[int, Point]) -> set[int]:
         """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""

@@ -7,8 +7,7 @@ Events are stored in the global frame with robots numbered in file order, exactl
 from __future__ import annotations
 
 import bisect
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, NamedTuple
 
 from apf_viz.core.grid import Direction, Point
 
@@ -18,9 +17,9 @@ if TYPE_CHECKING:
 EventPhase = Literal["look", "compute", "move"]
 
 
-@dataclass(frozen=True, slots=True)
-class Event:
-    """One Look, Compute or Move of one robot, with what it produced (global frame)."""
+class Event(NamedTuple):
+    """One Look, Compute or Move of one robot, with what it produced (global frame). A named tuple:
+    millions are made per run, and a tuple is several times cheaper to build than a frozen dataclass."""
 
     robot: int
     phase: EventPhase
@@ -33,16 +32,14 @@ class Event:
     collision: bool = False  # move: this move collided (the run stops, the move is not applied)
 
 
-@dataclass(frozen=True, slots=True)
-class StepRecord:
+class StepRecord(NamedTuple):
     """A scheduler's choice: which robots act together, and the synchronous round if any."""
 
     robots: tuple[int, ...]
     round: int | None = None
 
 
-@dataclass(frozen=True, slots=True)
-class RecordedStep:
+class RecordedStep(NamedTuple):
     record: StepRecord
     events: tuple[Event, ...]
 
