@@ -25,7 +25,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
-from apf_viz.core.frames import move_to_global, offsets_to_local
+from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point, nearest_per_direction, visible_from
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
@@ -151,6 +151,7 @@ class Engine:
         self._occupied = self._occupancy()
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
         self._looks: dict[int, tuple[int, Snapshot, list[int]]] = {}  # robot → (version, snapshot, ids)
+        self._span: tuple[int, int] = (-1, 0)  # (version, 1 + the configuration's extent)
         self._probe_hint = 0
 
     # ------------------------------------------------------------------ read-only views
@@ -270,8 +271,13 @@ class Engine:
 
     def _observe_now(self, r: int) -> tuple[Snapshot, list[int]]:
         st = self.state
-        local = offsets_to_local(st.positions - st.positions[r], self.y_up[r])
-        order = nearest_per_direction(local, r)
+        local = st.positions - st.positions[r]
+        if not self.y_up[r]:
+            local[:, 1] *= -1
+        if self._span[0] != st.version:
+            extent = st.positions.max(axis=0) - st.positions.min(axis=0)
+            self._span = (st.version, int(extent.max()) + 1)
+        order = nearest_per_direction(local, r, self._span[1])
         ids = order.tolist()
         lights = st.lights
         seen = local[order]
@@ -452,6 +458,7 @@ class Engine:
         self._occupied = self._occupancy()
         self._probe = [(-1, False)] * self.k
         self._looks = {}  # versions repeat on another branch: nothing cached may survive a seek
+        self._span = (-1, 0)
         for i in range(base, step):
             self._apply(self.history.steps[i].record)
 

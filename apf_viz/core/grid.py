@@ -58,13 +58,14 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
     return np.sort(nearest_per_direction(positions - positions[i], i))
 
 
-def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
+def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) -> np.ndarray:
     """The visible robots, given every robot's offset from observer ``i`` (shape (k, 2); row i is 0).
 
     "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
     (direction, distance g), and the first of each direction wins; no lattice point is visited.
     The result is ordered by direction, a function of the offsets alone, so it carries no robot
-    identity: a snapshot built in this order is canonical.
+    identity: a snapshot built in this order is canonical. ``span``, if given, must exceed every
+    |offset| coordinate (the engine passes the configuration's extent, computed once per change).
     """
     k = offsets.shape[0]
     if k == 1:
@@ -72,12 +73,12 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     dx, dy = offsets[:, 0], offsets[:, 1]
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
-    span = int(np.abs(offsets).max()) + 1
+    if span is None:
+        span = int(np.abs(offsets).max()) + 1
     if span < _PACKED_SPAN_LIMIT:
-        w = 2 * span + 1
-        key = (dx // g + span) * w + (dy // g + span)
+        key = (dx // g) * (2 * span + 1) + dy // g  # unique per primitive direction
         packed = key * span + g  # by direction, nearest first
-        packed[i] = -1
+        packed[i] = np.iinfo(np.int64).min
         order = np.argsort(packed, kind="stable")
     else:
         key = (dx // g) * (1 << 31) + (dy // g)
