@@ -109,6 +109,7 @@ def test_edit_robots_adds_flips_removes_and_rejects_an_unsolvable_start():
     s.draft_pattern = [(0, 0), (1, 0)]
     problem = s.set_mode("run")
     assert problem and "y = 0.5" in problem and s.view().axis == 0.5
+    assert [r.position for r in s.view().robots] == [(0, 0), (0, 1)]  # the scene shows the draft
     s.draft_robots.append((3, 0))
     s.draft_y_up.append(False)
     s.draft_pattern.append((2, 0))

@@ -370,7 +370,15 @@ class Session:
                     e.next_event(r),
                 )
             )
+        if self.mode == "edit-robots":  # the robots being placed, not the run's
+            first = e.algorithm.lights[0]
+            robots = [
+                RobotView(p, first, "idle", up, None, "look")
+                for p, up in zip(self.draft_robots, self.draft_y_up, strict=True)
+            ]
         sel = self.selected if self.selected is not None and self.selected < e.k else None
+        if self.mode != "run":
+            sel = None
         rays: list[tuple[Point, Point]] = []
         ghosts: list[Point] = []
         if sel is not None:
