@@ -71,8 +71,9 @@ def test_phase2_symmetric_R_I_leads_to_call_and_the_deciders_move_right():
 @pytest.mark.parametrize(
     ("algorithm", "rule"),
     [
-        ("apf-opaque-grid", "leader1: a leader1/leader to my left → off (LW)"),
-        (without("LW"), "Phase 2 (leader1): another leader1 on L_I → off"),
+        ("apf-opaque-grid", "(L2)"),
+        (without("L2"), "leader1: a leader1/leader to my left → off (LW)"),
+        (without("L2", "LW"), "Phase 2 (leader1): another leader1 on L_I → off"),
     ],
 )
 def test_phase2_two_leader1_resolve_to_one(algorithm, rule):

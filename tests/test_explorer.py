@@ -170,33 +170,15 @@ def test_cli_check_exit_codes_and_counterexample(tmp_path, write_json):
     assert flips.returncode == 0
 
 
-def test_the_explorers_finding_in_the_default_algorithm_replays():
-    """Open problem found by `apf-viz check` on C2 (docs/VERIFICATION.md): two leader1 robots on one
-    column, both on extreme rows, walk left in lockstep forever; LW needs one strictly to the left."""
-    from pathlib import Path
+def test_the_lockstep_finding_and_its_fix():
+    """Without L2, two leader1 robots walk left in lockstep forever on C2 under the default light
+    semantics; with lc-atomic the race that makes the second leader1 cannot happen; with L2 it is
+    verified (docs/VERIFICATION.md)."""
+    from apf_viz.algorithms.apf_opaque_grid.resolutions import RESOLUTIONS
 
-    path = Path(__file__).parent / "explorer_traces" / "two-leader1-lockstep.jsonl"
-    header, events = load_trace(path)
-    assert header.algorithm == "apf-opaque-grid" and header.options["verdict"] == "escape"
-    e = Engine(
-        [tuple(p) for p in header.robots],
-        [tuple(p) for p in header.pattern],
-        get_algorithm(header.algorithm),
-        y_up=header.y_up,
-    )
-    replay(e, events, str(path))
-    assert e.state.lights.count("leader1") == 2 and e.outcome is None
-    assert min(x for x, _ in e.current_points()) < -15
-
-
-def test_under_lc_atomic_the_lockstep_race_cannot_happen():
-    """The same start is verified when Look and Compute are atomic: the second leader1 came from a
-    terminal1 light that was pending, invisible, under the default semantics."""
-    algorithm = get_algorithm("apf-opaque-grid")
+    without_l2 = get_algorithm("apf-opaque-grid@" + ",".join(r for r in RESOLUTIONS if r != "L2"))
     start, pattern = [(0, 0), (0, 2), (1, 0), (1, 3)], [(0, 0), (1, 0), (2, 0), (3, 0)]
-    assert (
-        Explorer(algorithm, start, pattern, [True] * 4, light_semantics="lc-atomic").run().verdict
-        == "verified"
-    )
-    compute = Explorer(algorithm, start, pattern, [True] * 4, max_states=400_000).run()
-    assert compute.verdict == "escape"
+    assert Explorer(without_l2, start, pattern, [True] * 4, max_states=400_000).run().verdict == "escape"
+    lca = Explorer(without_l2, start, pattern, [True] * 4, light_semantics="lc-atomic").run()
+    assert lca.verdict == "verified"
+    assert Explorer(get_algorithm("apf-opaque-grid"), start, pattern, [True] * 4).run().verdict == "verified"

@@ -35,6 +35,8 @@ def two_deciders_on_left_line(view: Snapshot) -> bool:
 
 def phase2_decider(view: Snapshot, res: frozenset[str]) -> Decision:
     """Algorithm 2, r.light = decider (lines 3–22)."""
+    if "L2" in res and _lone_decider(view):
+        return Decision("leader1", None, "decider (L2): no other decider, nothing to my left → leader1 again")
     r_i = right_neighbour_line(view)
     column = vertical_line(view)
     if "leader1" in lights_of(r_i) | lights_of(column):
@@ -72,6 +74,17 @@ def phase2_decider(view: Snapshot, res: frozenset[str]) -> Decision:
             "Phase 2 (decider): call on L_V, no decider on L_I, all of R_I call → move right",
         )
     return stay(view, "Phase 2 (decider): waiting (a robot on K ∩ R_I, or the other decider)")
+
+
+def _lone_decider(view: Snapshot) -> bool:
+    """L2's other half: a decider made from a leader1 whose partner turned off instead sees no decider
+    anywhere, nothing to its left, and only off robots on its own line (a partner still symmetric is on
+    its way to becoming a decider; deciders hidden from each other by call robots, B12, see those)."""
+    return (
+        left_open_half_empty(view)
+        and "decider" not in lights_of(view.robots)
+        and lights_of(vertical_line(view)) <= {"off"}
+    )
 
 
 def phase2_off(view: Snapshot, res: frozenset[str]) -> Decision:
@@ -112,8 +125,35 @@ def phase2_call(view: Snapshot, res: frozenset[str]) -> Decision:
     return stay(view, "Phase 2 (call): waiting for a leader1")
 
 
+def two_leader1_become_deciders(view: Snapshot) -> Decision | None:
+    """L2 (found by the explorer, docs/VERIFICATION.md): two leader1 robots on one leftmost line (one
+    promoted on a stale view) would walk left in lockstep forever. Settle them the way the paper settles two
+    robots on L_1: with R_I symmetric about their K they take the symmetric light and move apart to
+    extreme rows first (the paper's argument that this cannot create a symmetry needs R_I symmetric);
+    otherwise they become the two deciders and Phase 2 elects among them and the rest. A robot that
+    changes light while its partner is still leader1 turns off on seeing it (G2 / the decider rule), which
+    leaves one leader1; a decider left alone becomes leader1 again (:func:`_lone_decider`)."""
+    partner = column_neighbour_with(view, {"leader1"})
+    if partner is None or not left_open_half_empty(view):
+        return None
+    extreme = not (upper_closed_half_has_other(view) and bottom_closed_half_has_other(view))
+    r_i = right_neighbour_line(view)
+    k2 = k2_of(partner)
+    if not extreme and robot_on_K(r_i, k2) is None and is_symmetric_wrt_K(r_i, k2):
+        return Decision("symmetric", None, "leader1 (L2): another leader1 on L_V, R_I symmetric → symmetric")
+    return Decision("decider", None, "leader1 (L2): another leader1 on L_V → decider")
+
+
 def phase2_leader1(view: Snapshot, res: frozenset[str]) -> Decision:
     """Algorithm 2, r.light = leader1 (lines 39–58)."""
+    if "L2" in res:
+        if column_neighbour_with(view, {"terminal1", "symmetric"}) is not None:
+            # It may be promoted on a view older than my light (B3): moving now could make the
+            # configuration symmetric; it turns off on seeing me (G2), or we settle as two leader1.
+            return stay(view, "leader1 (L2): a terminal1/symmetric robot on L_V → wait for it to settle")
+        settled = two_leader1_become_deciders(view)
+        if settled is not None:
+            return settled
     l_i = left_neighbour_line(view)
     r_i = right_neighbour_line(view)
     left_all_off = all(s.light == "off" for s in l_i) and ("NV" not in res or bool(l_i))

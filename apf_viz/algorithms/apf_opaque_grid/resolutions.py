@@ -18,6 +18,7 @@ RESOLUTIONS: dict[str, str] = {
     "P3": "Phase 3 waits for robots that are not done, not only for off ones (B19)",
     "LA": "the leader anchors its frame on t_{n-2}, not on itself, for its last TargetMove (B18)",
     "N2": "with n = 2 the single follower goes to its target instead of LineMove(1) again (B17)",
+    "L2": "two leader1 on one leftmost line, on extreme rows, become the deciders of a stable configuration",
 }
 
 ALL = frozenset(RESOLUTIONS)
