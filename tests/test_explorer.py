@@ -13,7 +13,7 @@ from apf_viz.core.algorithm import Decision
 from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.formats import load_trace
 from apf_viz.core.grid import Direction
-from apf_viz.core.run import replay
+from apf_viz.core.run import engine_for_trace, replay
 from apf_viz.explore.check import counterexample_engine
 from apf_viz.explore.explorer import Explorer
 
@@ -157,12 +157,7 @@ def test_cli_check_exit_codes_and_counterexample(tmp_path, write_json):
     assert bad.returncode == 1 and json.loads(bad.stdout)["verdict"] == "livelock"
     header, events = load_trace(out)
     assert header.options["verdict"] == "livelock"
-    e = Engine(
-        [tuple(p) for p in header.robots],
-        [tuple(p) for p in header.pattern],
-        get_algorithm(header.algorithm),
-        y_up=header.y_up,
-    )
+    e = engine_for_trace(header, get_algorithm(header.algorithm))
     replay(e, events, str(out))
     budget = cli("--max-states", "5")
     assert budget.returncode == 4 and json.loads(budget.stdout)["verdict"] == "budget"

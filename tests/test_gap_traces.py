@@ -11,20 +11,13 @@ from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import audit_run
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import load_trace
-from apf_viz.core.run import replay
+from apf_viz.core.run import engine_for_trace, replay
 
 TRACES = sorted((Path(__file__).parent / "gap_traces").glob("*.jsonl"))
 
 
 def engine_for(header, algorithm: str, max_events: int | None = None) -> Engine:
-    return Engine(
-        [tuple(p) for p in header.robots],
-        [tuple(p) for p in header.pattern],
-        get_algorithm(algorithm),
-        y_up=header.y_up,
-        light_semantics=header.light_semantics,
-        max_events=max_events,
-    )
+    return engine_for_trace(header, get_algorithm(algorithm), max_events)
 
 
 @pytest.mark.parametrize("path", TRACES, ids=[p.stem for p in TRACES])

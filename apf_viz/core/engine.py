@@ -203,8 +203,6 @@ class Engine:
     # ------------------------------------------------------------------ stepping
     def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:
         """Activate these robots simultaneously; each runs its next phase. Returns the events."""
-        if self.finished:
-            raise EngineError(f"the run is over ({self.state.outcome})")
         robots = tuple(int(r) for r in robots)
         if len(robots) != 1 or not 0 <= robots[0] < self.k:  # the ASYNC case needs no more checks
             if not robots:

@@ -8,19 +8,12 @@ from __future__ import annotations
 
 import random
 
-import numpy as np
-
 from apf_viz.core.grid import Direction, Point
 
 
 def to_local(offset: Point, y_up: bool) -> Point:
     """A global offset seen in the robot's own frame."""
     return (offset[0], offset[1] if y_up else -offset[1])
-
-
-def offsets_to_local(offsets: np.ndarray, y_up: bool) -> np.ndarray:
-    """Vectorised :func:`to_local`; offsets shape (m, 2)."""
-    return offsets if y_up else offsets * np.array([1, -1], dtype=offsets.dtype)
 
 
 def move_to_global(move: Direction | None, y_up: bool) -> Direction | None:
