@@ -19,17 +19,18 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import IntEnum
-from itertools import chain, repeat
+from itertools import chain
 from typing import Literal
 
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point, nearest_per_direction, visible_from
+from apf_viz.core.grid import Point
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
-from apf_viz.core.view import Seen, Snapshot
+from apf_viz.core.view import Snapshot
+from apf_viz.core.visibility import Views
 
 LightSemantics = Literal["compute", "lc-atomic"]
 
@@ -148,10 +149,8 @@ class Engine:
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
         self.state = self._initial_state()
         self.history = History(self.state.copy())
-        self._occupied = self._occupancy()
+        self._views = Views(self.state.positions, self.state.lights, self.y_up)
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
-        self._looks: dict[int, tuple[int, Snapshot, list[int]]] = {}  # robot → (version, snapshot, ids)
-        self._span: tuple[int, int] = (-1, 0)  # (version, 1 + the configuration's extent)
         self._probe_hint = 0
 
     # ------------------------------------------------------------------ read-only views
@@ -179,7 +178,7 @@ class Engine:
 
     def visible(self, robot: int) -> np.ndarray:
         """Indices of the robots this robot sees now."""
-        return visible_from(self.state.positions, robot)
+        return np.array(self._views.view(robot)[1], dtype=np.intp)
 
     def look(self, robot: int) -> Snapshot:
         """The snapshot this robot would take now (no event is recorded)."""
@@ -248,46 +247,17 @@ class Engine:
         st = self.state
         snap, ids = self._observe(r)
         st.snapshot[r] = snap
-        st.seen[r] = tuple(sorted(ids))
+        st.seen[r] = ids
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
         st.phase[r] = _LOOKED
         return Event(robot=r, phase="look", sees=st.seen[r], round=round)
 
-    def _observe(self, r: int) -> tuple[Snapshot, list[int]]:
-        """Robot r's snapshot and the indices of the robots in it: visibility is computed on the offsets
-        in r's own frame, so the one sort that finds the nearest robot per direction also gives the
-        snapshot its canonical, identity-free order. A robot that looks again before anything changed
-        (same configuration version) gets its previous snapshot back."""
-        st = self.state
-        cached = self._looks.get(r)
-        if cached is not None and cached[0] == st.version:
-            return cached[1], cached[2]
-        snap, ids = self._observe_now(r)
-        self._looks[r] = (st.version, snap, ids)
-        return snap, ids
-
-    def _observe_now(self, r: int) -> tuple[Snapshot, list[int]]:
-        st = self.state
-        local = st.positions - st.positions[r]
-        if not self.y_up[r]:
-            local[:, 1] *= -1
-        if self._span[0] != st.version:
-            extent = st.positions.max(axis=0) - st.positions.min(axis=0)
-            self._span = (st.version, int(extent.max()) + 1)
-        order = nearest_per_direction(local, r, self._span[1])
-        ids = order.tolist()
-        lights = st.lights
-        seen = local[order]
-        # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
-        robots = tuple(
-            map(
-                tuple.__new__,
-                repeat(Seen),
-                zip(seen[:, 0].tolist(), seen[:, 1].tolist(), [lights[i] for i in ids], strict=True),
-            )
-        )
-        return Snapshot(lights[r], robots), ids
+    def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
+        """Robot r's snapshot (entries sorted by offset in r's own frame: a canonical, identity-free
+        order) and the sorted indices of the robots in it, read off the patched views."""
+        robots, ids = self._views.view(r)
+        return Snapshot(self.state.lights[r], robots), ids
 
     def _compute(self, r: int, round: int | None) -> Event:
         st = self.state
@@ -300,6 +270,7 @@ class Engine:
             st.lights[r] = decision.light
             st.lights_used.add(decision.light)
             st.version += 1
+            self._views.relit(r)
         gmove = move_to_global(decision.move, self.y_up[r])
         return Event(
             robot=r,
@@ -335,11 +306,9 @@ class Engine:
         here = {r: tuple(st.positions[r].tolist()) for r in robots}
         movers = [r for r in robots if targets[r] != here[r]]
         for r in movers:
-            del self._occupied[here[r]]
-        for r in movers:
             st.positions[r] = targets[r]
-            self._occupied[targets[r]] = r
         if movers:
+            self._views.moved(movers, [here[r] for r in movers])
             st.moves += len(movers)
             st.version += 1
         for r in robots:
@@ -355,12 +324,11 @@ class Engine:
             self._finish_cycle(r)
             return [Event(robot=r, phase="move", to=here, round=round)]
         to = (here[0] + gmove.delta[0], here[1] + gmove.delta[1])
-        if to in self._occupied:
+        if to in self._views.occupied:
             st.outcome = "collision"
             return [Event(robot=r, phase="move", to=to, round=round, collision=True)]
-        del self._occupied[here]
         st.positions[r] = to
-        self._occupied[to] = r
+        self._views.moved((r,), (here,))
         st.moves += 1
         st.version += 1
         self._finish_cycle(r)
@@ -379,7 +347,7 @@ class Engine:
             here = (int(st.positions[r][0]), int(st.positions[r][1]))
             if t == here:
                 continue
-            other = self._occupied.get(t)
+            other = self._views.occupied.get(t)
             if other is None:
                 continue
             if other not in targets or targets[other] == t:
@@ -453,10 +421,8 @@ class Engine:
             raise EngineError(f"step {step} is outside the recorded history 0..{self.history.length}")
         base, state = self.history.checkpoint_before(step)
         self.state = state.copy()
-        self._occupied = self._occupancy()
+        self._views = Views(self.state.positions, self.state.lights, self.y_up)
         self._probe = [(-1, False)] * self.k
-        self._looks = {}  # versions repeat on another branch: nothing cached may survive a seek
-        self._span = (-1, 0)
         for i in range(base, step):
             self._apply(self.history.steps[i].record)
 
@@ -488,6 +454,3 @@ class Engine:
             last_cycle_end=np.zeros(k, dtype=np.int64),
             lights_used={first},
         )
-
-    def _occupancy(self) -> dict[Point, int]:
-        return {(int(x), int(y)): i for i, (x, y) in enumerate(self.state.positions)}

@@ -1,0 +1,195 @@
+"""Every robot's view of the current configuration, kept up to date move by move.
+
+A Look needs, in the observer's own frame, the offset and light of each robot it sees: the nearest robot
+along each primitive direction (paper §2, *Visibility*; :mod:`apf_viz.core.grid`). Recomputing that per
+Look costs a sort of k offsets and k new tuples. But between two Looks usually one robot has moved, and
+a move changes an observer's view in at most four places: the mover leaves one direction (the next robot
+along it, if any, comes into sight) and enters another (hiding the robot that was nearest there, if the
+mover is now nearer). :class:`Views` keeps, per observer, the nearest robot of every direction and the
+view's entries sorted by offset, and patches them on each move or light change; a Look then costs a
+``tuple()`` of a list, and identical views share their ``Seen`` objects.
+
+An observer's index is built on its first Look (one sort, :func:`~apf_viz.core.grid.nearest_per_direction`)
+and dropped when the observer itself moves (everything it sees shifts), so robots that never look cost
+nothing. ``tests/test_visibility.py`` checks every patched view against a from-scratch one.
+"""
+
+from __future__ import annotations
+
+from bisect import bisect_left, insort
+from collections.abc import Sequence
+from itertools import repeat
+
+import numpy as np
+
+from apf_viz.core.grid import Point, nearest_per_direction
+from apf_viz.core.view import Seen
+
+Direction2 = tuple[int, int]  # a primitive direction (dx, dy)/gcd, global frame
+
+
+class Views:
+    """Patched views of all robots.
+
+    Args:
+        positions: shape (k, 2), the engine's array; the engine writes moves into it, then calls
+            :meth:`moved`.
+        lights: the engine's list of lights; the engine changes an entry, then calls :meth:`relit`.
+        y_up: per robot, whether its local +y is the global +y.
+    """
+
+    def __init__(self, positions: np.ndarray, lights: list[str], y_up: Sequence[bool]) -> None:
+        self._P = positions
+        self._lights = lights
+        self._flip = [1 if up else -1 for up in y_up]
+        k = positions.shape[0]
+        self.occupied: dict[Point, int] = {(int(x), int(y)): i for i, (x, y) in enumerate(positions.tolist())}
+        self._near: list[dict[Direction2, tuple[int, int]] | None] = [None] * k  # dir → (distance g, robot)
+        self._entries: list[list[Seen]] = [[] for _ in range(k)]  # sorted by (dx, dy), observer's frame
+        self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
+        self._cached: list[tuple[tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
+        self._built: set[int] = set()
+
+    # ------------------------------------------------------------------ reading
+    def view(self, r: int) -> tuple[tuple[Seen, ...], tuple[int, ...]]:
+        """What robot r sees now: its entries (sorted by offset in its own frame) and their robots'
+        indices (sorted). Unchanged views return the same tuples."""
+        cached = self._cached[r]
+        if cached is None:
+            if self._near[r] is None:
+                self._build(r)
+            cached = self._cached[r] = (tuple(self._entries[r]), tuple(self._ids[r]))
+        return cached
+
+    def _build(self, r: int) -> None:
+        P = self._P
+        offsets = P - P[r]
+        order = nearest_per_direction(offsets, r)
+        seen = offsets[order]
+        g = np.gcd(seen[:, 0], seen[:, 1])
+        dx, dy = seen[:, 0].tolist(), seen[:, 1].tolist()
+        ids = order.tolist()
+        self._near[r] = dict(
+            zip(
+                zip((seen[:, 0] // g).tolist(), (seen[:, 1] // g).tolist(), strict=True),
+                zip(g.tolist(), ids, strict=True),
+                strict=True,
+            )
+        )
+        s = self._flip[r]
+        lights = self._lights
+        ly = dy if s == 1 else [-v for v in dy]
+        # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
+        self._entries[r] = sorted(
+            map(tuple.__new__, repeat(Seen), zip(dx, ly, [lights[i] for i in ids], strict=True))
+        )
+        self._ids[r] = sorted(ids)
+        self._built.add(r)
+
+    # ------------------------------------------------------------------ patching
+    def moved(self, movers: Sequence[int], old: Sequence[Point]) -> None:
+        """These robots moved simultaneously from ``old`` to their current rows of ``positions``."""
+        P = self._P
+        occupied = self.occupied
+        for p in old:
+            del occupied[p]
+        lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
+        gone = set(movers)
+        for m in movers:  # the mover's own view: rebuilt on its next Look
+            if m in self._built:
+                self._built.discard(m)
+                self._near[m] = None
+                self._cached[m] = None
+        observers = list(self._built)
+        if not observers:
+            for m in movers:
+                occupied[(int(P[m, 0]), int(P[m, 1]))] = m
+            return
+        obs = np.asarray(observers)
+        here = P[obs]
+        # Phase A: every mover leaves its old point; walks along a vacated direction see only robots that
+        # did not move (the movers' new points are not yet occupied).
+        for m, (ox, oy) in zip(movers, old, strict=True):
+            for r, d, g in _directions(observers, here, ox, oy):
+                near = self._near[r]
+                if near.get(d) != (g, m):
+                    continue  # m was hidden from r: nothing r sees changes
+                self._drop(r, m, g * d[0], g * d[1])
+                nxt = self._walk(P[r].tolist(), d, g, lo, hi, occupied)
+                if nxt is None:
+                    del near[d]
+                else:
+                    near[d] = nxt
+                    self._add(r, nxt[1], nxt[0] * d[0], nxt[0] * d[1])
+        for m in movers:
+            occupied[(int(P[m, 0]), int(P[m, 1]))] = m
+        # Phase B: every mover enters its new point, hiding whoever it is now in front of.
+        for m in movers:
+            nx, ny = P[m].tolist()
+            for r, d, g in _directions(observers, here, nx, ny):
+                if r in gone:
+                    continue
+                near = self._near[r]
+                cur = near.get(d)
+                if cur is not None and cur[0] < g:
+                    continue  # m is behind a robot r already sees
+                if cur is not None:
+                    self._drop(r, cur[1], cur[0] * d[0], cur[0] * d[1])
+                near[d] = (g, m)
+                self._add(r, m, g * d[0], g * d[1])
+
+    def relit(self, m: int) -> None:
+        """Robot m's light changed (the engine's ``lights`` list already holds the new one)."""
+        light = self._lights[m]
+        observers = [r for r in self._built if r != m]
+        if not observers:
+            return
+        mx, my = self._P[m].tolist()
+        for r, d, g in _directions(observers, self._P[np.asarray(observers)], mx, my):
+            if self._near[r].get(d) != (g, m):
+                continue
+            entries = self._entries[r]
+            lx, ly = g * d[0], g * d[1] * self._flip[r]
+            i = bisect_left(entries, (lx, ly))
+            entries[i] = Seen(lx, ly, light)
+            self._cached[r] = None
+
+    def _drop(self, r: int, j: int, gx: int, gy: int) -> None:
+        entries = self._entries[r]
+        del entries[bisect_left(entries, (gx, gy * self._flip[r]))]
+        ids = self._ids[r]
+        del ids[bisect_left(ids, j)]
+        self._cached[r] = None
+
+    def _add(self, r: int, j: int, gx: int, gy: int) -> None:
+        insort(self._entries[r], Seen(gx, gy * self._flip[r], self._lights[j]))
+        insort(self._ids[r], j)
+        self._cached[r] = None
+
+    @staticmethod
+    def _walk(
+        start: list[int], d: Direction2, g: int, lo: list[int], hi: list[int], occupied: dict[Point, int]
+    ) -> tuple[int, int] | None:
+        """The nearest robot along direction d from ``start`` beyond distance g, as (distance, robot)."""
+        ddx, ddy = d
+        t = g + 1
+        x, y = start[0] + t * ddx, start[1] + t * ddy
+        lox, loy = lo
+        hix, hiy = hi
+        while lox <= x <= hix and loy <= y <= hiy:
+            j = occupied.get((x, y))
+            if j is not None:
+                return t, j
+            x += ddx
+            y += ddy
+            t += 1
+        return None
+
+
+def _directions(observers: list[int], here: np.ndarray, px: int, py: int):
+    """(observer, primitive direction towards (px, py), lattice distance g) for every observer."""
+    ox = px - here[:, 0]
+    oy = py - here[:, 1]
+    g = np.gcd(ox, oy)
+    g[g == 0] = 1  # an observer standing on the point itself (a mover's own row); callers skip it
+    return zip(observers, zip((ox // g).tolist(), (oy // g).tolist(), strict=True), g.tolist(), strict=True)
