@@ -25,7 +25,9 @@ def scratch_view(points, lights, y_up, r):
 
 @st.composite
 def scenarios(draw):
-    pts = draw(st.lists(st.tuples(st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=25, unique=True))
+    pts = draw(
+        st.lists(st.tuples(st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=25, unique=True)
+    )
     k = len(pts)
     y_up = draw(st.lists(st.booleans(), min_size=k, max_size=k))
     lights = draw(st.lists(st.sampled_from(LIGHTS), min_size=k, max_size=k))
@@ -59,7 +61,9 @@ def test_patched_views_equal_views_from_scratch(scenario):
             views.relit(robots[0])
         elif kind in ("move", "moves"):
             movers = robots[:1] if kind == "move" else robots
-            targets = {m: (current[m][0] + d[0], current[m][1] + d[1]) for m, d in zip(movers, steps, strict=False)}
+            targets = {
+                m: (current[m][0] + d[0], current[m][1] + d[1]) for m, d in zip(movers, steps, strict=False)
+            }
             stay = set(range(len(pts))) - set(movers)
             final = [targets.get(i, current[i]) for i in range(len(pts))]
             if len(set(final)) != len(final) or any(final[i] != current[i] for i in stay):
