@@ -36,7 +36,12 @@ LightSemantics = Literal["compute", "lc-atomic"]
 
 Outcome = Literal["formed", "stuck", "limit", "collision"]
 
-_DECISION_CACHE_LIMIT = 200_000
+# The memo holds views: bounded by the robots they list, not by their number, because the cyclic
+# collector walks every one of them on each full pass (a big memo of 100-robot views cost more than it saved).
+_DECISION_CACHE_ROBOTS = 400_000
+# A view of many robots almost never recurs (any move it sees changes it), so hashing it into the memo
+# costs more than the memo saves; a robot's repeated asks about one view are caught by identity instead.
+_MEMO_MAX_ROBOTS = 24
 
 
 class Phase(IntEnum):
@@ -50,6 +55,9 @@ class Phase(IntEnum):
 NEXT_EVENT = ("look", "compute", "move")  # indexed by Phase
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
 _IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
+# Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
+# function and costs more than the rest of a no-op Move.
+_new = tuple.__new__
 
 
 @dataclass
@@ -146,12 +154,16 @@ class Engine:
         self.max_events = max_events
         self.checkpoint_every = checkpoint_every
         self._decisions: dict[Snapshot, Decision] = {}
+        self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
         self.state = self._initial_state()
         self.history = History(self.state.copy())
         self._views = Views(self.state.positions, self.state.lights, self.y_up)
+        self._snaps: list[Snapshot | None] = [None] * k  # each robot's last snapshot, reused if unchanged
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
         self._probe_hint = 0
+        self._busy: tuple[int, int, int] = (-1, -1, -1)  # (robot, version, its last act) found active
+        self._held: list[tuple[Snapshot, Decision] | None] = [None] * k  # each robot's last decision
 
     # ------------------------------------------------------------------ read-only views
     @property
@@ -186,23 +198,40 @@ class Engine:
 
     def decide(self, view: Snapshot) -> Decision:
         """The algorithm's decision on a view, memoised: the algorithm is pure, so a view seen before
-        (by any robot, at any time) costs a dictionary look-up, not a recompute."""
-        hit = self._decisions.get(view)
-        if hit is not None:
-            return hit
+        (by any robot, at any time) costs a dictionary look-up, not a recompute (views of up to
+        ``_MEMO_MAX_ROBOTS`` robots; larger ones hardly ever recur)."""
+        memo = len(view.robots) <= _MEMO_MAX_ROBOTS
+        if memo:
+            hit = self._decisions.get(view)
+            if hit is not None:
+                return hit
         self.decide_calls += 1
         decision = self.algorithm.decide(view, self.pattern)
         if decision.light not in self.algorithm.lights:
             raise EngineError(f"algorithm {self.algorithm.name!r} set unknown light {decision.light!r}")
-        if len(self._decisions) >= _DECISION_CACHE_LIMIT:
+        if not memo:
+            return decision
+        self._memo_robots += len(view.robots) + 1
+        if self._memo_robots > _DECISION_CACHE_ROBOTS:
             self._decisions.clear()
+            self._memo_robots = len(view.robots) + 1
         self._decisions[view] = decision
+        return decision
+
+    def _decide(self, r: int, view: Snapshot) -> Decision:
+        """:meth:`decide` for robot r: its Compute and the quiescence probes ask about the view it holds
+        again and again, so the last one is matched by identity before the memo hashes a whole view."""
+        held = self._held[r]
+        if held is not None and held[0] is view:
+            return held[1]
+        decision = self.decide(view)
+        self._held[r] = (view, decision)
         return decision
 
     # ------------------------------------------------------------------ stepping
     def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:
         """Activate these robots simultaneously; each runs its next phase. Returns the events."""
-        robots = tuple(int(r) for r in robots)
+        robots = tuple(map(int, robots))
         if len(robots) != 1 or not 0 <= robots[0] < self.k:  # the ASYNC case needs no more checks
             if not robots:
                 raise EngineError("a step activates at least one robot")
@@ -226,6 +255,7 @@ class Engine:
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
         phase = st.phase[record.robots[0]]
+        version = st.version
         if phase == _IDLE:
             events = [self._look(r, record.round) for r in record.robots]
             if self.light_semantics == "lc-atomic":
@@ -240,7 +270,9 @@ class Engine:
             st.round = max(st.round, record.round)
         for r in record.robots:
             st.last_act[r] = st.steps
-        self._update_outcome()
+        # Only a Move or a light change can make the robots quiescent: a Look makes a robot hold the view
+        # it already had, and a Compute that keeps the light holds the decision on that view as pending.
+        self._update_outcome(phase == _COMPUTED or st.version != version)
         return events
 
     def _look(self, r: int, round: int | None) -> Event:
@@ -251,19 +283,23 @@ class Engine:
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
         st.phase[r] = _LOOKED
-        return Event(robot=r, phase="look", sees=st.seen[r], round=round)
+        return _new(Event, (r, "look", ids, None, None, None, None, round, False))
 
     def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
         """Robot r's snapshot (entries sorted by offset in r's own frame: a canonical, identity-free
         order) and the sorted indices of the robots in it, read off the patched views."""
         robots, ids = self._views.view(r)
-        return Snapshot(self.state.lights[r], robots), ids
+        light = self.state.lights[r]
+        snap = self._snaps[r]
+        if snap is None or snap.robots is not robots or snap.light != light:
+            snap = self._snaps[r] = Snapshot(light, robots)
+        return snap, ids
 
     def _compute(self, r: int, round: int | None) -> Event:
         st = self.state
         snap = st.snapshot[r]
         assert snap is not None
-        decision = self.decide(snap)
+        decision = self._decide(r, snap)
         st.pending[r] = decision
         st.phase[r] = _COMPUTED
         if decision.light != st.lights[r]:
@@ -272,13 +308,8 @@ class Engine:
             st.version += 1
             self._views.relit(r)
         gmove = move_to_global(decision.move, self.y_up[r])
-        return Event(
-            robot=r,
-            phase="compute",
-            light=decision.light,
-            move=gmove,
-            rule=decision.rule or None,
-            round=round,
+        return _new(
+            Event, (r, "compute", None, decision.light, gmove, decision.rule or None, None, round, False)
         )
 
     def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
@@ -318,21 +349,22 @@ class Engine:
     def _move_one(self, r: int, round: int | None) -> list[Event]:
         """The ASYNC case of :meth:`_move`: one robot, so a collision is only a move onto a robot."""
         st = self.state
-        gmove = move_to_global(st.pending[r].move, self.y_up[r])
-        here = tuple(st.positions[r].tolist())
-        if gmove is None:
+        move = st.pending[r].move
+        here = self._views.points[r]
+        if move is None:
             self._finish_cycle(r)
-            return [Event(robot=r, phase="move", to=here, round=round)]
-        to = (here[0] + gmove.delta[0], here[1] + gmove.delta[1])
+            return [_new(Event, (r, "move", None, None, None, None, here, round, False))]
+        dx, dy = move_to_global(move, self.y_up[r]).delta
+        to = (here[0] + dx, here[1] + dy)
         if to in self._views.occupied:
             st.outcome = "collision"
-            return [Event(robot=r, phase="move", to=to, round=round, collision=True)]
+            return [_new(Event, (r, "move", None, None, None, None, to, round, True))]
         st.positions[r] = to
         self._views.moved((r,), (here,))
         st.moves += 1
         st.version += 1
         self._finish_cycle(r)
-        return [Event(robot=r, phase="move", to=to, round=round)]
+        return [_new(Event, (r, "move", None, None, None, None, to, round, False))]
 
     def _collisions(self, targets: dict[int, Point]) -> set[int]:
         """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""
@@ -371,11 +403,11 @@ class Engine:
         st.last_cycle_end[r] = st.steps + 1
 
     # ------------------------------------------------------------------ outcomes
-    def _update_outcome(self) -> None:
+    def _update_outcome(self, changed: bool = True) -> None:
         st = self.state
         if st.outcome is not None:
             return
-        if self._quiescent():
+        if changed and self._quiescent():
             st.outcome = "formed" if matches_pattern(self.current_points(), self.pattern) else "stuck"
         elif self.max_events is not None and st.events >= self.max_events:
             st.outcome = "limit"
@@ -388,7 +420,11 @@ class Engine:
 
         Probes of the current view are cached per configuration version, and the robot found active last
         time is probed first, so a busy run pays at most one Look per configuration change."""
-        if not self._robot_quiescent(self._probe_hint):  # the usual case: the last active robot still is
+        hint = self._probe_hint
+        if self._busy == (hint, self.state.version, self.state.last_act[hint]):
+            return False  # found active, and neither it nor the configuration has changed since
+        if not self._robot_quiescent(hint):  # the usual case: the last active robot still is
+            self._busy = (hint, self.state.version, self.state.last_act[hint])
             return False
         for r in chain(range(self._probe_hint + 1, self.k), range(self._probe_hint)):
             if not self._robot_quiescent(r):
@@ -401,11 +437,11 @@ class Engine:
         phase = st.phase[r]
         if phase == _COMPUTED and st.pending[r].move is not None:
             return False
-        if phase == _LOOKED and not self.decide(st.snapshot[r]).is_noop(st.lights[r]):
+        if phase == _LOOKED and not self._decide(r, st.snapshot[r]).is_noop(st.lights[r]):
             return False
         version, noop = self._probe[r]
         if version != st.version:
-            noop = self.decide(self.look(r)).is_noop(st.lights[r])
+            noop = self._decide(r, self.look(r)).is_noop(st.lights[r])
             self._probe[r] = (st.version, noop)
         return noop
 
@@ -423,8 +459,10 @@ class Engine:
         self.state = state.copy()
         self._views = Views(self.state.positions, self.state.lights, self.y_up)
         self._probe = [(-1, False)] * self.k
+        self._busy = (-1, -1, -1)
+        self._snaps = [None] * self.k
         for i in range(base, step):
-            self._apply(self.history.steps[i].record)
+            self._apply(self.history.steps.record(i))
 
     def back(self, n: int = 1) -> None:
         """Undo the last ``n`` steps."""
@@ -434,7 +472,7 @@ class Engine:
         """Re-apply the next recorded step after a :meth:`seek`, if there is one."""
         if self.state.steps >= self.history.length:
             return None
-        record = self.history.steps[self.state.steps].record
+        record = self.history.steps.record(self.state.steps)
         return self.step(record.robots, round=record.round)
 
     # ------------------------------------------------------------------ internals

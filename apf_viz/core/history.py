@@ -7,7 +7,8 @@ Events are stored in the global frame with robots numbered in file order, exactl
 from __future__ import annotations
 
 import bisect
-from typing import TYPE_CHECKING, Literal, NamedTuple
+from collections.abc import Iterator, Sequence
+from typing import TYPE_CHECKING, Literal, NamedTuple, overload
 
 from apf_viz.core.grid import Direction, Point
 
@@ -44,38 +45,118 @@ class RecordedStep(NamedTuple):
     events: tuple[Event, ...]
 
 
+# A run records millions of steps. Stored as named tuples they stay tracked by the cyclic garbage
+# collector forever, and its full passes over them cost more than the run itself; a plain tuple of
+# atomic values (moves as their string) is untracked after its first collection. So steps are packed
+# on record and unpacked on access.
+_Packed = tuple  # (robots, round, events as plain tuples)
+
+
+def _pack(record: StepRecord, events: Sequence[Event]) -> _Packed:
+    if len(events) == 1 and events[0][4] is None:  # the common case: one event, no move in it
+        return (record[0], record[1], (tuple(events[0]),))
+    return (
+        record[0],
+        record[1],
+        tuple((*e[:4], e.move.value if e.move is not None else None, *e[5:]) for e in events),
+    )
+
+
+def _unpack(packed: _Packed) -> RecordedStep:
+    robots, round, events = packed
+    return RecordedStep(
+        StepRecord(robots, round),
+        tuple(Event(*e[:4], Direction(e[4]) if e[4] is not None else None, *e[5:]) for e in events),
+    )
+
+
+class Steps(Sequence[RecordedStep]):
+    """The recorded steps as a read-only sequence (unpacked on access)."""
+
+    def __init__(self, packed: list[_Packed]) -> None:
+        self._packed = packed
+
+    def __len__(self) -> int:
+        return len(self._packed)
+
+    @overload
+    def __getitem__(self, i: int) -> RecordedStep: ...
+    @overload
+    def __getitem__(self, i: slice) -> list[RecordedStep]: ...
+    def __getitem__(self, i: int | slice) -> RecordedStep | list[RecordedStep]:
+        if isinstance(i, slice):
+            return [_unpack(p) for p in self._packed[i]]
+        return _unpack(self._packed[i])
+
+    def __iter__(self) -> Iterator[RecordedStep]:
+        return map(_unpack, self._packed)
+
+    def record(self, i: int) -> StepRecord:
+        """Step i's choice alone (what a replay needs), without unpacking its events."""
+        robots, round, _ = self._packed[i]
+        return StepRecord(robots, round)
+
+
+_THIN_EVERY = 64  # thin the checkpoints whenever their number is a multiple of this
+_DENSE_AGE = 4096  # checkpoints younger than this many steps are all kept
+
+
+def _keep(checkpoint: int, newest: int) -> bool:
+    """Whether to keep a checkpoint, given the newest one: all within ``_DENSE_AGE`` steps (and any
+    newer, after a seek back), else those at a multiple of a spacing that doubles as the age doubles
+    (about age/64), so that 64 survive per doubling of age. A checkpoint dropped at one age would be
+    dropped at every larger age too, so thinning never needs one it dropped."""
+    age = newest - checkpoint
+    if age < _DENSE_AGE or checkpoint == 0:
+        return True
+    spacing = 1 << ((age // _DENSE_AGE).bit_length() + 5)  # 64·2^⌊log2(age/_DENSE_AGE)⌋
+    return checkpoint % spacing == 0
+
+
 class History:
     """Recorded steps (possibly beyond the engine's current position, after a seek) and checkpoints."""
 
     def __init__(self, initial: EngineState) -> None:
-        self.steps: list[RecordedStep] = []
+        self._packed: list[_Packed] = []
+        self.steps = Steps(self._packed)
         self.generation = 0  # bumped when a branch drops recorded steps (caches of prefixes use it)
         self._checkpoint_steps: list[int] = [0]
         self._checkpoints: dict[int, EngineState] = {0: initial}
 
     @property
     def length(self) -> int:
-        return len(self.steps)
+        return len(self._packed)
 
     def record(self, position: int, record: StepRecord, events: list[Event]) -> None:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the
         future (a redo); a different one branches: the old future is dropped."""
-        step = RecordedStep(record, tuple(events))
-        if position == len(self.steps):
-            self.steps.append(step)
+        packed = self._packed
+        step = _pack(record, events)
+        if position == len(packed):
+            packed.append(step)
             return
-        if position < len(self.steps):
-            if self.steps[position] == step:
+        if position < len(packed):
+            if packed[position] == step:
                 return
-            del self.steps[position:]
+            del packed[position:]
             self.generation += 1
             self._drop_checkpoints_after(position)
-        self.steps.append(step)
+        packed.append(step)
 
     def checkpoint(self, position: int, state: EngineState) -> None:
+        """Keep this state; then thin older checkpoints so that their spacing grows with their age.
+
+        Every checkpoint holds the robots' snapshots: kept all, a long run's checkpoints outweigh the
+        rest of it. Going back a little (``Back``, a scrub nearby) stays as fast as with all of them; a
+        jump back by A steps replays at most about A/64 steps (see :func:`_keep`)."""
         if position not in self._checkpoints:
             bisect.insort(self._checkpoint_steps, position)
         self._checkpoints[position] = state
+        if len(self._checkpoint_steps) % _THIN_EVERY == 0:
+            kept = [p for p in self._checkpoint_steps if _keep(p, position)]
+            for p in set(self._checkpoint_steps) - set(kept):
+                del self._checkpoints[p]
+            self._checkpoint_steps = kept
 
     def checkpoint_before(self, position: int) -> tuple[int, EngineState]:
         """The latest checkpoint at or before ``position``."""

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import gc
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 from apf_viz.core.algorithm import Algorithm
@@ -14,12 +16,31 @@ from apf_viz.core.history import Event, StepRecord
 from apf_viz.core.schedulers import Scheduler, step_rng
 
 
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """Pause Python's cyclic garbage collector while an engine steps; restore it on exit.
+
+    The engine makes no reference cycles (its records are tuples, lists and dicts of values), so
+    reference counting frees all it drops. But the collector's full passes walk every snapshot that the
+    robots and the checkpoints hold, and they come often because every Look's snapshot outlives the
+    young generations: at k = 100 under ASYNC they cost as much as the run itself
+    (docs/PERFORMANCE.md)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
 def advance(engine: Engine, scheduler: Scheduler, seed: int, steps: int | None = None) -> int:
     """Let the scheduler drive the engine for ``steps`` steps, or until the run ends. Returns steps taken."""
     taken = 0
-    while not engine.finished and (steps is None or taken < steps):
-        engine.apply(scheduler.choose(engine, step_rng(seed, engine.step_index)))
-        taken += 1
+    with collector_paused():
+        while not engine.finished and (steps is None or taken < steps):
+            engine.apply(scheduler.choose(engine, step_rng(seed, engine.step_index)))
+            taken += 1
     return taken
 
 

@@ -21,6 +21,8 @@ from apf_viz.core.history import StepRecord
 if TYPE_CHECKING:
     from apf_viz.core.engine import Engine
 
+_new = tuple.__new__  # builds a StepRecord without the NamedTuple's Python-level __new__
+
 SCHEDULERS = ("fsync", "ssync", "async", "round-robin", "stale-first", "manual")
 
 
@@ -57,7 +59,7 @@ class AsyncScheduler:
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         r = _most_starved(engine)
-        return StepRecord((rng.randrange(engine.k) if r is None else r,))
+        return _new(StepRecord, ((rng.randrange(engine.k) if r is None else r,), None))
 
 
 class RoundRobinScheduler:

@@ -43,7 +43,8 @@ class Views:
         self._lights = lights
         self._flip = [1 if up else -1 for up in y_up]
         k = positions.shape[0]
-        self.occupied: dict[Point, int] = {(int(x), int(y)): i for i, (x, y) in enumerate(positions.tolist())}
+        self.points: list[Point] = [(int(x), int(y)) for x, y in positions.tolist()]
+        self.occupied: dict[Point, int] = {p: i for i, p in enumerate(self.points)}
         self._near: list[dict[Direction2, tuple[int, int]] | None] = [None] * k  # dir → (distance g, robot)
         self._entries: list[list[Seen]] = [[] for _ in range(k)]  # sorted by (dx, dy), observer's frame
         self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
@@ -89,10 +90,15 @@ class Views:
     # ------------------------------------------------------------------ patching
     def moved(self, movers: Sequence[int], old: Sequence[Point]) -> None:
         """These robots moved simultaneously from ``old`` to their current rows of ``positions``."""
+        if len(movers) == 1:
+            self._moved_one(movers[0], old[0])
+            return
         P = self._P
         occupied = self.occupied
         for p in old:
             del occupied[p]
+        for m in movers:
+            self.points[m] = (int(P[m, 0]), int(P[m, 1]))
         lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
         gone = set(movers)
         for m in movers:  # the mover's own view: rebuilt on its next Look
@@ -103,7 +109,7 @@ class Views:
         observers = list(self._built)
         if not observers:
             for m in movers:
-                occupied[(int(P[m, 0]), int(P[m, 1]))] = m
+                occupied[self.points[m]] = m
             return
         obs = np.asarray(observers)
         here = P[obs]
@@ -122,7 +128,7 @@ class Views:
                     near[d] = nxt
                     self._add(r, nxt[1], nxt[0] * d[0], nxt[0] * d[1])
         for m in movers:
-            occupied[(int(P[m, 0]), int(P[m, 1]))] = m
+            occupied[self.points[m]] = m
         # Phase B: every mover enters its new point, hiding whoever it is now in front of.
         for m in movers:
             nx, ny = P[m].tolist()
@@ -137,6 +143,61 @@ class Views:
                     self._drop(r, cur[1], cur[0] * d[0], cur[0] * d[1])
                 near[d] = (g, m)
                 self._add(r, m, g * d[0], g * d[1])
+
+    def _moved_one(self, m: int, old: Point) -> None:
+        """The ASYNC case of :meth:`moved`, in one pass per observer: walks along a vacated direction
+        run in the final configuration (they may find m itself, if it moved along that direction), and a
+        robot that stays in sight keeps its place in the sorted ids."""
+        P = self._P
+        new = self.points[m] = (int(P[m, 0]), int(P[m, 1]))
+        occupied = self.occupied
+        del occupied[old]
+        occupied[new] = m
+        if m in self._built:
+            self._built.discard(m)
+            self._near[m] = None
+            self._cached[m] = None
+        observers = list(self._built)
+        if not observers:
+            return
+        lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
+        here = P[np.asarray(observers)]
+        before = _directions(observers, here, old[0], old[1])
+        after = _directions(observers, here, new[0], new[1])
+        points, flips, nears = self.points, self._flip, self._near
+        for (r, d0, g0), (_, d1, g1) in zip(before, after, strict=True):
+            near = nears[r]
+            flip = flips[r]
+            entries = self._entries[r]
+            seen_before = near.get(d0) == (g0, m)
+            if seen_before:
+                del entries[bisect_left(entries, (g0 * d0[0], g0 * d0[1] * flip))]
+                nxt = self._walk(points[r], d0, g0, lo, hi, occupied)
+                if nxt is None:
+                    del near[d0]
+                else:
+                    near[d0] = nxt
+                    if nxt[1] != m:
+                        self._add(r, nxt[1], nxt[0] * d0[0], nxt[0] * d0[1])
+            cur = near.get(d1)
+            if cur is not None and cur[1] == m:
+                seen_after = True  # found by the walk above
+            elif cur is None or g1 < cur[0]:
+                if cur is not None:
+                    self._drop(r, cur[1], cur[0] * d1[0], cur[0] * d1[1])
+                near[d1] = (g1, m)
+                seen_after = True
+            else:
+                seen_after = False
+            if seen_after:
+                insort(entries, Seen(g1 * d1[0], g1 * d1[1] * flip, self._lights[m]))
+                if not seen_before:
+                    insort(self._ids[r], m)
+            elif seen_before:
+                ids = self._ids[r]
+                del ids[bisect_left(ids, m)]
+            if seen_before or seen_after:
+                self._cached[r] = None
 
     def relit(self, m: int) -> None:
         """Robot m's light changed (the engine's ``lights`` list already holds the new one)."""
@@ -168,7 +229,7 @@ class Views:
 
     @staticmethod
     def _walk(
-        start: list[int], d: Direction2, g: int, lo: list[int], hi: list[int], occupied: dict[Point, int]
+        start: Sequence[int], d: Direction2, g: int, lo: list[int], hi: list[int], occupied: dict[Point, int]
     ) -> tuple[int, int] | None:
         """The nearest robot along direction d from ``start`` beyond distance g, as (distance, robot)."""
         ddx, ddy = d

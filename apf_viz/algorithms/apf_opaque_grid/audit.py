@@ -8,7 +8,8 @@ from dataclasses import dataclass, field
 
 from apf_viz.core.engine import Engine
 from apf_viz.core.grid import Point
-from apf_viz.core.schedulers import make_scheduler, step_rng
+from apf_viz.core.run import collector_paused
+from apf_viz.core.schedulers import Scheduler, make_scheduler, step_rng
 from apf_viz.core.symmetry import unsolvable_axis
 
 
@@ -42,12 +43,8 @@ def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
     """Run to the end, checking after every step: at most one robot ever has light ``leader``."""
     sched = make_scheduler(scheduler)
     audit = Audit(outcome="running")
-    while not engine.finished:
-        record = sched.choose(engine, step_rng(seed, engine.step_index))
-        engine.step(record.robots, round=record.round)
-        lights = engine.state.lights
-        audit.max_leaders = max(audit.max_leaders, lights.count("leader"))
-        audit.max_leader1 = max(audit.max_leader1, lights.count("leader1"))
+    with collector_paused():
+        _audited_steps(engine, sched, seed, audit)
     st = engine.state
     audit.outcome = st.outcome or "running"
     audit.lights_used = set(st.lights_used)
@@ -66,6 +63,15 @@ def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
         else:
             audit.problems.append("final positions are not the pattern")
     return audit
+
+
+def _audited_steps(engine: Engine, sched: Scheduler, seed: int, audit: Audit) -> None:
+    while not engine.finished:
+        events = engine.apply(sched.choose(engine, step_rng(seed, engine.step_index)))
+        if events[-1].phase == "compute":  # lights change at Compute only
+            lights = engine.state.lights
+            audit.max_leaders = max(audit.max_leaders, lights.count("leader"))
+            audit.max_leader1 = max(audit.max_leader1, lights.count("leader1"))
 
 
 def random_solvable_start(k: int, rng: random.Random, box: int | None = None) -> list[Point]:

@@ -13,8 +13,10 @@ robot already done.
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from dataclasses import dataclass
 from functools import lru_cache
+from operator import itemgetter
 
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
 from apf_viz.core.algorithm import Decision, Pattern
@@ -22,9 +24,23 @@ from apf_viz.core.grid import Direction, Point
 from apf_viz.core.view import Seen, Snapshot
 
 
-@lru_cache(maxsize=64)
 def embedded_targets(pattern: Pattern) -> tuple[Point, ...]:
     """t_0 … t_{n−1}: the pattern translated to min x = 0, min y = 1, sorted by (−y, −x)."""
+    # Every Compute asks for the same pattern object: an identity check spares hashing k points.
+    global _last_embedded
+    last = _last_embedded  # one tuple, read once: safe while another thread replaces it
+    if last[0] is pattern:
+        return last[1]
+    targets = _embedded_targets(pattern)
+    _last_embedded = (pattern, targets)
+    return targets
+
+
+_last_embedded: tuple[Pattern | None, tuple[Point, ...]] = (None, ())
+
+
+@lru_cache(maxsize=64)
+def _embedded_targets(pattern: Pattern) -> tuple[Point, ...]:
     mx = min(x for x, _ in pattern)
     my = min(y for _, y in pattern)
     placed = [(x - mx, y - my + 1) for x, y in pattern]
@@ -101,20 +117,38 @@ def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decisi
     return Decision(light, step, f"{name}: move vertically towards L_(t_j−1)")
 
 
+_dy = itemgetter(1)
+_light = itemgetter(2)
+
+
+def leftmost_on_own_row(view: Snapshot) -> bool:
+    """r is leftmost on L_H(r): no visible robot on r's row to its left (exact: the nearest one there
+    would be visible). The snapshot is sorted by dx, so the robots left of r are a prefix."""
+    return 0 not in map(_dy, view.robots[: bisect_left(view.robots, (0,))])
+
+
+def robots_between(view: Snapshot, frame: LeaderFrame) -> bool:
+    """H_B^O(r) ∩ H_U^O(r₀) ≠ ∅: a robot strictly between r's row and the leader's row (exact by V1: the
+    strip is convex). In the leader frame that is −1 < y′ < y; in r's frame, y′ − y = s·dy."""
+    y = frame.me[1]
+    lo, hi = (-y, -1) if frame.s == 1 else (1, y)
+    return any(lo <= dy <= hi for dy in map(_dy, view.robots))
+
+
 def pattern_formation_off(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
     """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader."""
-    leader = next((s for s in view.robots if s.light == "leader"), None)
-    if leader is None:
+    lights = list(map(_light, view.robots))
+    if "leader" not in lights:
         return stay(view, "Phase 3 (off): the leader is not in sight → wait")
+    leader = view.robots[lights.index("leader")]
     targets = embedded_targets(pattern)
     n = len(targets)
     frame = follower_frame(view, leader)
     x, y = frame.me
-    placed = [(frame.of(s), s) for s in view.robots if s is not leader]
     if y > -1:
-        leftmost = not any(p[1] == y and p[0] < x for p, _ in placed)
-        between = any(-1 < p[1] < y for p, _ in placed)
-        if leftmost and not between:
+        # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
+        if leftmost_on_own_row(view) and not robots_between(view, frame):
+            placed = [(frame.of(s), s) for s in view.robots if s is not leader]
             line = sorted(p[0] for p, _ in placed if p[1] == -1)
             i = len(line)
             if i == 0:
@@ -129,7 +163,7 @@ def pattern_formation_off(view: Snapshot, pattern: Pattern, res: frozenset[str])
         return stay(view, "Phase 3 (off): not the leftmost of the lowest row above the line → wait")
     if y == -1:
         blocking = {"off"} if "P3" not in res else None
-        above = [s for p, s in placed if p[1] > -1]
+        above = [s for s in view.robots if s is not leader and frame.of(s)[1] > -1]
         waiting_for = [s for s in above if (s.light in blocking if blocking else s.light != "done")]
         if not waiting_for:
             return Decision(

@@ -10,11 +10,19 @@ robot the docstring says why the answer is still exact (the notes' visibility fa
 - V3: on L_V(r) only the nearest robot above and the nearest below are visible.
 
 The line K may fall between two grid rows, so K-related quantities use doubled y: ``k2 = 2·y_K``.
+
+A snapshot lists its robots sorted by offset (dx, then dy), so the robots of one vertical line are a
+contiguous run found by bisection: the column predicates cost O(log k), not a scan of the view.
 """
 
 from __future__ import annotations
 
+from bisect import bisect_left
+from operator import itemgetter
+
 from apf_viz.core.view import Seen, Snapshot
+
+_light = itemgetter(2)
 
 
 def others(view: Snapshot) -> tuple[Seen, ...]:
@@ -22,41 +30,41 @@ def others(view: Snapshot) -> tuple[Seen, ...]:
 
 
 def lights_of(robots: tuple[Seen, ...] | list[Seen]) -> set[str]:
-    return {s.light for s in robots}
+    return set(map(_light, robots))
 
 
 # ----------------------------------------------------------------------------------------- columns
+def column_at(view: Snapshot, dx: int) -> list[Seen]:
+    """The visible robots on the vertical line dx (bottom to top)."""
+    robots = view.robots
+    return list(robots[bisect_left(robots, (dx,)) : bisect_left(robots, (dx + 1,))])
+
+
 def vertical_line(view: Snapshot) -> list[Seen]:
     """L_V(r): the visible robots on r's own vertical line (at most the nearest above and below, V3)."""
-    return [s for s in view.robots if s.dx == 0]
+    return column_at(view, 0)
 
 
 def left_neighbour_line(view: Snapshot) -> list[Seen]:
     """L_I(r): the robots on the nearest occupied vertical line strictly left of r (all visible, V2)."""
-    xs = [s.dx for s in view.robots if s.dx < 0]
-    if not xs:
-        return []
-    x = max(xs)
-    return [s for s in view.robots if s.dx == x]
+    i = bisect_left(view.robots, (0,))
+    return column_at(view, view.robots[i - 1].dx) if i else []
 
 
 def right_neighbour_line(view: Snapshot) -> list[Seen]:
     """R_I(r): the robots on the nearest occupied vertical line strictly right of r (all visible, V2)."""
-    xs = [s.dx for s in view.robots if s.dx > 0]
-    if not xs:
-        return []
-    x = min(xs)
-    return [s for s in view.robots if s.dx == x]
+    i = bisect_left(view.robots, (1,))
+    return column_at(view, view.robots[i].dx) if i < len(view.robots) else []
 
 
 def left_open_half_empty(view: Snapshot) -> bool:
     """H_L^O(r) = ∅: no robot strictly left of r (exact by V1). Equivalently, r is on L_1."""
-    return not any(s.dx < 0 for s in view.robots)
+    return not view.robots or view.robots[0].dx >= 0
 
 
 def left_closed_half_has_other(view: Snapshot) -> bool:
     """H_L^C(r) ∖ {r} ≠ ∅: some robot with dx ≤ 0 (exact by V1)."""
-    return any(s.dx <= 0 for s in view.robots)
+    return bool(view.robots) and view.robots[0].dx <= 0
 
 
 def upper_closed_half_has_other(view: Snapshot) -> bool:
