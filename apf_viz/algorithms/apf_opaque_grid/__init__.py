@@ -35,9 +35,9 @@ __all__ = ["LIGHTS", "RESOLUTIONS", "ApfOpaqueGrid", "dispatch", "embedded_targe
 def dispatch(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
     """Which procedure a robot runs, decided from its light and the lights it sees."""
     light = view.light
-    seen = lights_of(view.robots)
     if light == "done":
         return stay(view, "done: stay")
+    seen = lights_of(view.robots)
     if light == "leader":
         return pattern_formation_leader(view, pattern, res)
     if light == "leader1":
