@@ -79,7 +79,8 @@ class App:
         budget = 0.0
         last = time.perf_counter()
         while not self._stop.is_set():
-            self._dirty.wait(timeout=1.0 / FPS)
+            if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
+                self._dirty.wait(timeout=1.0 / FPS)
             now = time.perf_counter()
             s = self.session
             if s.playing:
@@ -97,7 +98,8 @@ class App:
             if self._dirty.is_set():
                 self._dirty.clear()
                 self._render()
-                time.sleep(max(0.0, 1.0 / FPS - (time.perf_counter() - now)))
+            # Frames are paced here, once: at most FPS a second, whether playing or not.
+            time.sleep(max(0.0, 1.0 / FPS - (time.perf_counter() - now)))
 
     def _render(self) -> None:
         view = self.session.view()

@@ -1,11 +1,16 @@
 """The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
 
-Robots, their phase halos, targets and ghosts are batched meshes (one message each however many robots);
-rays, K, frames, y-axes and pending moves are line-segment sets. Handles are created once and updated in
-place; a set is re-created only when its size changes.
+Robots and ghosts are batched meshes (one message each however many robots; 20 faces per robot above
+``DENSE`` robots); phase halos and target cells are point clouds of flat squares (one vertex each);
+each robot's y-axis (the adversary's flip) is the nose of its sphere; rays, K, the leader's frame and
+pending moves are line-segment sets. Every node is created once and then
+updated in place, hidden when empty: a node re-created gets a new material, and a software-rendered
+browser compiles its shader again (docs/PERFORMANCE.md has the measurements behind each choice).
 """
 
 from __future__ import annotations
+
+from typing import Literal
 
 import numpy as np
 import viser
@@ -24,6 +29,10 @@ LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
 }
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.34
+DENSE = 200  # above this many robots, robots get the 20-face sphere
+# viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
+# the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
+_VISER_POINT_SCALE = 0.5
 Z = 0.3  # robots sit on the grid, their centres this high
 
 
@@ -35,7 +44,12 @@ def light_color(light: str) -> tuple[int, int, int]:
 
 
 def _icosphere() -> tuple[np.ndarray, np.ndarray]:
-    """A low-poly sphere (20 faces): cheap enough for thousands of instances."""
+    """A low-poly sphere (80 faces)."""
+    return _subdivide(*_icosahedron())
+
+
+def _icosahedron() -> tuple[np.ndarray, np.ndarray]:
+    """The 20-face sphere: in a software-rendered browser, 1,000 robots of 80 faces cost frames."""
     t = (1 + 5**0.5) / 2
     v = np.array(
         [
@@ -80,7 +94,15 @@ def _icosphere() -> tuple[np.ndarray, np.ndarray]:
         ],
         dtype=np.uint32,
     )
-    return _subdivide(v, faces)
+    return v, faces
+
+
+def _with_nose(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A unit sphere with a small tetrahedral nose along +y: the robot's own y-axis."""
+    nose = np.array([(-0.45, 0.75, 0.0), (0.45, 0.75, 0.0), (0.0, 1.7, 0.0), (0.0, 0.9, 0.45)], np.float32)
+    n = len(v)
+    tip = np.array([(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)], dtype=np.uint32) + n
+    return np.vstack([v, nose]), np.vstack([faces, tip])
 
 
 def _subdivide(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -103,35 +125,8 @@ def _subdivide(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return np.array(verts, dtype=np.float32), np.array(out, dtype=np.uint32)
 
 
-def _tile(size: float, height: float) -> tuple[np.ndarray, np.ndarray]:
-    """A flat square tile (a thin box) centred on the origin."""
-    s, h = size / 2, height
-    v = np.array([(x, y, z) for z in (0, h) for y in (-s, s) for x in (-s, s)], dtype=np.float32)
-    f = np.array(
-        [
-            (0, 2, 1),
-            (1, 2, 3),
-            (4, 5, 6),
-            (5, 7, 6),
-            (0, 1, 4),
-            (1, 5, 4),
-            (2, 6, 3),
-            (3, 6, 7),
-            (0, 4, 2),
-            (2, 4, 6),
-            (1, 3, 5),
-            (3, 7, 5),
-        ],
-        dtype=np.uint32,
-    )
-    return v, f
-
-
-def _stick() -> tuple[np.ndarray, np.ndarray]:
-    """A thin bar from the origin to (0, 0.5): a robot's y-axis."""
-    w, h, z = 0.03, 0.5, 0.03
-    v = np.array([(x, y, zz) for zz in (0, z) for y in (0, h) for x in (-w, w)], dtype=np.float32)
-    return v, _tile(1.0, 1.0)[1]
+_IDENTITY = np.array([1.0, 0.0, 0.0, 0.0], dtype=np.float32)
+_HALF_TURN_X = np.array([0.0, 1.0, 0.0, 0.0], dtype=np.float32)  # wxyz: y ↦ −y (and z ↦ −z)
 
 
 def _xyz(points, z: float) -> np.ndarray:
@@ -146,12 +141,10 @@ class SceneRenderer:
         self.server = server
         self.scene = server.scene
         self.scene.set_up_direction("+z")
-        self._sphere = _icosphere()
-        self._tile = _tile(0.8, 0.02)
-        self._halo = _tile(0.9, 0.01)
+        self._sphere = _with_nose(*_icosphere())
+        self._sphere20 = _with_nose(*_icosahedron())
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
-        self._stick = _stick()
         self._handles: dict[str, object] = {}
         self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)
         self._grid_key: tuple[int, int, int, int] | None = None
@@ -167,10 +160,12 @@ class SceneRenderer:
         *,
         opacity=None,
         scale: float = 1.0,
-        scales: np.ndarray | None = None,
+        wxyzs: np.ndarray | None = None,
     ) -> None:
         """Create, update (only what changed) or remove one batched mesh."""
         n = len(positions)
+        if wxyzs is None:
+            wxyzs = np.tile(np.array([1, 0, 0, 0], dtype=np.float32), (n, 1))
         handle = self._handles.get(name)
         if n == 0:
             if handle is not None:
@@ -187,9 +182,8 @@ class SceneRenderer:
                 name,
                 vertices * scale,
                 faces,
-                batched_wxyzs=np.tile(np.array([1, 0, 0, 0], dtype=np.float32), (n, 1)),
+                batched_wxyzs=wxyzs,
                 batched_positions=positions,
-                batched_scales=scales,
                 batched_colors=colors,
                 opacity=opacity,
                 lod="off",
@@ -203,25 +197,63 @@ class SceneRenderer:
                 handle.batched_positions = positions  # type: ignore[attr-defined]
             if not np.array_equal(last[1], colors):
                 handle.batched_colors = colors  # type: ignore[attr-defined]
-            if scales is not None and not np.array_equal(last[2], scales):
-                handle.batched_scales = scales  # type: ignore[attr-defined]
-        self._last[name] = (positions, colors, scales)
+            if not np.array_equal(last[2], wxyzs):
+                handle.batched_wxyzs = wxyzs  # type: ignore[attr-defined]
+        self._last[name] = (positions, colors, wxyzs)
+
+    def _points(self, name: str, points: np.ndarray, color: tuple[int, int, int], size: float) -> None:
+        """Flat squares of one colour and size (world units), e.g. target cells; hidden when empty."""
+        last = self._last.get(name)
+        if last is not None and np.array_equal(last[0], points):
+            return
+        self._last[name] = (points, None, None)
+        handle = self._handles.get(name)
+        if not len(points):
+            if handle is not None:
+                handle.visible = False  # type: ignore[attr-defined]
+            return
+        if handle is None:
+            self._handles[name] = self.scene.add_point_cloud(
+                name,
+                points,
+                np.array(color, dtype=np.uint8),
+                point_size=size * _VISER_POINT_SCALE,
+                point_shape="square",
+                precision="float32",
+                point_shading="flat",
+            )
+        else:
+            handle.points = points  # type: ignore[attr-defined]
+            handle.visible = True  # type: ignore[attr-defined]
 
     def _segments(
-        self, name: str, segments: np.ndarray, color: tuple[int, int, int], thickness: float
+        self,
+        name: str,
+        segments: np.ndarray,
+        color: tuple[int, int, int],
+        thickness: float,
+        units: Literal["world", "screen"] = "world",
     ) -> None:
-        """Line segments are re-sent only when they change."""
+        """Line segments are re-sent only when they change, into the same node: a node removed and
+        re-added gets a new material, and the browser compiles its shader again (in a software-rendered
+        browser that costs more than a frame). An empty set hides the node."""
         last = self._last.get(name)
         if last is not None and np.array_equal(last[0], segments):
             return
         self._last[name] = (segments, None, None)
-        handle = self._handles.pop(name, None)
-        if handle is not None:
-            handle.remove()  # type: ignore[attr-defined]
-        if len(segments):
+        handle = self._handles.get(name)
+        if not len(segments):
+            if handle is not None:
+                handle.visible = False  # type: ignore[attr-defined]
+            return
+        points = segments.astype(np.float32)
+        if handle is None:
             self._handles[name] = self.scene.add_line_segments(
-                name, segments.astype(np.float32), color, thickness=thickness
+                name, points, color, thickness=thickness, thickness_units=units
             )
+        else:
+            handle.points = points  # type: ignore[attr-defined]
+            handle.visible = True  # type: ignore[attr-defined]
 
     # ------------------------------------------------------------------ drawing
     def render(self, view: SessionView) -> None:
@@ -231,19 +263,17 @@ class SceneRenderer:
         self._update_bounds(pts, view)
         self._grid()
         colors = np.array([light_color(r.light) for r in view.robots], dtype=np.uint8).reshape(-1, 3)
-        self._batched("/robots", self._sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS)
-        halo = np.array([PHASE_COLORS[r.phase] for r in view.robots], dtype=np.uint8).reshape(-1, 3)
-        self._batched("/phase", self._halo, _xyz(pts, 0.0), halo)
+        sphere = self._sphere if len(pts) <= DENSE else self._sphere20
+        # Each robot's own +y (the adversary's flip) is the nose of its sphere: a flipped robot is the
+        # same mesh turned half a turn about x. (Sticks drawn as a separate line set cost the
+        # browser a tenth of its frame rate at 1,000 robots.)
+        flipped = np.array([not r.y_up for r in view.robots], dtype=bool)
+        wxyzs = np.where(flipped[:, None], _HALF_TURN_X, _IDENTITY).astype(np.float32)
+        self._batched("/robots", sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS, wxyzs=wxyzs)
+        self._phase_halos(view, pts)
         targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
-        # Opaque, pale tiles: a transparent batched mesh is depth-sorted per instance in the browser,
-        # every frame, which costs more than everything else at 1,000 robots.
         target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
-        self._batched(
-            "/targets",
-            self._tile,
-            _xyz(targets, 0.005),
-            np.tile(np.array(target_color, dtype=np.uint8), (len(targets), 1)),
-        )
+        self._points("/targets", _xyz(targets, 0.005), target_color, 0.8)
         ghosts = np.array(view.ghosts, dtype=np.float32).reshape(-1, 2)
         self._batched(
             "/ghosts",
@@ -254,12 +284,19 @@ class SceneRenderer:
             scale=ROBOT_RADIUS * 0.8,
         )
         self._segments("/rays", self._rays(view), (250, 200, 0), 0.04)
-        self._y_axes(view, pts)
         self._segments("/pending", self._pending(view), (230, 40, 40), 0.06)
         self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 0.05)
         axis = view.axis if editing_robots else None
         self._segments("/axis", self._horizontal(axis), (255, 0, 0), 0.08)
         self._segments("/leader_frame", self._frame(view), (30, 30, 30), 0.06)
+
+    def _phase_halos(self, view: SessionView, pts: np.ndarray) -> None:
+        """A halo under each robot that has Looked (yellow) or Computed (orange); none when idle.
+
+        One point cloud of flat squares per phase: a single vertex per robot in that phase."""
+        phases = np.array([r.phase for r in view.robots])
+        for phase in ("looked", "computed"):
+            self._points(f"/phase/{phase}", _xyz(pts[phases == phase], 0.01), PHASE_COLORS[phase], 0.92)
 
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
         extra = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
@@ -279,21 +316,28 @@ class SceneRenderer:
         ):
             return
         key = (key[0] - 6, key[1] - 6, key[2] + 6, key[3] + 6)  # grow with room to spare
-        key = (key[0], key[1], key[2] + (key[2] - key[0]) % 2, key[3] + (key[3] - key[1]) % 2)
         self._grid_key = key
-        w, h = key[2] - key[0], key[3] - key[1]  # even, so the centre and every line is an integer
-        # Grid lines pass through integer points: robots sit on the lattice points.
-        self.scene.add_grid(
-            "/grid",
-            width=w,
-            height=h,
-            cell_size=1.0,
-            section_size=5.0,
-            plane="xy",
-            position=(key[0] + w / 2, key[1] + h / 2, -0.01),
-            cell_color=(215, 215, 215),
-            section_color=(170, 170, 170),
-        )
+        # Grid lines pass through integer points: robots sit on the lattice points. Two line sets in
+        # screen pixels, not viser's grid plane: its shader over the whole plane cost a software-rendered
+        # browser more than everything else in the scene together (docs/PERFORMANCE.md).
+        x0, y0, x1, y1 = key
+        for name, step, color, width in (
+            ("/grid/cells", 1, (205, 205, 205), 1.0),
+            ("/grid/sections", 5, (175, 175, 175), 1.5),
+        ):
+            xs = np.arange(x0 - x0 % step, x1 + 1, step, dtype=np.float32)
+            ys = np.arange(y0 - y0 % step, y1 + 1, step, dtype=np.float32)
+            if step == 1:  # the section lines are drawn once, by the other set
+                xs, ys = xs[xs % 5 != 0], ys[ys % 5 != 0]
+            vertical = np.stack(
+                [np.column_stack([xs, np.full_like(xs, y0)]), np.column_stack([xs, np.full_like(xs, y1)])], 1
+            )
+            horizontal = np.stack(
+                [np.column_stack([np.full_like(ys, x0), ys]), np.column_stack([np.full_like(ys, x1), ys])], 1
+            )
+            flat = np.concatenate([vertical, horizontal])
+            segments = np.concatenate([flat, np.full((len(flat), 2, 1), -0.01, np.float32)], axis=2)
+            self._segments(name, segments, color, width, units="screen")
 
     @staticmethod
     def _rays(view: SessionView) -> np.ndarray:
@@ -301,14 +345,6 @@ class SceneRenderer:
             return np.zeros((0, 2, 3))
         a = np.array(view.rays, dtype=np.float32)
         return np.concatenate([a, np.full((len(a), 2, 1), Z, dtype=np.float32)], axis=2)
-
-    def _y_axes(self, view: SessionView, pts: np.ndarray) -> None:
-        """Each robot's own +y: a short stick pointing up, or down if the adversary flipped it (one
-        batched mesh; a flip is a per-instance scale of −1 in y)."""
-        scales = np.ones((len(pts), 3), dtype=np.float32)
-        scales[:, 1] = [1.0 if r.y_up else -1.0 for r in view.robots]
-        colors = np.tile(np.array((60, 60, 60), dtype=np.uint8), (len(pts), 1))
-        self._batched("/y_axes", self._stick, _xyz(pts, Z + 0.3), colors, scales=scales)
 
     @staticmethod
     def _pending(view: SessionView) -> np.ndarray:

@@ -9,13 +9,14 @@ from __future__ import annotations
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from itertools import repeat
+from typing import Literal, NamedTuple
 
 import numpy as np
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid import embedded_targets
-from apf_viz.core.engine import Engine, Phase
+from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.formats import (
     InputError,
     PatternFile,
@@ -45,9 +46,12 @@ SCHEDULER_LABELS = {
 MAX_UPLOAD_BYTES = 2_000_000
 
 
-@dataclass(frozen=True)
-class RobotView:
-    """What the scene draws for one robot."""
+_PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
+_COMPUTED = int(Phase.COMPUTED)
+
+
+class RobotView(NamedTuple):
+    """What the scene draws for one robot (a named tuple: a frame builds a thousand of them)."""
 
     position: Point
     light: str
@@ -354,22 +358,28 @@ class Session:
         e = self.engine
         st = e.state
         pts = e.current_points()
-        robots = []
-        for r in range(e.k):
-            pending = None
-            if st.phase[r] == Phase.COMPUTED and st.pending[r].move is not None:
-                gm = move_to_global(st.pending[r].move, self.y_up[r])
-                pending = (pts[r][0] + gm.delta[0], pts[r][1] + gm.delta[1])
-            robots.append(
-                RobotView(
-                    pts[r],
-                    st.lights[r],
-                    ("idle", "looked", "computed")[st.phase[r]],
-                    self.y_up[r],
+        phases = st.phase.tolist()
+        pending: list[Point | None] = [None] * e.k
+        for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
+            if st.pending[r].move is not None:
+                dx, dy = move_to_global(st.pending[r].move, self.y_up[r]).delta
+                pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
+        # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
+        robots = list(
+            map(
+                tuple.__new__,
+                repeat(RobotView),
+                zip(
+                    pts,
+                    st.lights,
+                    [_PHASE_NAMES[p] for p in phases],
+                    self.y_up,
                     pending,
-                    e.next_event(r),
-                )
+                    [NEXT_EVENT[p] for p in phases],
+                    strict=True,
+                ),
             )
+        )
         if self.mode == "edit-robots":  # the robots being placed, not the run's
             first = e.algorithm.lights[0]
             robots = [
