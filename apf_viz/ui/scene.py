@@ -1,11 +1,11 @@
 """The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
 
-Robots and ghosts are batched meshes (one message each however many robots; 20 faces per robot above
-``DENSE`` robots); phase halos and target cells are point clouds of flat squares (one vertex each);
-each robot's y-axis (the adversary's flip) is the nose of its sphere; rays, K, the leader's frame and
-pending moves are line-segment sets. Every node is created once and then
-updated in place, hidden when empty: a node re-created gets a new material, and a software-rendered
-browser compiles its shader again (docs/PERFORMANCE.md has the measurements behind each choice).
+Robots and ghosts are batched meshes (one message each however many robots), above ``DENSE`` robots
+shaded point sprites; phase halos and target cells are point clouds of flat squares (one vertex each);
+each robot's y-axis (the adversary's flip) is the nose of its sphere (a diamond beside a sprite);
+rays, K, the leader's frame, pending moves and the grid are line-segment sets. Every node is created
+once and then updated in place, hidden when empty: a node re-created gets a new material, and a
+software-rendered browser compiles its shader again (docs/PERFORMANCE.md has the measurements).
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
 }
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.34
-DENSE = 200  # above this many robots, robots get the 20-face sphere
+DENSE = 200  # above this many robots, robots are drawn as point sprites (see _robot_sprites)
 # viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
 # the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
 _VISER_POINT_SCALE = 0.5
@@ -49,7 +49,7 @@ def _icosphere() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _icosahedron() -> tuple[np.ndarray, np.ndarray]:
-    """The 20-face sphere: in a software-rendered browser, 1,000 robots of 80 faces cost frames."""
+    """The regular icosahedron on the unit sphere (20 faces)."""
     t = (1 + 5**0.5) / 2
     v = np.array(
         [
@@ -142,7 +142,7 @@ class SceneRenderer:
         self.scene = server.scene
         self.scene.set_up_direction("+z")
         self._sphere = _with_nose(*_icosphere())
-        self._sphere20 = _with_nose(*_icosahedron())
+        self._sprite_lights: set[str] = set()
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
         self._handles: dict[str, object] = {}
@@ -201,8 +201,16 @@ class SceneRenderer:
                 handle.batched_wxyzs = wxyzs  # type: ignore[attr-defined]
         self._last[name] = (positions, colors, wxyzs)
 
-    def _points(self, name: str, points: np.ndarray, color: tuple[int, int, int], size: float) -> None:
-        """Flat squares of one colour and size (world units), e.g. target cells; hidden when empty."""
+    def _points(
+        self,
+        name: str,
+        points: np.ndarray,
+        color: tuple[int, int, int],
+        size: float,
+        shape: Literal["square", "circle", "diamond"] = "square",
+    ) -> None:
+        """Points of one colour and size (world units): flat squares (target cells, halos), shaded
+        discs (robots) or diamonds; hidden when empty."""
         last = self._last.get(name)
         if last is not None and np.array_equal(last[0], points):
             return
@@ -218,9 +226,9 @@ class SceneRenderer:
                 points,
                 np.array(color, dtype=np.uint8),
                 point_size=size * _VISER_POINT_SCALE,
-                point_shape="square",
+                point_shape=shape,
                 precision="float32",
-                point_shading="flat",
+                point_shading="gradient" if shape == "circle" else "flat",
             )
         else:
             handle.points = points  # type: ignore[attr-defined]
@@ -262,14 +270,12 @@ class SceneRenderer:
         pts = np.array([r.position for r in view.robots], dtype=np.float32).reshape(-1, 2)
         self._update_bounds(pts, view)
         self._grid()
-        colors = np.array([light_color(r.light) for r in view.robots], dtype=np.uint8).reshape(-1, 3)
-        sphere = self._sphere if len(pts) <= DENSE else self._sphere20
-        # Each robot's own +y (the adversary's flip) is the nose of its sphere: a flipped robot is the
-        # same mesh turned half a turn about x. (Sticks drawn as a separate line set cost the
-        # browser a tenth of its frame rate at 1,000 robots.)
-        flipped = np.array([not r.y_up for r in view.robots], dtype=bool)
-        wxyzs = np.where(flipped[:, None], _HALF_TURN_X, _IDENTITY).astype(np.float32)
-        self._batched("/robots", sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS, wxyzs=wxyzs)
+        if len(pts) <= DENSE:
+            self._robot_spheres(view, pts)
+            self._robot_sprites(view, pts[:0])
+        else:
+            self._robot_spheres(view, pts[:0])
+            self._robot_sprites(view, pts)
         self._phase_halos(view, pts)
         targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
         target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
@@ -289,6 +295,35 @@ class SceneRenderer:
         axis = view.axis if editing_robots else None
         self._segments("/axis", self._horizontal(axis), (255, 0, 0), 0.08)
         self._segments("/leader_frame", self._frame(view), (30, 30, 30), 0.06)
+
+    def _robot_spheres(self, view: SessionView, pts: np.ndarray) -> None:
+        """Robots as spheres coloured by light, one batched mesh. Each robot's own +y (the adversary's
+        flip) is the nose of its sphere: a flipped robot is the same mesh turned half a turn about x."""
+        robots = view.robots[: len(pts)]
+        colors = np.array([light_color(r.light) for r in robots], dtype=np.uint8).reshape(-1, 3)
+        flipped = np.array([not r.y_up for r in robots], dtype=bool)
+        wxyzs = np.where(flipped[:, None], _HALF_TURN_X, _IDENTITY).astype(np.float32).reshape(-1, 4)
+        self._batched("/robots", self._sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS, wxyzs=wxyzs)
+
+    def _robot_sprites(self, view: SessionView, pts: np.ndarray) -> None:
+        """Above ``DENSE`` robots: each robot a shaded disc (one vertex), one point cloud per light so
+        that a light change moves a point between clouds instead of recolouring one (viser rebuilds a
+        point cloud's material, and the browser its shader, when its colours change); the y-axis is a
+        small dark diamond on the robot's +y side. At 1,000 robots this doubles the browser's frame
+        rate over 20-face spheres in a software-rendered browser (docs/PERFORMANCE.md)."""
+        robots = view.robots[: len(pts)]
+        lights = np.array([r.light for r in robots], dtype=object)
+        centre = _xyz(pts, Z)
+        for light in set(self._sprite_lights) | set(lights.tolist()):
+            self._sprite_lights.add(light)
+            self._points(
+                f"/robots/{light}", centre[lights == light], light_color(light), 2 * ROBOT_RADIUS, "circle"
+            )
+        sign = np.array([1.0 if r.y_up else -1.0 for r in robots], dtype=np.float32)
+        nose = centre.copy()
+        nose[:, 1] += 0.42 * sign
+        nose[:, 2] += 0.05
+        self._points("/robots/y_axes", nose, (70, 70, 70), 0.24, "diamond")
 
     def _phase_halos(self, view: SessionView, pts: np.ndarray) -> None:
         """A halo under each robot that has Looked (yellow) or Computed (orange); none when idle.

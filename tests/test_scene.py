@@ -1,0 +1,70 @@
+"""The scene module against a real viser server (no browser): which nodes a view becomes, and that
+nodes are updated in place rather than re-created (a re-created node costs the browser a shader compile)."""
+
+from __future__ import annotations
+
+import random
+import socket
+
+import numpy as np
+import pytest
+import viser
+
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.ui.scene import DENSE, SceneRenderer
+from apf_viz.ui.session import Session
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def renderer():
+    server = viser.ViserServer(port=free_port(), verbose=False)
+    yield SceneRenderer(server)
+    server.stop()
+
+
+def session_of(k: int) -> Session:
+    rng = random.Random(k)
+    return Session(random_solvable_start(k, rng), random_pattern(k, rng), seed=1)
+
+
+def test_few_robots_are_spheres_with_a_nose_turned_by_the_flip(renderer):
+    s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], y_up=[True, False, True])
+    renderer.render(s.view())
+    robots = renderer._handles["/robots"]
+    assert not any(name.startswith("/robots/") for name in renderer._handles)
+    wxyzs = np.asarray(robots.batched_wxyzs)
+    assert wxyzs[0].tolist() == [1, 0, 0, 0] and wxyzs[1].tolist() == [0, 1, 0, 0]
+
+
+def test_many_robots_are_one_point_cloud_per_light(renderer):
+    s = session_of(DENSE + 50)
+    renderer.render(s.view())
+    assert "/robots" not in renderer._handles
+    clouds = {
+        n: h for n, h in renderer._handles.items() if n.startswith("/robots/") and n != "/robots/y_axes"
+    }
+    assert set(clouds) == {"/robots/off"}
+    assert len(clouds["/robots/off"].points) == DENSE + 50
+    assert len(renderer._handles["/robots/y_axes"].points) == DENSE + 50
+
+
+def test_line_sets_and_halos_are_updated_in_place_and_hidden_when_empty(renderer):
+    s = session_of(12)
+    s.selected = 0
+    renderer.render(s.view())
+    s.step()  # robot picked by the scheduler looks: a halo appears
+    renderer.render(s.view())
+    halos = dict(renderer._handles)
+    for _ in range(40):
+        s.step()
+        renderer.render(s.view())
+    for name, handle in halos.items():
+        assert renderer._handles[name] is handle, f"{name} was re-created"
+    renderer._segments("/rays", np.zeros((0, 2, 3)), (0, 0, 0), 0.1)
+    assert renderer._handles["/rays"].visible is False
