@@ -29,6 +29,7 @@ LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
 }
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.34
+GRID_CELL_LINES = 80  # the widest grid (in cells) that still gets a line per cell
 DENSE = 200  # above this many robots, robots are drawn as point sprites (see _robot_sprites)
 # viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
 # the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
@@ -356,10 +357,16 @@ class SceneRenderer:
         # screen pixels, not viser's grid plane: its shader over the whole plane cost a software-rendered
         # browser more than everything else in the scene together (docs/PERFORMANCE.md).
         x0, y0, x1, y1 = key
+        # Beyond GRID_CELL_LINES cells across, a cell is a few pixels wide: only every fifth line is
+        # drawn (the cell lines cost a software-rendered browser a quarter of its frames at 1,000 robots).
+        dense = max(x1 - x0, y1 - y0) > GRID_CELL_LINES
         for name, step, color, width in (
             ("/grid/cells", 1, (205, 205, 205), 1.0),
             ("/grid/sections", 5, (175, 175, 175), 1.5),
         ):
+            if dense and step == 1:
+                self._segments(name, np.zeros((0, 2, 3), np.float32), color, width, units="screen")
+                continue
             xs = np.arange(x0 - x0 % step, x1 + 1, step, dtype=np.float32)
             ys = np.arange(y0 - y0 % step, y1 + 1, step, dtype=np.float32)
             if step == 1:  # the section lines are drawn once, by the other set
