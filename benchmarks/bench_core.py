@@ -1,4 +1,5 @@
-"""Core benchmarks: Look time against the naive lattice walk, and engine events per second.
+"""Core benchmarks: Look time against the naive lattice walk, the patched views' cost per move, and
+engine events per second.
 
 Run: python benchmarks/bench_core.py   (prints a Markdown table; not part of the test suite)
 """
@@ -16,6 +17,7 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.grid import visible_from, visible_from_naive
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.visibility import Views
 
 
 def random_points(k: int, seed: int = 1, density: float = 0.25) -> list[tuple[int, int]]:
@@ -79,6 +81,49 @@ def bench_look(density: float) -> list[str]:
     return rows
 
 
+def _patch_cost(k: int) -> tuple[float, float]:
+    """Seconds per move to keep all k views current, and to compute them all from scratch instead."""
+    pts = random_points(k, seed=3)
+    arr = np.array(pts, dtype=np.int64)
+    views = Views(arr, ["off"] * k, [True] * k)
+    for r in range(k):
+        views.view(r)
+    occupied = set(pts)
+    rng = random.Random(4)
+    steps = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+
+    def one_move(_i: int) -> None:
+        while True:
+            m = rng.randrange(k)
+            x, y = int(arr[m, 0]), int(arr[m, 1])
+            dx, dy = rng.choice(steps)
+            if (x + dx, y + dy) not in occupied:
+                break
+        occupied.discard((x, y))
+        occupied.add((x + dx, y + dy))
+        arr[m] = (x + dx, y + dy)
+        views.moved([m], [(x, y)])
+
+    patched = per_call(one_move, budget_s=2.0, max_calls=500)
+    scratch = per_call(lambda i: [visible_from(arr, r) for r in range(k)], budget_s=2.0, max_calls=20)
+    return patched, scratch
+
+
+def bench_patched_views() -> list[str]:
+    """What a move costs the patched views (every robot's view kept current), against computing every
+    robot's view from scratch after it, as a Look per robot would without them."""
+    rows = [
+        "| k | patch all k views after one move | all k views from scratch | per view, patched |",
+        "|---:|---:|---:|---:|",
+    ]
+    for k in (100, 1_000):
+        patched, scratch = _patch_cost(k)
+        rows.append(
+            f"| {k:,} | {patched * 1e3:,.2f} ms | {scratch * 1e3:,.1f} ms | {patched / k * 1e6:,.1f} µs |"
+        )
+    return rows
+
+
 def bench_engine() -> list[str]:
     pts = random_points(100, seed=2)
     pattern = pts  # the run's outcome does not matter here, only its speed
@@ -99,4 +144,6 @@ if __name__ == "__main__":
     for density in (0.25, 0.01):
         print("\n".join(bench_look(density)))
         print()
+    print("\n".join(bench_patched_views()))
+    print()
     print("\n".join(bench_engine()))

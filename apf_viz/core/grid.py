@@ -63,9 +63,8 @@ def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) 
 
     "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
     (direction, distance g), and the first of each direction wins; no lattice point is visited.
-    The result is ordered by direction, a function of the offsets alone, so it carries no robot
-    identity: a snapshot built in this order is canonical. ``span``, if given, must exceed every
-    |offset| coordinate (the engine passes the configuration's extent, computed once per change).
+    The result is ordered by direction, a function of the offsets alone (no robot identity).
+    ``span``, if given, must exceed every |offset| coordinate.
     """
     k = offsets.shape[0]
     if k == 1:

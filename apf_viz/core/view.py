@@ -2,7 +2,8 @@
 
 It holds, in the robot's own frame (itself at the origin, x agreed, y possibly flipped), the offset and the
 light of every robot it can see, and its own light. Nothing else: no global coordinate, no id, no robot
-count. Visible robots are sorted by offset, so the order itself carries no identity.
+count. Visible robots are sorted by offset (dx, then dy), so the order itself carries no identity, and
+algorithms may rely on it (the robots of one vertical line are a contiguous run).
 """
 
 from __future__ import annotations
