@@ -243,33 +243,46 @@ class Engine:
 
     def apply(self, record: StepRecord) -> list[Event]:
         """Apply a scheduler's choice as it is (the checks of :meth:`step` are the caller's)."""
-        if self.finished:
-            raise EngineError(f"the run is over ({self.state.outcome})")
-        position = self.state.steps
+        st = self.state
+        if st.outcome is not None:
+            raise EngineError(f"the run is over ({st.outcome})")
+        position = st.steps
         events = self._apply(record)
         self.history.record(position, record, events)
-        if self.state.steps % self.checkpoint_every == 0:
-            self.history.checkpoint(self.state.steps, self.state.copy())
+        if st.steps % self.checkpoint_every == 0:
+            self.history.checkpoint(st.steps, st.copy())
         return events
 
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
-        phase = st.phase[record.robots[0]]
+        robots, round = record
+        phase = st.phase[robots[0]]
         version = st.version
-        if phase == _IDLE:
-            events = [self._look(r, record.round) for r in record.robots]
-            if self.light_semantics == "lc-atomic":
-                events += [self._compute(r, record.round) for r in record.robots]
-        elif phase == _LOOKED:
-            events = [self._compute(r, record.round) for r in record.robots]
+        if len(robots) == 1:  # ASYNC: one robot, one phase (two under lc-atomic)
+            r = robots[0]
+            if phase == _IDLE:
+                events = [self._look(r, round)]
+                if self.light_semantics == "lc-atomic":
+                    events.append(self._compute(r, round))
+            elif phase == _LOOKED:
+                events = [self._compute(r, round)]
+            else:
+                events = self._move_one(r, round)
+            st.last_act[r] = st.steps + 1
         else:
-            events = self._move(record.robots, record.round)
+            if phase == _IDLE:
+                events = [self._look(r, round) for r in robots]
+                if self.light_semantics == "lc-atomic":
+                    events += [self._compute(r, round) for r in robots]
+            elif phase == _LOOKED:
+                events = [self._compute(r, round) for r in robots]
+            else:
+                events = self._move(robots, round)
+            st.last_act[list(robots)] = st.steps + 1
         st.steps += 1
         st.events += len(events)
-        if record.round is not None:
-            st.round = max(st.round, record.round)
-        for r in record.robots:
-            st.last_act[r] = st.steps
+        if round is not None:
+            st.round = max(st.round, round)
         # Only a Move or a light change can make the robots quiescent: a Look makes a robot hold the view
         # it already had, and a Compute that keeps the light holds the decision on that view as pending.
         self._update_outcome(phase == _COMPUTED or st.version != version)

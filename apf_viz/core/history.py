@@ -132,7 +132,7 @@ class History:
         future (a redo); a different one branches: the old future is dropped."""
         packed = self._packed
         step = _pack(record, events)
-        if position == len(packed):
+        if position == len(packed):  # the usual case: recording at the end
             packed.append(step)
             return
         if position < len(packed):
