@@ -137,10 +137,10 @@ def robots_between(view: Snapshot, frame: LeaderFrame) -> bool:
 
 def pattern_formation_off(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
     """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader."""
-    lights = list(map(_light, view.robots))
-    if "leader" not in lights:
+    try:
+        leader = view.robots[list(map(_light, view.robots)).index("leader")]
+    except ValueError:
         return stay(view, "Phase 3 (off): the leader is not in sight → wait")
-    leader = view.robots[lights.index("leader")]
     targets = embedded_targets(pattern)
     n = len(targets)
     frame = follower_frame(view, leader)

@@ -12,7 +12,7 @@ robot the docstring says why the answer is still exact (the notes' visibility fa
 The line K may fall between two grid rows, so K-related quantities use doubled y: ``k2 = 2·y_K``.
 
 A snapshot lists its robots sorted by offset (dx, then dy), so the robots of one vertical line are a
-contiguous run found by bisection: the column predicates cost O(log k), not a scan of the view.
+contiguous run found by bisection: L_I, L_V and R_I cost O(log k), not a scan of the view.
 """
 
 from __future__ import annotations
@@ -34,27 +34,39 @@ def lights_of(robots: tuple[Seen, ...] | list[Seen]) -> set[str]:
 
 
 # ----------------------------------------------------------------------------------------- columns
-def column_at(view: Snapshot, dx: int) -> list[Seen]:
-    """The visible robots on the vertical line dx (bottom to top)."""
+_last_columns: tuple[Snapshot | None, tuple[list[Seen], list[Seen], list[Seen]]] = (None, ([], [], []))
+
+
+def _columns(view: Snapshot) -> tuple[list[Seen], list[Seen], list[Seen]]:
+    """(L_I, L_V, R_I) of this view by four bisections, kept for the last view asked about: one
+    decision asks for them several times. (One tuple, read once: safe under threads.)"""
+    global _last_columns
+    last = _last_columns
+    if last[0] is view:
+        return last[1]
     robots = view.robots
-    return list(robots[bisect_left(robots, (dx,)) : bisect_left(robots, (dx + 1,))])
+    i0 = bisect_left(robots, (0,))
+    i1 = bisect_left(robots, (1,), i0)
+    left = list(robots[bisect_left(robots, (robots[i0 - 1].dx,), 0, i0) : i0]) if i0 else []
+    right = list(robots[i1 : bisect_left(robots, (robots[i1].dx + 1,), i1)]) if i1 < len(robots) else []
+    columns = (left, list(robots[i0:i1]), right)
+    _last_columns = (view, columns)
+    return columns
 
 
 def vertical_line(view: Snapshot) -> list[Seen]:
     """L_V(r): the visible robots on r's own vertical line (at most the nearest above and below, V3)."""
-    return column_at(view, 0)
+    return _columns(view)[1]
 
 
 def left_neighbour_line(view: Snapshot) -> list[Seen]:
     """L_I(r): the robots on the nearest occupied vertical line strictly left of r (all visible, V2)."""
-    i = bisect_left(view.robots, (0,))
-    return column_at(view, view.robots[i - 1].dx) if i else []
+    return _columns(view)[0]
 
 
 def right_neighbour_line(view: Snapshot) -> list[Seen]:
     """R_I(r): the robots on the nearest occupied vertical line strictly right of r (all visible, V2)."""
-    i = bisect_left(view.robots, (1,))
-    return column_at(view, view.robots[i].dx) if i < len(view.robots) else []
+    return _columns(view)[2]
 
 
 def left_open_half_empty(view: Snapshot) -> bool:
