@@ -248,4 +248,9 @@ class Panels:
             f'<span style="width:12px;height:12px;border-radius:6px;background:rgb{c}"></span>{name}</div>'
             for name, c in LIGHT_COLORS.items()
         )
-        return f'<div style="font-size:0.85em">{cells}</div>'
+        key = (
+            '<div style="margin-top:4px">halo: <b style="color:rgb(230,180,0)">looked</b> · '
+            '<b style="color:rgb(250,120,30)">computed</b> · none: idle<br>'
+            "nose: the robot's own +y (down: flipped by the adversary)</div>"
+        )
+        return f'<div style="font-size:0.85em">{cells}{key}</div>'
