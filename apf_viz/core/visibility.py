@@ -101,11 +101,8 @@ class Views:
             self.points[m] = (int(P[m, 0]), int(P[m, 1]))
         lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
         gone = set(movers)
-        for m in movers:  # the mover's own view: rebuilt on its next Look
-            if m in self._built:
-                self._built.discard(m)
-                self._near[m] = None
-                self._cached[m] = None
+        for m in movers:
+            self._forget(m)
         observers = list(self._built)
         if not observers:
             for m in movers:
@@ -153,10 +150,7 @@ class Views:
         occupied = self.occupied
         del occupied[old]
         occupied[new] = m
-        if m in self._built:
-            self._built.discard(m)
-            self._near[m] = None
-            self._cached[m] = None
+        self._forget(m)
         observers = list(self._built)
         if not observers:
             return
@@ -214,6 +208,13 @@ class Views:
             i = bisect_left(entries, (lx, ly))
             entries[i] = Seen(lx, ly, light)
             self._cached[r] = None
+
+    def _forget(self, m: int) -> None:
+        """A robot that moved sees everything shifted: its view is rebuilt on its next Look."""
+        if m in self._built:
+            self._built.discard(m)
+            self._near[m] = None
+            self._cached[m] = None
 
     def _drop(self, r: int, j: int, gx: int, gy: int) -> None:
         entries = self._entries[r]

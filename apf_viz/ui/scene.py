@@ -10,6 +10,7 @@ software-rendered browser compiles its shader again (docs/PERFORMANCE.md has the
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -202,6 +203,25 @@ class SceneRenderer:
                 handle.batched_wxyzs = wxyzs  # type: ignore[attr-defined]
         self._last[name] = (positions, colors, wxyzs)
 
+    def _in_place(self, name: str, data: np.ndarray, create: Callable[[], object], field: str) -> None:
+        """Send ``data`` to the node ``name`` only if it changed: create the node once, then assign
+        ``field`` in place; hide it when empty. (A node removed and re-added gets a new material, and
+        the browser compiles its shader again: in a software-rendered browser that costs a frame.)"""
+        last = self._last.get(name)
+        if last is not None and np.array_equal(last[0], data):
+            return
+        self._last[name] = (data, None, None)
+        handle = self._handles.get(name)
+        if not len(data):
+            if handle is not None:
+                handle.visible = False  # type: ignore[attr-defined]
+            return
+        if handle is None:
+            self._handles[name] = create()
+        else:
+            setattr(handle, field, data)
+            handle.visible = True  # type: ignore[attr-defined]
+
     def _points(
         self,
         name: str,
@@ -211,18 +231,11 @@ class SceneRenderer:
         shape: Literal["square", "circle", "diamond"] = "square",
     ) -> None:
         """Points of one colour and size (world units): flat squares (target cells, halos), shaded
-        discs (robots) or diamonds; hidden when empty."""
-        last = self._last.get(name)
-        if last is not None and np.array_equal(last[0], points):
-            return
-        self._last[name] = (points, None, None)
-        handle = self._handles.get(name)
-        if not len(points):
-            if handle is not None:
-                handle.visible = False  # type: ignore[attr-defined]
-            return
-        if handle is None:
-            self._handles[name] = self.scene.add_point_cloud(
+        discs (robots) or diamonds."""
+        self._in_place(
+            name,
+            points,
+            lambda: self.scene.add_point_cloud(
                 name,
                 points,
                 np.array(color, dtype=np.uint8),
@@ -230,10 +243,9 @@ class SceneRenderer:
                 point_shape=shape,
                 precision="float32",
                 point_shading="gradient" if shape == "circle" else "flat",
-            )
-        else:
-            handle.points = points  # type: ignore[attr-defined]
-            handle.visible = True  # type: ignore[attr-defined]
+            ),
+            "points",
+        )
 
     def _segments(
         self,
@@ -243,26 +255,16 @@ class SceneRenderer:
         thickness: float,
         units: Literal["world", "screen"] = "world",
     ) -> None:
-        """Line segments are re-sent only when they change, into the same node: a node removed and
-        re-added gets a new material, and the browser compiles its shader again (in a software-rendered
-        browser that costs more than a frame). An empty set hides the node."""
-        last = self._last.get(name)
-        if last is not None and np.array_equal(last[0], segments):
-            return
-        self._last[name] = (segments, None, None)
-        handle = self._handles.get(name)
-        if not len(segments):
-            if handle is not None:
-                handle.visible = False  # type: ignore[attr-defined]
-            return
+        """Line segments, shape (n, 2, 3)."""
         points = segments.astype(np.float32)
-        if handle is None:
-            self._handles[name] = self.scene.add_line_segments(
+        self._in_place(
+            name,
+            points,
+            lambda: self.scene.add_line_segments(
                 name, points, color, thickness=thickness, thickness_units=units
-            )
-        else:
-            handle.points = points  # type: ignore[attr-defined]
-            handle.visible = True  # type: ignore[attr-defined]
+            ),
+            "points",
+        )
 
     # ------------------------------------------------------------------ drawing
     def render(self, view: SessionView) -> None:
