@@ -68,3 +68,14 @@ def test_line_sets_and_halos_are_updated_in_place_and_hidden_when_empty(renderer
         assert renderer._handles[name] is handle, f"{name} was re-created"
     renderer._segments("/rays", np.zeros((0, 2, 3)), (0, 0, 0), 0.1)
     assert renderer._handles["/rays"].visible is False
+
+
+def test_target_cells_change_colour_in_edit_pattern_mode(renderer):
+    s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], y_up=[True, True, True])
+    renderer.render(s.view())
+    targets = renderer._handles["/targets"]
+    run_colour = np.asarray(targets.colors).tolist()
+    s.set_mode("edit-pattern")
+    renderer.render(s.view())
+    assert renderer._handles["/targets"] is targets
+    assert np.asarray(targets.colors).tolist() != run_colour

@@ -145,6 +145,7 @@ class SceneRenderer:
         self.scene.set_up_direction("+z")
         self._sphere = _with_nose(*_icosphere())
         self._sprite_lights: set[str] = set()
+        self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
         self._handles: dict[str, object] = {}
@@ -246,6 +247,10 @@ class SceneRenderer:
             ),
             "points",
         )
+        handle = self._handles.get(name)
+        if handle is not None and self._colors.get(name, color) != color:  # rare: e.g. a mode switch
+            handle.colors = np.array(color, dtype=np.uint8)  # type: ignore[attr-defined]
+        self._colors[name] = color
 
     def _segments(
         self,
