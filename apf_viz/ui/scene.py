@@ -258,15 +258,14 @@ class SceneRenderer:
         segments: np.ndarray,
         color: tuple[int, int, int],
         thickness: float,
-        units: Literal["world", "screen"] = "world",
     ) -> None:
-        """Line segments, shape (n, 2, 3)."""
+        """Line segments, shape (n, 2, 3), ``thickness`` pixels wide."""
         points = segments.astype(np.float32)
         self._in_place(
             name,
             points,
             lambda: self.scene.add_line_segments(
-                name, points, color, thickness=thickness, thickness_units=units
+                name, points, color, thickness=thickness, thickness_units="screen"
             ),
             "points",
         )
@@ -297,12 +296,14 @@ class SceneRenderer:
             opacity=0.35,
             scale=ROBOT_RADIUS * 0.8,
         )
-        self._segments("/rays", self._rays(view), (250, 200, 0), 0.04)
-        self._segments("/pending", self._pending(view), (230, 40, 40), 0.06)
-        self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 0.05)
+        # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
+        # pass), and each draw costs a software-rendered browser about an update a second.
+        self._segments("/rays", self._rays(view), (250, 200, 0), 2.0)
+        self._segments("/pending", self._pending(view), (230, 40, 40), 3.0)
+        self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 3.0)
         axis = view.axis if editing_robots else None
-        self._segments("/axis", self._horizontal(axis), (255, 0, 0), 0.08)
-        self._segments("/leader_frame", self._frame(view), (30, 30, 30), 0.06)
+        self._segments("/axis", self._horizontal(axis), (255, 0, 0), 4.0)
+        self._segments("/leader_frame", self._frame(view), (30, 30, 30), 3.0)
 
     def _robot_spheres(self, view: SessionView, pts: np.ndarray) -> None:
         """Robots as spheres coloured by light, one batched mesh. Each robot's own +y (the adversary's
@@ -372,7 +373,7 @@ class SceneRenderer:
             ("/grid/sections", 5, (175, 175, 175), 1.5),
         ):
             if dense and step == 1:
-                self._segments(name, np.zeros((0, 2, 3), np.float32), color, width, units="screen")
+                self._segments(name, np.zeros((0, 2, 3), np.float32), color, width)
                 continue
             xs = np.arange(x0 - x0 % step, x1 + 1, step, dtype=np.float32)
             ys = np.arange(y0 - y0 % step, y1 + 1, step, dtype=np.float32)
@@ -386,7 +387,7 @@ class SceneRenderer:
             )
             flat = np.concatenate([vertical, horizontal])
             segments = np.concatenate([flat, np.full((len(flat), 2, 1), -0.01, np.float32)], axis=2)
-            self._segments(name, segments, color, width, units="screen")
+            self._segments(name, segments, color, width)
 
     @staticmethod
     def _rays(view: SessionView) -> np.ndarray:
