@@ -326,8 +326,7 @@ class Engine:
         )
 
     def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
-        if len(robots) == 1:
-            return self._move_one(robots[0], round)
+        """Simultaneous moves of several robots (FSYNC/SSYNC); one robot goes to :meth:`_move_one`."""
         st = self.state
         targets: dict[int, Point] = {}
         for r in robots:

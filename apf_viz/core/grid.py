@@ -58,13 +58,12 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
     return np.sort(nearest_per_direction(positions - positions[i], i))
 
 
-def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) -> np.ndarray:
+def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     """The visible robots, given every robot's offset from observer ``i`` (shape (k, 2); row i is 0).
 
     "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
     (direction, distance g), and the first of each direction wins; no lattice point is visited.
     The result is ordered by direction, a function of the offsets alone (no robot identity).
-    ``span``, if given, must exceed every |offset| coordinate.
     """
     k = offsets.shape[0]
     if k == 1:
@@ -72,8 +71,7 @@ def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) 
     dx, dy = offsets[:, 0], offsets[:, 1]
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
-    if span is None:
-        span = int(np.abs(offsets).max()) + 1
+    span = int(np.abs(offsets).max()) + 1
     if span < _PACKED_SPAN_LIMIT:
         key = (dx // g) * (2 * span + 1) + dy // g  # unique per primitive direction
         packed = key * span + g  # by direction, nearest first

@@ -100,16 +100,10 @@ class Views:
         for m in movers:
             self.points[m] = (int(P[m, 0]), int(P[m, 1]))
         lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
-        gone = set(movers)
         for m in movers:
             self._forget(m)
-        observers = list(self._built)
-        if not observers:
-            for m in movers:
-                occupied[self.points[m]] = m
-            return
-        obs = np.asarray(observers)
-        here = P[obs]
+        observers = list(self._built)  # the movers are not among them
+        here = P[np.asarray(observers, dtype=np.intp)]
         # Phase A: every mover leaves its old point; walks along a vacated direction see only robots that
         # did not move (the movers' new points are not yet occupied).
         for m, (ox, oy) in zip(movers, old, strict=True):
@@ -118,7 +112,7 @@ class Views:
                 if near.get(d) != (g, m):
                     continue  # m was hidden from r: nothing r sees changes
                 self._drop(r, m, g * d[0], g * d[1])
-                nxt = self._walk(P[r].tolist(), d, g, lo, hi, occupied)
+                nxt = self._walk(self.points[r], d, g, lo, hi, occupied)
                 if nxt is None:
                     del near[d]
                 else:
@@ -130,8 +124,6 @@ class Views:
         for m in movers:
             nx, ny = P[m].tolist()
             for r, d, g in _directions(observers, here, nx, ny):
-                if r in gone:
-                    continue
                 near = self._near[r]
                 cur = near.get(d)
                 if cur is not None and cur[0] < g:
@@ -253,5 +245,5 @@ def _directions(observers: list[int], here: np.ndarray, px: int, py: int):
     ox = px - here[:, 0]
     oy = py - here[:, 1]
     g = np.gcd(ox, oy)
-    g[g == 0] = 1  # an observer standing on the point itself (a mover's own row); callers skip it
+    g[g == 0] = 1  # no observer stands on the point (observers are never movers); a guard, not a case
     return zip(observers, zip((ox // g).tolist(), (oy // g).tolist(), strict=True), g.tolist(), strict=True)
