@@ -458,7 +458,7 @@ class Engine:
         return noop
 
     def current_points(self) -> list[Point]:
-        return [(int(x), int(y)) for x, y in self.state.positions]
+        return list(map(tuple, self.state.positions.tolist()))
 
     # ------------------------------------------------------------------ time travel
     def seek(self, step: int) -> None:

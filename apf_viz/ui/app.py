@@ -77,7 +77,7 @@ class App:
         """Play advances ``speed`` steps a second, but never spends more than ``STEP_SHARE`` of a frame
         stepping: a run too slow for the requested speed plays slower instead of starving the frames."""
         budget = 0.0
-        last = time.perf_counter()
+        last = tick = time.perf_counter()
         while not self._stop.is_set():
             if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
                 self._dirty.wait(timeout=1.0 / FPS)
@@ -98,8 +98,11 @@ class App:
             if self._dirty.is_set():
                 self._dirty.clear()
                 self._render()
-            # Frames are paced here, once: at most FPS a second, whether playing or not.
-            time.sleep(max(0.0, 1.0 / FPS - (time.perf_counter() - now)))
+            # Frames are paced here, once: at most FPS a second, whether playing or not. The ticks are
+            # absolute, so a sleep that overshoots (a busy machine) shortens the next one instead of
+            # lowering the rate; a loop that fell a whole frame behind starts a fresh schedule.
+            tick = max(tick + 1.0 / FPS, time.perf_counter() - 1.0 / FPS)
+            time.sleep(max(0.0, tick - time.perf_counter()))
 
     def _render(self) -> None:
         view = self.session.view()

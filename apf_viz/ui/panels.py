@@ -42,6 +42,9 @@ class Panels:
         self.server, self.session, self.changed, self.notify = server, session, changed, notify
         gui = server.gui
         gui.configure_theme(control_width="large")
+        # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
+        # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
+        gui.main_panel.dock_right()
         with gui.add_folder("Run"):
             row = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             row.on_click(self._on_control)
@@ -204,10 +207,7 @@ class Panels:
         if self.scheduler.value != self._scheduler_label():
             self.scheduler.value = self._scheduler_label()
         self.next_phase.content = self._next_phases(view)
-        series = np.array(view.move_series, dtype=np.float64).reshape(-1, 2)
-        if len(series) > 600:  # keep the chart light: sample evenly, always keep the latest point
-            idx = np.unique(np.linspace(0, len(series) - 1, 600).astype(int))
-            series = series[idx]
+        series = np.array(view.move_series, dtype=np.float64).reshape(-1, 2)  # at most SERIES_POINTS
         self.plot.data = (series[:, 0], series[:, 1])
 
     def _scheduler_label(self) -> str:

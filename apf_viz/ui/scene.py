@@ -143,6 +143,9 @@ class SceneRenderer:
         self.server = server
         self.scene = server.scene
         self.scene.set_up_direction("+z")
+        # Nothing here casts a shadow, but lights that may cast one make the browser clear three
+        # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
+        self.scene.configure_default_lights(enabled=True, cast_shadow=False)
         self._sphere = _with_nose(*_icosphere())
         self._sprite_lights: set[str] = set()
         self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour
@@ -433,7 +436,6 @@ class SceneRenderer:
         extent = max(x1 - x0, y1 - y0, 6) + 4
         fov = float(np.deg2rad(50))
         h = extent / (2 * np.tan(fov / 2))
-        cx += 0.25 * extent  # the control panel covers the right of the canvas: keep the run left of it
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
 

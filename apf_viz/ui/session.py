@@ -33,6 +33,7 @@ from apf_viz.core.grid import Point
 from apf_viz.core.run import engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
+from apf_viz.ui.move_series import MoveSeries
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
 SCHEDULER_LABELS = {
@@ -136,9 +137,7 @@ class Session:
         self.draft_robots = list(self.robots)
         self.draft_y_up = list(self.y_up)
         self.selected = None
-        self._series_generation = -1
-        self._cumulative: list[tuple[int, int]] = [(0, 0)]
-        self._series_positions: list[Point] = list(self.robots)
+        self._series = MoveSeries(self.robots)
 
     def reset(self) -> None:
         """Back to the start of the current run (same start, pattern, flips, algorithm)."""
@@ -320,7 +319,7 @@ class Session:
             self.draft_y_up = list(self.y_up)
             engine.seek(0)
             self.engine = engine
-            self._series_generation = -1
+            self._series = MoveSeries(engine.start)
             self.mode = "run"
             self.selected = None
 
@@ -422,7 +421,7 @@ class Session:
             axis=(float(a) if (a := unsolvable_axis(self.draft_robots)) is not None else None)
             if self.mode == "edit-robots"
             else None,
-            move_series=self._move_series(),
+            move_series=self._series.at(e.history, e.step_index),
         )
 
     def _D(self) -> int:
@@ -433,27 +432,6 @@ class Session:
             return max(xs) - min(xs) + 1, max(ys) - min(ys) + 1
 
         return max(*extent(self.robots), *extent(self.pattern), len(self.robots))
-
-    def _move_series(self) -> tuple[tuple[int, int], ...]:
-        """(event index, moves so far) after each step that moved a robot, up to the current step.
-
-        Cumulative counts per recorded step are cached and extended incrementally; a branch (which
-        rewrites the history) clears the cache."""
-        history = self.engine.history
-        if self._series_generation != history.generation:
-            self._series_generation = history.generation
-            self._cumulative = [(0, 0)]
-            self._series_positions = list(self.engine.start)
-        cum, pos = self._cumulative, self._series_positions
-        for s in history.steps[len(cum) - 1 : self.engine.step_index]:
-            events, moves = cum[-1]
-            for ev in s.events:
-                if ev.phase == "move" and not ev.collision and ev.to is not None and ev.to != pos[ev.robot]:
-                    pos[ev.robot] = ev.to
-                    moves += 1
-            cum.append((events + len(s.events), moves))
-        upto = cum[: self.engine.step_index + 1]
-        return tuple(p for i, p in enumerate(upto) if i == 0 or p[1] != upto[i - 1][1] or i == len(upto) - 1)
 
     def _caption(self, sel: int | None) -> str:
         if sel is None:
