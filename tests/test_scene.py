@@ -11,7 +11,7 @@ import pytest
 import viser
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
-from apf_viz.ui.scene import DENSE, SceneRenderer
+from apf_viz.ui.scene import DENSE, GRID_SECTION_PX, VIEW_PX, SceneRenderer, grid_steps
 from apf_viz.ui.session import Session
 
 
@@ -79,3 +79,45 @@ def test_target_cells_change_colour_in_edit_pattern_mode(renderer):
     renderer.render(s.view())
     assert renderer._handles["/targets"] is targets
     assert np.asarray(targets.colors).tolist() != run_colour
+
+
+def _pending_session(k: int) -> Session:
+    """A run stepped until some robot has computed a move it has not made yet."""
+    s = session_of(k)
+    while not any(r.pending is not None for r in s.view().robots):
+        assert s.step(), "the run ended before any robot computed a move"
+    return s
+
+
+def test_pending_moves_of_few_robots_are_line_segments(renderer):
+    s = _pending_session(6)
+    renderer.render(s.view())
+    moves = {(r.position, r.pending) for r in s.view().robots if r.pending is not None}
+    segments = np.asarray(renderer._handles["/pending"].points)
+    assert {(tuple(map(int, a[:2])), tuple(map(int, b[:2]))) for a, b in segments} == moves
+    assert "/pending_cells" not in renderer._handles
+
+
+def test_pending_moves_of_many_robots_are_dots_on_their_destinations(renderer):
+    s = _pending_session(DENSE + 1)
+    renderer.render(s.view())
+    destinations = {r.pending for r in s.view().robots if r.pending is not None}
+    dots = np.asarray(renderer._handles["/pending_cells"].points)
+    assert {(int(x), int(y)) for x, y, _ in dots} == destinations
+    assert "/pending" not in renderer._handles
+
+
+def test_grid_density_follows_the_width_of_the_run():
+    assert grid_steps(39) == (True, 5)  # the built-in demo: a line per cell, every fifth darker
+    assert grid_steps(61) == (False, 5)  # 100 robots: cells are too small to rule
+    assert grid_steps(135) == (False, 10)  # 1,000 robots
+    steps = (5, 10, 50, 100, 500, 1000, 5000, 10000)
+    for width in range(1, 200_000, 7):
+        cells, step = grid_steps(width)
+        assert cells == (VIEW_PX / width >= 20)
+        smaller = steps[: steps.index(step)]
+        # the densest step whose lines are still GRID_SECTION_PX apart, so at most VIEW_PX /
+        # GRID_SECTION_PX lines across (a software-rendered browser pays for every line)
+        assert all(s * VIEW_PX / width < GRID_SECTION_PX for s in smaller)
+        if step < steps[-1]:
+            assert step * VIEW_PX / width >= GRID_SECTION_PX and width / step <= VIEW_PX / GRID_SECTION_PX

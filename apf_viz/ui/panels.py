@@ -251,6 +251,7 @@ class Panels:
         key = (
             '<div style="margin-top:4px">halo: <b style="color:rgb(230,180,0)">looked</b> · '
             '<b style="color:rgb(250,120,30)">computed</b> · none: idle<br>'
-            "nose: the robot's own +y (down: flipped by the adversary)</div>"
+            "nose (many robots: grey diamond): the robot's own +y, down if flipped by the adversary<br>"
+            '<b style="color:rgb(230,40,40)">red</b> line (many robots: dot): the move a robot computed</div>'
         )
         return f'<div style="font-size:0.85em">{cells}{key}</div>'

@@ -1,11 +1,14 @@
 """The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
 
-Robots and ghosts are batched meshes (one message each however many robots), above ``DENSE`` robots
-shaded point sprites; phase halos and target cells are point clouds of flat squares (one vertex each);
-each robot's y-axis (the adversary's flip) is the nose of its sphere (a diamond beside a sprite);
-rays, K, the leader's frame, pending moves and the grid are line-segment sets. Every node is created
-once and then updated in place, hidden when empty: a node re-created gets a new material, and a
-software-rendered browser compiles its shader again (docs/PERFORMANCE.md has the measurements).
+Up to ``DENSE`` robots, robots and ghosts are batched meshes (one message each however many robots),
+each robot's y-axis (the adversary's flip) the nose of its sphere, and pending moves are line segments.
+Above it, robots are shaded point sprites with a diamond beside each for its y-axis, and a pending move
+is a red dot on the cell it goes to: one vertex each, because a browser without a GPU draws every
+instance of a batched mesh or line set as a draw of its own. Phase halos and target cells are point
+clouds of flat squares; rays, K, the leader's frame and the grid are line-segment sets, the grid's
+density chosen by :func:`grid_steps`. Every node is created once and then updated in place, hidden when
+empty: a node re-created gets a new material, and a software-rendered browser compiles its shader again.
+docs/PERFORMANCE.md has the measurements.
 """
 
 from __future__ import annotations
@@ -30,12 +33,30 @@ LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
 }
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.34
-GRID_CELL_LINES = 80  # the widest grid (in cells) that still gets a line per cell
-DENSE = 200  # above this many robots, robots are drawn as point sprites (see _robot_sprites)
+# Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
+# GRID_CELL_PX wide, and darker section lines every 5, 10, 50, ... cells, at least GRID_SECTION_PX apart.
+VIEW_PX = 1000
+GRID_CELL_PX = 20
+GRID_SECTION_PX = 45
+_SECTION_STEPS = (5, 10, 50, 100, 500, 1000, 5000, 10000)
+# Above this many robots, robots, y-axes and pending moves are point sprites, one vertex each, not
+# instanced meshes and line segments: a software-rendered browser draws each instance separately, at
+# about 0.2 ms a frame (docs/PERFORMANCE.md).
+DENSE = 50
 # viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
 # the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
 _VISER_POINT_SCALE = 0.5
 Z = 0.3  # robots sit on the grid, their centres this high
+
+
+def grid_steps(width: int) -> tuple[bool, int]:
+    """(whether every cell gets a line, the step of the section lines) for a grid ``width`` cells wide.
+
+    Lines no denser than a reader can use, which also bounds their number: each line is an instance, and
+    a software-rendered browser spends about 0.2 ms a frame on each (docs/PERFORMANCE.md)."""
+    px = VIEW_PX / max(width, 1)
+    section = next((s for s in _SECTION_STEPS if s * px >= GRID_SECTION_PX), _SECTION_STEPS[-1])
+    return px >= GRID_CELL_PX, section
 
 
 def light_color(light: str) -> tuple[int, int, int]:
@@ -300,9 +321,13 @@ class SceneRenderer:
             scale=ROBOT_RADIUS * 0.8,
         )
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
-        # pass), and each draw costs a software-rendered browser about an update a second.
+        # pass). Each segment is an instance, which a software-rendered browser draws separately.
         self._segments("/rays", self._rays(view), (250, 200, 0), 2.0)
-        self._segments("/pending", self._pending(view), (230, 40, 40), 3.0)
+        pending = self._pending(view)
+        dense = len(pts) > DENSE
+        self._segments("/pending", pending[:0] if dense else pending, (230, 40, 40), 3.0)
+        destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
+        self._points("/pending_cells", destinations, (230, 40, 40), 0.3, "circle")
         self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 3.0)
         axis = view.axis if editing_robots else None
         self._segments("/axis", self._horizontal(axis), (255, 0, 0), 4.0)
@@ -368,20 +393,18 @@ class SceneRenderer:
         # screen pixels, not viser's grid plane: its shader over the whole plane cost a software-rendered
         # browser more than everything else in the scene together (docs/PERFORMANCE.md).
         x0, y0, x1, y1 = key
-        # Beyond GRID_CELL_LINES cells across, a cell is a few pixels wide: only every fifth line is
-        # drawn (the cell lines cost a software-rendered browser a quarter of its frames at 1,000 robots).
-        dense = max(x1 - x0, y1 - y0) > GRID_CELL_LINES
+        cells, section = grid_steps(max(x1 - x0, y1 - y0))
         for name, step, color, width in (
             ("/grid/cells", 1, (205, 205, 205), 1.0),
-            ("/grid/sections", 5, (175, 175, 175), 1.5),
+            ("/grid/sections", section, (175, 175, 175), 1.5),
         ):
-            if dense and step == 1:
+            if step == 1 and not cells:
                 self._segments(name, np.zeros((0, 2, 3), np.float32), color, width)
                 continue
             xs = np.arange(x0 - x0 % step, x1 + 1, step, dtype=np.float32)
             ys = np.arange(y0 - y0 % step, y1 + 1, step, dtype=np.float32)
             if step == 1:  # the section lines are drawn once, by the other set
-                xs, ys = xs[xs % 5 != 0], ys[ys % 5 != 0]
+                xs, ys = xs[xs % section != 0], ys[ys % section != 0]
             vertical = np.stack(
                 [np.column_stack([xs, np.full_like(xs, y0)]), np.column_stack([xs, np.full_like(xs, y1)])], 1
             )
