@@ -3,12 +3,12 @@
 Up to ``DENSE`` robots, robots and ghosts are batched meshes (one message each however many robots),
 each robot's y-axis (the adversary's flip) the nose of its sphere, and pending moves are line segments.
 Above it, robots are shaded point sprites with a diamond beside each for its y-axis, and a pending move
-is a red dot on the cell it goes to: one vertex each, because a browser without a GPU draws every
-instance of a batched mesh or line set as a draw of its own. Phase halos and target cells are point
-clouds of flat squares; rays, K, the leader's frame and the grid are line-segment sets, the grid's
-density chosen by :func:`grid_steps`. Every node is created once and then updated in place, hidden when
-empty: a node re-created gets a new material, and a software-rendered browser compiles its shader again.
-docs/PERFORMANCE.md has the measurements.
+is a red dot on the cell it goes to: one vertex each, because in a browser without a GPU every instance
+of a batched mesh or line set costs about as much as a draw call of its own. Phase halos and target
+cells are point clouds of flat squares; rays, K, the leader's frame and the grid are line-segment
+sets, the grid's density chosen by :func:`grid_steps`. Every node is created once and then updated in
+place, hidden when empty: a node re-created gets a new material, and a software-rendered browser
+compiles its shader again. docs/PERFORMANCE.md has the measurements.
 """
 
 from __future__ import annotations
@@ -40,8 +40,8 @@ GRID_CELL_PX = 20
 GRID_SECTION_PX = 45
 _SECTION_STEPS = (5, 10, 50, 100, 500, 1000, 5000, 10000)
 # Above this many robots, robots, y-axes and pending moves are point sprites, one vertex each, not
-# instanced meshes and line segments: a software-rendered browser draws each instance separately, at
-# about 0.2 ms a frame (docs/PERFORMANCE.md).
+# instanced meshes and line segments: in a software-rendered browser each instance costs about 0.2 ms a
+# frame, as much as a draw call (measured, docs/PERFORMANCE.md).
 DENSE = 50
 # viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
 # the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
@@ -321,7 +321,7 @@ class SceneRenderer:
             scale=ROBOT_RADIUS * 0.8,
         )
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
-        # pass). Each segment is an instance, which a software-rendered browser draws separately.
+        # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
         self._segments("/rays", self._rays(view), (250, 200, 0), 2.0)
         pending = self._pending(view)
         dense = len(pts) > DENSE
