@@ -23,10 +23,12 @@ class MoveSeries:
     """(events so far, moves so far) after each recorded step of one run's history.
 
     A move counts as the engine counts it: a Move event without collision that changes the robot's
-    cell. A branch rewrites the history (its ``generation`` changes) and the series starts over."""
+    cell. A branch rewrites the history (its ``generation`` changes), or another history is asked about,
+    and the series starts over."""
 
     def __init__(self, start: Sequence[Point]) -> None:
         self._start = list(start)
+        self._history: History | None = None
         self._generation = -1
         self._clear()
 
@@ -39,8 +41,8 @@ class MoveSeries:
     def at(self, history: History, step: int, limit: int = SERIES_POINTS) -> tuple[tuple[int, int], ...]:
         """The start, every step up to ``step`` that changed the move count, and ``step`` itself,
         evenly thinned to at most ``limit`` points (the first and the latest always kept)."""
-        if self._generation != history.generation:
-            self._generation = history.generation
+        if history is not self._history or self._generation != history.generation:
+            self._history, self._generation = history, history.generation
             self._clear()
         self._extend(history, step)
         n = bisect_right(self._changes, step)
