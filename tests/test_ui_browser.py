@@ -11,6 +11,7 @@ import time
 from collections.abc import Iterator
 from pathlib import Path
 
+import imageio.v3 as iio
 import numpy as np
 import pytest
 
@@ -212,3 +213,29 @@ def test_a_second_page_sees_the_first_pages_steps(browser, app):
     shot(second, "second-page")
     first.close()
     second.close()
+
+
+def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
+    page = open_page(browser, app)
+    for _ in range(3):
+        page.get_by_role("button", name="Step").click()
+    wait_for(lambda: event_value(page) == app.session.view().event > 0)
+    page.get_by_role("button", name="Save screenshot").click()
+    link = page.locator("a[download$='.png']")
+    link.wait_for(timeout=30_000)
+    assert link.get_attribute("download") == f"apf-viz-event-{event_value(page)}.png"
+    data = page.evaluate(
+        "async (a) => Array.from(new Uint8Array(await (await fetch(a.href)).arrayBuffer()))",
+        link.element_handle(),
+    )
+    image = iio.imread(bytes(data), extension=".png")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "saved-screenshot.png").write_bytes(bytes(data))
+    box = page.locator("canvas").first.bounding_box()
+    assert image.ndim == 3 and image.shape[2] == 3  # the transparent canvas flattened onto white
+    assert abs(image.shape[1] / image.shape[0] - box["width"] / box["height"]) < 0.05
+    rgb = image.astype(np.int32)
+    assert np.median(rgb) > 230  # the page's white background, not black
+    green = (rgb[:, :, 1] > rgb[:, :, 0] + 50) & (rgb[:, :, 1] > rgb[:, :, 2] + 50)
+    assert green.sum() > 200, "the pattern's target cells are not in the saved image"
+    page.close()

@@ -16,11 +16,13 @@ import viser
 import viser.uplot
 
 from apf_viz.core.formats import InputError
+from apf_viz.ui.image import png_on_white
 from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
+SCREENSHOT_TIMEOUT = 15.0  # seconds a browser gets to return a frame (software rendering is slow)
 DEMO_DIR = Path(__file__).resolve().parent.parent.parent / "demo_patterns"
 
 
@@ -97,6 +99,7 @@ class Panels:
                 ("Download trace", "trace.jsonl", session.trace_file),
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
+            gui.add_button("Save screenshot").on_click(self._screenshot)
         with gui.add_folder("Moves over events"):
             self.plot = gui.add_uplot(
                 (np.array([0.0]), np.array([0.0])),
@@ -209,6 +212,23 @@ class Panels:
         self.next_phase.content = self._next_phases(view)
         series = np.array(view.move_series, dtype=np.float64).reshape(-1, 2)  # at most SERIES_POINTS
         self.plot.data = (series[:, 0], series[:, 1])
+
+    def _screenshot(self, event) -> None:
+        """The clicking browser's view as it is now, as a PNG download named after the event shown."""
+        client = event.client
+        if client is None:
+            return
+        name = f"apf-viz-event-{self.session.view().event}.png"
+        try:
+            width, height = client.camera.image_width, client.camera.image_height
+        except AssertionError:  # the browser has not reported its canvas yet
+            width, height = 1280, 720
+        try:
+            rgba = client.get_render(height, width, transport_format="png", timeout=SCREENSHOT_TIMEOUT)
+        except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
+            client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
+            return
+        client.send_file_download(name, png_on_white(rgba))
 
     def _scheduler_label(self) -> str:
         return next(k for k, v in SCHEDULER_LABELS.items() if v == self.session.scheduler_name)
