@@ -6,7 +6,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from apf_viz.ui.image import png_on_white
+from apf_viz.ui.image import gif_on_white, png_on_white, shrink
 
 
 def test_transparent_pixels_become_white_and_opaque_ones_keep_their_colour():
@@ -26,3 +26,25 @@ def test_an_rgb_image_is_encoded_unchanged_and_other_shapes_are_refused():
     assert iio.imread(png_on_white(rgb), extension=".png").tolist() == rgb.tolist()
     with pytest.raises(ValueError, match=r"shape \(4, 4\)"):
         png_on_white(np.zeros((4, 4), dtype=np.uint8))
+
+
+def test_shrink_averages_whole_blocks_and_drops_the_ragged_edge():
+    image = np.zeros((5, 7, 3), dtype=np.uint8)
+    image[0:2, 0:2] = (0, 100, 200)
+    image[0, 0] = (40, 100, 200)
+    small = shrink(image, 2)
+    assert small.shape == (2, 3, 3)
+    assert small[0, 0].tolist() == [10, 100, 200] and small[1, 2].tolist() == [0, 0, 0]
+    assert shrink(image, 1) is image
+
+
+def test_a_gif_loops_with_one_frame_per_render_at_the_given_rate():
+    frames = [np.full((6, 8, 4), (v, v, v, 255), dtype=np.uint8) for v in (0, 128, 255)]
+    gif = gif_on_white(frames, fps=2.0)
+    decoded = iio.imread(gif, extension=".gif", index=None)
+    assert decoded.shape == (3, 6, 8, 3)
+    assert [int(f[0, 0, 0]) for f in decoded] == [0, 128, 255]
+    meta = iio.immeta(gif, extension=".gif")
+    assert meta["duration"] == 500 and meta["loop"] == 0
+    with pytest.raises(ValueError, match="no frames"):
+        gif_on_white([], fps=4.0)

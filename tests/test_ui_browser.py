@@ -9,11 +9,13 @@ from __future__ import annotations
 import socket
 import time
 from collections.abc import Iterator
+from io import BytesIO
 from pathlib import Path
 
 import imageio.v3 as iio
 import numpy as np
 import pytest
+from PIL import Image, ImageSequence
 
 from apf_viz.ui.app import App, demo_session
 
@@ -107,10 +109,6 @@ def test_page_connects_and_the_canvas_is_not_blank(browser, app):
     page = open_page(browser, app)
     path = shot(page, "connected")
     canvas = page.locator("canvas").first.screenshot()
-    from io import BytesIO
-
-    from PIL import Image
-
     pixels = np.asarray(Image.open(BytesIO(canvas)).convert("RGB"), dtype=np.int32)
     assert pixels.std() > 5, "the canvas is blank"
     colours = {tuple(c) for c in pixels.reshape(-1, 3)[::97]}
@@ -238,4 +236,36 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
     assert np.median(rgb) > 230  # the page's white background, not black
     green = (rgb[:, :, 1] > rgb[:, :, 0] + 50) & (rgb[:, :, 1] > rgb[:, :, 2] + 50)
     assert green.sum() > 200, "the pattern's target cells are not in the saved image"
+    page.close()
+
+
+def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
+    page = open_page(browser, app)
+    started = time.perf_counter()
+    page.get_by_role("button", name="Record GIF").click()
+    page.get_by_role("button", name="Stop recording").wait_for(timeout=10_000)
+    for _ in range(3):
+        time.sleep(1.0)
+        page.get_by_role("button", name="Step").click()
+    time.sleep(1.5)
+    page.get_by_role("button", name="Stop recording").click()
+    recorded_for = time.perf_counter() - started
+    link = page.locator("a[download$='.gif']")
+    link.wait_for(timeout=60_000)
+    ended = time.perf_counter() - started
+    assert link.get_attribute("download") == f"apf-viz-events-0-{event_value(page)}.gif"
+    data = page.evaluate(
+        "async (a) => Array.from(new Uint8Array(await (await fetch(a.href)).arrayBuffer()))",
+        link.element_handle(),
+    )
+    OUT.mkdir(exist_ok=True)
+    (OUT / "recorded.gif").write_bytes(bytes(data))
+    frames = iio.imread(bytes(data), extension=".gif", index=None)
+    assert frames.ndim == 4 and len(frames) >= 3  # up to 4 frames a second for about 4.5 s
+    assert not all(np.array_equal(frames[0], f) for f in frames[1:]), "every frame is the same"
+    with Image.open(BytesIO(bytes(data))) as gif:  # frame by frame: the encoder merges repeated frames
+        durations = [frame.info["duration"] / 1000 for frame in ImageSequence.Iterator(gif)]
+    assert min(durations) >= 0.25  # never faster than 4 frames a second
+    assert 0.5 * recorded_for <= sum(durations) <= ended + 0.5  # plays in about real time
+    page.get_by_role("button", name="Record GIF").wait_for(timeout=10_000)  # ready for the next one
     page.close()

@@ -8,6 +8,7 @@ session never feeds back into it.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,6 +18,7 @@ import viser.uplot
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.image import png_on_white
+from apf_viz.ui.recorder import GifRecorder
 from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
@@ -42,6 +44,8 @@ class Panels:
         notify: Callable[[str, str, bool], None],
     ) -> None:
         self.server, self.session, self.changed, self.notify = server, session, changed, notify
+        self._recorder: GifRecorder | None = None
+        self._recording_lock = threading.Lock()
         gui = server.gui
         gui.configure_theme(control_width="large")
         # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
@@ -100,6 +104,8 @@ class Panels:
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)
+            self.record = gui.add_button("Record GIF")
+            self.record.on_click(self._on_record)
         with gui.add_folder("Moves over events"):
             self.plot = gui.add_uplot(
                 (np.array([0.0]), np.array([0.0])),
@@ -229,6 +235,33 @@ class Panels:
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return
         client.send_file_download(name, png_on_white(rgba))
+
+    def _on_record(self, event) -> None:
+        """Record GIF / Stop recording: one recording at a time, of the browser that started it."""
+        client = event.client
+        if client is None:
+            return
+        with self._recording_lock:
+            if self._recorder is not None:
+                self._recorder.stop()
+                return
+            first = self.session.view().event
+            self._recorder = GifRecorder(client, lambda gif, why: self._recorded(client, first, gif, why))
+            self.record.label = "Stop recording"
+        client.add_notification(
+            "Recording a GIF", "of this view, 4 frames a second, up to 30 s", auto_close_seconds=4.0
+        )
+
+    def _recorded(self, client, first: int, gif: bytes | None, why: str) -> None:
+        with self._recording_lock:
+            self._recorder = None
+            self.record.label = "Record GIF"
+        if gif is None:
+            client.add_notification("Recording failed", why, color="red", auto_close_seconds=8.0)
+            return
+        client.send_file_download(f"apf-viz-events-{first}-{self.session.view().event}.gif", gif)
+        if why:  # stopped early: the browser stopped answering
+            client.add_notification("Recording stopped", why, color="red", auto_close_seconds=8.0)
 
     def _scheduler_label(self) -> str:
         return next(k for k, v in SCHEDULER_LABELS.items() if v == self.session.scheduler_name)
