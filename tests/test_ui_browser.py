@@ -269,3 +269,19 @@ def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     assert 0.5 * recorded_for <= sum(durations) <= ended + 0.5  # plays in about real time
     page.get_by_role("button", name="Record GIF").wait_for(timeout=10_000)  # ready for the next one
     page.close()
+
+
+def test_the_moves_plot_reads_events_on_its_x_axis_not_dates(browser, app):
+    for _ in range(120):
+        app.session.step()
+    app.request_render()
+    page = open_page(browser, app)
+    plot = page.locator(".uplot .u-over").first
+    plot.scroll_into_view_if_needed()
+    plot.hover()  # the legend shows the values under the cursor
+    legend = page.locator(".uplot .u-legend").first
+    wait_for(lambda: "moves" in legend.inner_text() and any(c.isdigit() for c in legend.inner_text()))
+    text = " ".join(legend.inner_text().split())
+    event = text.split("event")[1].split("moves")[0].strip(" :")
+    assert event.isdigit() and int(event) <= app.session.view().event, text
+    page.close()

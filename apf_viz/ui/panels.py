@@ -110,6 +110,7 @@ class Panels:
             self.plot = gui.add_uplot(
                 (np.array([0.0]), np.array([0.0])),
                 ({"label": "event"}, {"label": "moves", "stroke": "#d33", "width": 2}),
+                scales={"x": {"time": False}},  # uPlot reads x as timestamps unless told otherwise
                 aspect=2.0,
             )
         with gui.add_folder("Lights"):
