@@ -18,7 +18,7 @@ import viser.uplot
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.image import png_on_white
-from apf_viz.ui.recorder import GifRecorder
+from apf_viz.ui.recorder import MAX_FRAMES, RECORD_FPS, GifRecorder, canvas_size
 from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
@@ -227,11 +227,7 @@ class Panels:
             return
         name = f"apf-viz-event-{self.session.view().event}.png"
         try:
-            width, height = client.camera.image_width, client.camera.image_height
-        except AssertionError:  # the browser has not reported its canvas yet
-            width, height = 1280, 720
-        try:
-            rgba = client.get_render(height, width, transport_format="png", timeout=SCREENSHOT_TIMEOUT)
+            rgba = client.get_render(*canvas_size(client), transport_format="png", timeout=SCREENSHOT_TIMEOUT)
         except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return
@@ -250,7 +246,9 @@ class Panels:
             self._recorder = GifRecorder(client, lambda gif, why: self._recorded(client, first, gif, why))
             self.record.label = "Stop recording"
         client.add_notification(
-            "Recording a GIF", "of this view, 4 frames a second, up to 30 s", auto_close_seconds=4.0
+            "Recording a GIF",
+            f"of this view, up to {RECORD_FPS:g} frames a second for {MAX_FRAMES / RECORD_FPS:g} s",
+            auto_close_seconds=4.0,
         )
 
     def _recorded(self, client, first: int, gif: bytes | None, why: str) -> None:

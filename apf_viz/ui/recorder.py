@@ -24,6 +24,14 @@ GIF_WIDTH = 640  # at most; the canvas is shrunk by a whole factor
 TIMEOUT = 15.0  # seconds a software-rendered browser gets for one frame
 
 
+def canvas_size(client) -> tuple[int, int]:
+    """(height, width) of a browser's canvas, in the pixels ``get_render`` takes."""
+    try:
+        return max(16, int(client.camera.image_height)), max(16, int(client.camera.image_width))
+    except AssertionError:  # the browser has not reported its canvas yet
+        return 720, 1280
+
+
 class GifRecorder:
     """Frames of one client's view. When recording ends, ``done`` gets the GIF (None if no frame was
     taken) and why it ended early ("" when stopped or full)."""
@@ -33,16 +41,9 @@ class GifRecorder:
         self.frames: list[np.ndarray] = []
         self._done = done
         self._stop = threading.Event()
-        self._size = self._canvas_size()
+        self._size = canvas_size(client)
         self._thread = threading.Thread(target=self._run, name="apf-viz-gif", daemon=True)
         self._thread.start()
-
-    def _canvas_size(self) -> tuple[int, int]:
-        """(height, width) of the browser's canvas."""
-        try:
-            return max(16, int(self.client.camera.image_height)), max(16, int(self.client.camera.image_width))
-        except AssertionError:  # the browser has not reported its canvas yet
-            return 720, 1280
 
     def stop(self) -> None:
         """Stop recording; the GIF is delivered from the recording thread."""
