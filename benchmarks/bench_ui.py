@@ -12,14 +12,13 @@ from __future__ import annotations
 
 import argparse
 import random
-import socket
 import statistics
 import time
 
 from playwright.sync_api import sync_playwright
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
-from apf_viz.ui.app import App
+from apf_viz.ui.app import App, free_port
 from apf_viz.ui.session import Session
 
 ARGS = [
@@ -56,12 +55,6 @@ async () => {
   return performance.now() - t0;
 }
 """
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def main() -> None:

@@ -7,19 +7,12 @@ Run: python scripts/screenshot_demo.py [--out static/demo-midrun.png]
 from __future__ import annotations
 
 import argparse
-import socket
 import time
 from pathlib import Path
 
 from playwright.sync_api import sync_playwright
 
-from apf_viz.ui.app import App, demo_session
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from apf_viz.ui.app import App, demo_session, free_port
 
 
 def main() -> None:

@@ -4,21 +4,15 @@ nodes are updated in place rather than re-created (a re-created node costs the b
 from __future__ import annotations
 
 import random
-import socket
 
 import numpy as np
 import pytest
 import viser
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.ui.app import free_port
 from apf_viz.ui.scene import DENSE, GRID_SECTION_PX, VIEW_PX, SceneRenderer, grid_steps
 from apf_viz.ui.session import Session
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture

@@ -6,7 +6,6 @@ also read the shared Session to check that a click reached the engine.
 
 from __future__ import annotations
 
-import socket
 import time
 from collections.abc import Iterator
 from io import BytesIO
@@ -17,7 +16,7 @@ import numpy as np
 import pytest
 from PIL import Image, ImageSequence
 
-from apf_viz.ui.app import App, demo_session
+from apf_viz.ui.app import App, demo_session, free_port
 
 playwright = pytest.importorskip("playwright.sync_api")
 CHROMIUM = "/usr/bin/chromium"
@@ -37,12 +36,6 @@ if not Path(CHROMIUM).exists():  # the README's test command installs it; say so
     pytest.fail(
         f"{CHROMIUM} is missing: run bash scripts/test.sh, which installs Debian's chromium", pytrace=False
     )
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture(scope="module")

@@ -8,6 +8,7 @@ second, each frame one atomic update, so clicks stay responsive while the engine
 from __future__ import annotations
 
 import argparse
+import socket
 import threading
 import time
 from pathlib import Path
@@ -23,6 +24,13 @@ FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 DEMO_START = DEMO_DIR / "starts" / "demo-10.json"
 DEMO_PATTERN = DEMO_DIR / "heart.json"
+
+
+def free_port(host: str = "127.0.0.1") -> int:
+    """A TCP port nothing listens on now: for servers started side by side (tests, benchmarks, scripts)."""
+    with socket.socket() as sock:
+        sock.bind((host, 0))
+        return sock.getsockname()[1]
 
 
 class App:
