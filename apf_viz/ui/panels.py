@@ -18,7 +18,7 @@ import viser.uplot
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.image import png_on_white
-from apf_viz.ui.recorder import MAX_FRAMES, RECORD_FPS, GifRecorder, canvas_size
+from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, canvas_size
 from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
@@ -247,7 +247,7 @@ class Panels:
             self.record.label = "Stop recording"
         client.add_notification(
             "Recording a GIF",
-            f"of this view, up to {RECORD_FPS:g} frames a second for {MAX_FRAMES / RECORD_FPS:g} s",
+            f"of this view, up to {RECORD_FPS:g} frames a second for at most {MAX_SECONDS:g} s",
             auto_close_seconds=4.0,
         )
 

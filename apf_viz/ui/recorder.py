@@ -1,7 +1,7 @@
 """Recording what one browser shows, as an animated GIF: the "Record GIF" button.
 
 A thread asks the browser for a render up to ``RECORD_FPS`` times a second (viser's ``get_render``: the
-browser draws the scene once more and sends it back) until it is stopped, the frame cap is reached or
+browser draws the scene once more and sends it back) until it is stopped, ``MAX_SECONDS`` have passed or
 the browser goes away. The engine and the render loop never wait for it. Frames are rendered at the
 canvas's own size and shrunk here: a render at another size would draw point sprites out of scale. The
 GIF plays at the rate the frames were actually taken (a software-rendered browser is slower than
@@ -19,7 +19,7 @@ import numpy as np
 from apf_viz.ui.image import gif_on_white, on_white, shrink
 
 RECORD_FPS = 4.0
-MAX_FRAMES = 120  # half a minute at RECORD_FPS: under 100 MB of frames at GIF_WIDTH
+MAX_SECONDS = 30.0  # a recording stops by itself after this long: under 100 MB of frames at GIF_WIDTH
 GIF_WIDTH = 640  # at most; the canvas is shrunk by a whole factor
 TIMEOUT = 15.0  # seconds a software-rendered browser gets for one frame
 
@@ -34,7 +34,7 @@ def canvas_size(client) -> tuple[int, int]:
 
 class GifRecorder:
     """Frames of one client's view. When recording ends, ``done`` gets the GIF (None if no frame was
-    taken) and why it ended early ("" when stopped or full)."""
+    taken) and why it ended early ("" when stopped or out of time)."""
 
     def __init__(self, client, done: Callable[[bytes | None, str], None]) -> None:
         self.client = client
@@ -54,7 +54,7 @@ class GifRecorder:
         height, width = self._size
         factor = -(-width // GIF_WIDTH)
         started = time.perf_counter()
-        while not self._stop.is_set() and len(self.frames) < MAX_FRAMES:
+        while not self._stop.is_set() and time.perf_counter() - started < MAX_SECONDS:
             t0 = time.perf_counter()
             try:
                 # JPEG: a smaller payload, already on white; the GIF's palette is lossy anyway
