@@ -18,13 +18,12 @@ import viser.uplot
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.image import png_on_white
-from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, canvas_size
+from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
-SCREENSHOT_TIMEOUT = 15.0  # seconds a browser gets to return a frame (software rendering is slow)
 DEMO_DIR = Path(__file__).resolve().parent.parent.parent / "demo_patterns"
 
 
@@ -227,7 +226,7 @@ class Panels:
             return
         name = f"apf-viz-event-{self.session.view().event}.png"
         try:
-            rgba = client.get_render(*canvas_size(client), transport_format="png", timeout=SCREENSHOT_TIMEOUT)
+            rgba = render_view(client, "png")
         except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return

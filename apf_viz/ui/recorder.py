@@ -13,15 +13,16 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from typing import Literal
 
 import numpy as np
 
-from apf_viz.ui.image import gif_on_white, on_white, shrink
+from apf_viz.ui.image import gif_on_white, shrink
 
 RECORD_FPS = 4.0
 MAX_SECONDS = 30.0  # a recording stops by itself after this long: under 100 MB of frames at GIF_WIDTH
 GIF_WIDTH = 640  # at most; the canvas is shrunk by a whole factor
-TIMEOUT = 15.0  # seconds a software-rendered browser gets for one frame
+RENDER_TIMEOUT = 15.0  # seconds a software-rendered browser gets for one frame
 
 
 def canvas_size(client) -> tuple[int, int]:
@@ -30,6 +31,16 @@ def canvas_size(client) -> tuple[int, int]:
         return max(16, int(client.camera.image_height)), max(16, int(client.camera.image_width))
     except AssertionError:  # the browser has not reported its canvas yet
         return 720, 1280
+
+
+def render_view(
+    client, transport_format: Literal["png", "jpeg"], size: tuple[int, int] | None = None
+) -> np.ndarray:
+    """What ``client`` shows now, ``size`` (height, width) pixels, by default its canvas's own size (a
+    render at another size draws point sprites out of scale). Raises viser's ``TimeoutError`` or
+    ``RuntimeError`` when the browser returns no frame."""
+    height, width = size or canvas_size(client)
+    return client.get_render(height, width, transport_format=transport_format, timeout=RENDER_TIMEOUT)
 
 
 class GifRecorder:
@@ -41,7 +52,6 @@ class GifRecorder:
         self.frames: list[np.ndarray] = []
         self._done = done
         self._stop = threading.Event()
-        self._size = canvas_size(client)
         self._thread = threading.Thread(target=self._run, name="apf-viz-gif", daemon=True)
         self._thread.start()
 
@@ -51,15 +61,14 @@ class GifRecorder:
 
     def _run(self) -> None:
         reason = ""
-        height, width = self._size
-        factor = -(-width // GIF_WIDTH)
+        size = canvas_size(self.client)  # fixed for the recording: a GIF's frames share one size
+        factor = -(-size[1] // GIF_WIDTH)
         started = time.perf_counter()
         while not self._stop.is_set() and time.perf_counter() - started < MAX_SECONDS:
             t0 = time.perf_counter()
             try:
                 # JPEG: a smaller payload, already on white; the GIF's palette is lossy anyway
-                render = self.client.get_render(height, width, transport_format="jpeg", timeout=TIMEOUT)
-                self.frames.append(shrink(on_white(render), factor))
+                self.frames.append(shrink(render_view(self.client, "jpeg", size), factor))
             except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
                 reason = str(err)
                 break

@@ -301,12 +301,9 @@ class SceneRenderer:
         pts = np.array([r.position for r in view.robots], dtype=np.float32).reshape(-1, 2)
         self._update_bounds(pts, view)
         self._grid()
-        if len(pts) <= DENSE:
-            self._robot_spheres(view, pts)
-            self._robot_sprites(view, pts[:0])
-        else:
-            self._robot_spheres(view, pts[:0])
-            self._robot_sprites(view, pts)
+        dense = len(pts) > DENSE
+        self._robot_spheres(view, pts[:0] if dense else pts)
+        self._robot_sprites(view, pts if dense else pts[:0])
         self._phase_halos(view, pts)
         targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
         target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
@@ -324,7 +321,6 @@ class SceneRenderer:
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
         self._segments("/rays", self._rays(view), (250, 200, 0), 2.0)
         pending = self._pending(view)
-        dense = len(pts) > DENSE
         self._segments("/pending", pending[:0] if dense else pending, (230, 40, 40), 3.0)
         destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
         self._points("/pending_cells", destinations, (230, 40, 40), 0.3, "circle")
