@@ -8,26 +8,28 @@ from __future__ import annotations
 
 import argparse
 import json
-import random
 import sys
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
 from typing import NoReturn
 
-from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, get_algorithm
+from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_command_line, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import (
     InputError,
     check_sizes,
+    check_writable,
     load_pattern,
     load_robots,
     load_trace,
+    pattern_json,
     robots_json,
     trace_text,
     write_atomic,
 )
-from apf_viz.core.frames import random_y_up
+from apf_viz.core.pattern_match import matches_pattern
+from apf_viz.core.random_configs import random_pattern, random_robots
 from apf_viz.core.run import RunSummary, advance, engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
@@ -46,17 +48,28 @@ def _fail(message: str, code: int = EXIT_BAD_INPUT) -> NoReturn:
     raise SystemExit(code)
 
 
+def _positive(text: str) -> int:
+    """argparse type: an integer of at least 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} is not a positive integer")
+    return value
+
+
 def _cmd_run(args: argparse.Namespace) -> int:
     robots = load_robots(args.robots)
     pattern = load_pattern(args.pattern)
     check_sizes(robots, pattern, str(args.pattern))
-    algorithm = get_algorithm(args.algorithm)
-    scheduler = make_scheduler(args.scheduler)
-    if scheduler.name == "manual":
-        raise InputError("--scheduler manual needs a person to pick robots: use the visualiser")
+    algorithm, _ = algorithm_from_command_line(args.algorithm)
+    if args.trace:
+        check_writable(args.trace)  # before the run, not after minutes of it
     points = [tuple(p) for p in robots.robots]
+    targets = [tuple(p) for p in pattern.points]
     axis = unsolvable_axis(points)
-    if axis is not None and not args.force:
+    if axis is not None and not args.force and not matches_pattern(points, targets):
         message = (
             f"{args.robots}: unsolvable start: mirror-symmetric about {describe_axis(axis)}, a horizontal "
             "line through no robot (Theorem 1); --force runs it anyway"
@@ -64,12 +77,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
         if args.json:
             print(json.dumps({"outcome": "unsolvable", "axis": float(axis), "message": message}))
         _fail(message, EXIT_UNSOLVABLE)
-    y_up = robots.y_up if robots.y_up is not None else random_y_up(len(points), args.seed)
+    scheduler = make_scheduler(args.scheduler)
     engine = Engine(
         points,
-        [tuple(p) for p in pattern.points],
+        targets,
         algorithm,
-        y_up=y_up,
+        y_up=robots.flips(args.seed),
         light_semantics=args.light_semantics,
         max_events=args.max_events,
     )
@@ -96,31 +109,43 @@ def _print_summary(summary: RunSummary, as_json: bool) -> None:
 
 def _cmd_replay(args: argparse.Namespace) -> int:
     header, events = load_trace(args.trace)
-    engine = engine_for_trace(header, get_algorithm(header.algorithm))
+    if args.algorithm:
+        algorithm, _ = algorithm_from_command_line(args.algorithm)
+    else:
+        try:
+            algorithm = get_algorithm(header.algorithm)  # a file names built-in algorithms only
+        except ValueError as e:
+            raise InputError(
+                f"{args.trace}: {e}; to replay it with an algorithm of your own, pass --algorithm"
+            ) from None
+    engine = engine_for_trace(header, algorithm)
     replay(engine, events, str(args.trace))
     summary = RunSummary.of(engine)
     _print_summary(summary, args.json)
     return EXIT_FORMED if summary.outcome == "formed" else EXIT_NOT_FORMED
 
 
-def _cmd_random_robots(args: argparse.Namespace) -> int:
-    if args.count < 1 or args.width < 1 or args.height < 1:
-        raise InputError("--count, --width and --height must be at least 1")
-    if args.count > args.width * args.height:
-        raise InputError(f"--count {args.count} robots do not fit in a {args.width}×{args.height} box")
-    rng = random.Random(args.seed)
-    cells = [(x, y) for x in range(args.width) for y in range(args.height)]
-    for _ in range(1000):
-        points = sorted(rng.sample(cells, args.count))
-        if args.allow_unsolvable or unsolvable_axis(points) is None:
-            break
-    else:
-        raise InputError("could not draw a solvable start in this box; widen it or pass --allow-unsolvable")
-    text = robots_json(points)
-    if args.out:
-        write_atomic(args.out, text)
+def _emit(text: str, out: Path | None) -> None:
+    if out:
+        write_atomic(out, text)
     else:
         sys.stdout.write(text)
+
+
+def _cmd_random_robots(args: argparse.Namespace) -> int:
+    if args.out:
+        check_writable(args.out)
+    points = random_robots(
+        args.count, args.width, args.height, args.seed, allow_unsolvable=args.allow_unsolvable
+    )
+    _emit(robots_json(points), args.out)
+    return 0
+
+
+def _cmd_random_pattern(args: argparse.Namespace) -> int:
+    if args.out:
+        check_writable(args.out)
+    _emit(pattern_json(random_pattern(args.count, args.width, args.height, args.seed), args.name), args.out)
     return 0
 
 
@@ -130,12 +155,11 @@ def _cmd_check(args: argparse.Namespace) -> int:
     robots = load_robots(args.robots)
     pattern = load_pattern(args.pattern)
     check_sizes(robots, pattern, str(args.pattern))
-    algorithm = get_algorithm(args.algorithm)
+    algorithm, _ = algorithm_from_command_line(args.algorithm)
+    if args.counterexample:
+        check_writable(args.counterexample)
     points = [tuple(p) for p in robots.robots]
-    if args.flips == "all":
-        flips = all_flips(len(points))
-    else:
-        flips = [tuple(robots.y_up) if robots.y_up is not None else (True,) * len(points)]
+    flips = all_flips(len(points)) if args.flips == "all" else [tuple(robots.flips(args.seed))]
     result, y_up = check(
         algorithm,
         points,
@@ -189,9 +213,50 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     return serve(args)
 
 
+class _HelpFormatter(argparse.HelpFormatter):
+    """Every option's help ends with its default, when it has one worth showing."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        if "%(default)" in text or default in (None, False, argparse.SUPPRESS) or not action.option_strings:
+            return text
+        return f"{text} (default: %(default)s)"
+
+
+ALGORITHM_HELP = (
+    f"the algorithm: {', '.join(ALGORITHMS)}; apf-opaque-grid@R1,R2 for exactly these resolutions "
+    "(docs/ALGORITHM.md); or package.module:Name for your own"
+)
+SEMANTICS_HELP = "when a new light becomes visible: at the end of Compute, or Look+Compute atomic"
+
+
+def _add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str]) -> None:
+    p.add_argument("--scheduler", default="async", choices=list(schedulers), help="the adversary")
+    p.add_argument(
+        "--seed",
+        type=int,
+        default=1,
+        help="seed of the scheduler, and of the y-axis flips when the robots file gives none",
+    )
+    p.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help=ALGORITHM_HELP)
+    p.add_argument(
+        "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
+    )
+
+
+def _add_box_options(p: argparse.ArgumentParser, what: str) -> None:
+    p.add_argument("--count", type=int, required=True, help=f"number of {what}")
+    p.add_argument("--width", type=int, required=True, help="the box is x = 0 .. width-1")
+    p.add_argument("--height", type=int, required=True, help="the box is y = 0 .. height-1")
+    p.add_argument("--seed", type=int, default=1, help="the same seed draws the same points")
+    p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="apf-viz",
+        formatter_class=_HelpFormatter,
         description=(
             "Interactive workbench for asynchronous opaque luminous robots on the infinite grid. "
             "Without a command it serves the visualiser on a built-in demo."
@@ -203,94 +268,96 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
 
-    run = sub.add_parser("run", help="run an algorithm headless and report the outcome")
+    def command(name: str, text: str) -> argparse.ArgumentParser:
+        return sub.add_parser(name, help=text, description=text, formatter_class=_HelpFormatter)
+
+    run = command("run", "run an algorithm headless and report the outcome")
     run.add_argument(
         "--robots", required=True, type=Path, help='start file: {"robots": [[x, y], ...], "y_up": [...]}'
     )
     run.add_argument(
         "--pattern", required=True, type=Path, help='pattern file: {"name": ..., "points": [[x, y], ...]}'
     )
-    run.add_argument(
-        "--scheduler",
-        default="async",
-        choices=[s for s in SCHEDULERS if s != "manual"],
-        help="the adversary (default: async)",
-    )
-    run.add_argument(
-        "--seed", type=int, default=1, help="seed of the scheduler and of random y flips (default: 1)"
-    )
+    _add_run_options(run, [s for s in SCHEDULERS if s != "manual"])
     run.add_argument(
         "--max-events",
-        type=int,
+        type=_positive,
         default=DEFAULT_MAX_EVENTS,
-        help=f"stop with outcome 'limit' after this many events (default: {DEFAULT_MAX_EVENTS})",
-    )
-    run.add_argument(
-        "--algorithm",
-        default=DEFAULT_ALGORITHM,
-        help=f"one of {', '.join(ALGORITHMS)}, or module:Name (default: {DEFAULT_ALGORITHM})",
-    )
-    run.add_argument(
-        "--light-semantics",
-        default="compute",
-        choices=["compute", "lc-atomic"],
-        help="when a new light becomes visible: end of Compute (default) or Look+Compute atomic",
+        help="stop with outcome 'limit' after this many events",
     )
     run.add_argument(
         "--json",
         action="store_true",
         help="print one JSON object: outcome, final, moves, events, cycles, lights_used",
     )
-    run.add_argument("--trace", type=Path, help="write the run as a JSON Lines trace (atomically)")
+    run.add_argument("--trace", type=Path, help="write every event to this JSON Lines file (atomically)")
     run.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
     run.set_defaults(func=_cmd_run)
 
-    rep = sub.add_parser("replay", help="re-run a trace file exactly and check every event")
-    rep.add_argument("--trace", required=True, type=Path)
-    rep.add_argument("--json", action="store_true")
+    rep = command("replay", "re-run a trace file exactly and check every event")
+    rep.add_argument("--trace", required=True, type=Path, help="the trace file (JSON Lines)")
+    rep.add_argument(
+        "--algorithm",
+        help="replay with this algorithm instead of the one the trace names (the only way to replay a "
+        "trace of your own module:Name algorithm: a file never loads code)",
+    )
+    rep.add_argument("--json", action="store_true", help="print the outcome as one JSON object")
     rep.set_defaults(func=_cmd_replay)
 
-    rnd = sub.add_parser("random-robots", help="print a random (solvable) start as a robots file")
-    rnd.add_argument("--count", type=int, required=True)
-    rnd.add_argument("--width", type=int, required=True)
-    rnd.add_argument("--height", type=int, required=True)
-    rnd.add_argument("--seed", type=int, default=1)
-    rnd.add_argument("--out", type=Path, help="write to this file (atomically) instead of stdout")
+    rnd = command("random-robots", "print a random solvable start as a robots file")
+    _add_box_options(rnd, "robots")
     rnd.add_argument("--allow-unsolvable", action="store_true", help="do not redraw symmetric starts")
     rnd.set_defaults(func=_cmd_random_robots)
 
-    chk = sub.add_parser("check", help="explore every schedule of a small start (model checking)")
-    chk.add_argument("--robots", required=True, type=Path)
-    chk.add_argument("--pattern", required=True, type=Path)
-    chk.add_argument("--scheduler", default="async", choices=["async", "ssync", "fsync"])
+    rpat = command("random-pattern", "print a random pattern as a pattern file")
+    _add_box_options(rpat, "pattern points")
+    rpat.add_argument("--name", help="the pattern's name in the file")
+    rpat.set_defaults(func=_cmd_random_pattern)
+
+    chk = command("check", "explore every schedule of a small start (model checking)")
+    chk.add_argument("--robots", required=True, type=Path, help="start file (keep k ≤ 5)")
+    chk.add_argument("--pattern", required=True, type=Path, help="pattern file with one point per robot")
+    chk.add_argument(
+        "--scheduler", default="async", choices=["async", "ssync", "fsync"], help="the adversary explored"
+    )
     chk.add_argument(
         "--flips",
         default="file",
         choices=["all", "file"],
-        help="every assignment of y-axis flips, or the file's (default: file; none given = all up)",
+        help="every assignment of y-axis flips, or the file's (a file without y_up: random from --seed)",
     )
     chk.add_argument(
-        "--max-states", type=int, default=1_000_000, help="stop with verdict 'budget' beyond this"
+        "--seed", type=int, default=1, help="seed of the y-axis flips when the robots file gives none"
     )
-    chk.add_argument("--algorithm", default=DEFAULT_ALGORITHM)
-    chk.add_argument("--light-semantics", default="compute", choices=["compute", "lc-atomic"])
-    chk.add_argument("--json", action="store_true")
+    chk.add_argument(
+        "--max-states", type=_positive, default=1_000_000, help="stop with verdict 'budget' beyond this"
+    )
+    chk.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help=ALGORITHM_HELP)
+    chk.add_argument(
+        "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
+    )
+    chk.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
     chk.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
     chk.set_defaults(func=_cmd_check)
 
-    serve = sub.add_parser("serve", help="serve the visualiser (the default command)")
+    serve = command("serve", "serve the visualiser (the default command)")
     _add_serve_options(serve)
     serve.set_defaults(func=_cmd_serve)
     return parser
 
 
 def _add_serve_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--host", default="127.0.0.1", help="address to bind (default: 127.0.0.1)")
-    p.add_argument("--port", type=int, default=8080, help="port (default: 8080)")
+    p.add_argument(
+        "--host",
+        default="127.0.0.1",
+        help="address to bind; anyone who can reach it can drive the run and upload files (README, "
+        "'Who can reach the server')",
+    )
+    p.add_argument("--port", type=int, default=8080, help="port")
     p.add_argument("--robots", type=Path, help="start file (default: the built-in demo)")
     p.add_argument("--pattern", type=Path, help="pattern file (default: the built-in demo)")
-    p.add_argument("--trace", type=Path, help="replay this trace")
-    p.add_argument("--algorithm", default=None, help="algorithm name (default: the demo's)")
+    p.add_argument("--trace", type=Path, help="open this trace, to step through it")
+    _add_run_options(p, list(SCHEDULERS))
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -142,9 +142,10 @@ def test_every_decision_names_its_rule():
     assert all(r.split(":")[0] for r in rules)
 
 
-def test_a_single_robot_forms_a_single_point():
+def test_a_single_robot_is_a_single_point_formed_at_time_0():
     e, audit, rules = run([(4, 7)], pattern=[(0, 0)], scheduler="async")
     assert audit.ok, audit.problems
+    assert (audit.outcome, audit.events, audit.moves) == ("formed", 0, 0)
 
 
 def test_lines_of_the_default_pattern_helper():

@@ -78,7 +78,7 @@ def test_malformed_traces(write_json):
         "format": "apf-viz-trace",
         "version": 1,
         "robots": [[0, 0], [1, 0]],
-        "pattern": [[0, 0], [1, 0]],
+        "pattern": [[0, 0], [0, 1]],
         "scheduler": "async",
         "seed": 1,
         "algorithm": "stay",

@@ -94,7 +94,7 @@ def test_traces_pass_the_independent_checker(tmp_path, scheduler, seed):
 
 
 def test_fsync_swap_is_a_collision():
-    e = Engine([(0, 0), (1, 0)], [(0, 0), (1, 0)], Swap(), max_events=100)
+    e = Engine([(0, 0), (1, 0)], [(0, 0), (0, 1)], Swap(), max_events=100)
     advance(e, make_scheduler("fsync"), seed=1)
     assert e.outcome == "collision"
     moves = [ev for ev in e.history.events() if ev.phase == "move"]
@@ -103,7 +103,7 @@ def test_fsync_swap_is_a_collision():
 
 
 def test_moving_onto_a_robot_is_a_collision_and_nothing_is_merged():
-    e = Engine([(0, 0), (1, 0)], [(0, 0), (1, 0)], Swap(), max_events=100)
+    e = Engine([(0, 0), (1, 0)], [(0, 0), (0, 1)], Swap(), max_events=100)
     for _ in range(3):
         e.step([0])  # robot 0 moves right onto robot 1, which has not moved
     assert e.outcome == "collision"
@@ -140,7 +140,7 @@ def test_outcomes_formed_stuck_limit():
     )
     advance(stuck, make_scheduler("async"), 1)
     assert stuck.outcome == "stuck"
-    limit = Engine([(0, 0), (1, 0)], [(0, 0), (1, 0)], Swap(), max_events=2)
+    limit = Engine([(0, 0), (1, 0)], [(0, 0), (0, 1)], Swap(), max_events=2)
     limit.step([0])
     limit.step([1])
     assert limit.outcome == "limit"
@@ -148,10 +148,14 @@ def test_outcomes_formed_stuck_limit():
 
 def test_formed_up_to_translation_and_y_mirror():
     pattern = [(10, 10), (11, 10), (10, 11)]
-    assert Engine([(0, 0), (1, 0), (0, -1)], pattern, Stay()).outcome is None
+    assert Engine([(0, 0), (1, 0), (0, -2)], pattern, Stay()).outcome is None
     e = Engine([(0, 0), (1, 0), (0, -1)], pattern, Stay())
+    assert (e.outcome, e.state.events) == ("formed", 0)  # the start is the pattern, mirrored: formed at once
+    e = Engine([(0, 0), (1, 0), (0, -1)], pattern, CompactLeft())
+    assert (e.outcome, e.state.events) == ("formed", 0)  # whatever the algorithm would do
+    e = Engine([(0, 0), (2, 0), (0, -1)], pattern, CompactLeft())
     advance(e, make_scheduler("async"), 1)
-    assert e.outcome == "formed"
+    assert e.outcome == "formed" and e.state.moves > 0
     e = Engine([(0, 0), (1, 0), (1, 1)], pattern, Stay())
     advance(e, make_scheduler("async"), 1)
     assert e.outcome == "stuck"  # a mirror in x is not allowed: the robots agree on right
@@ -204,7 +208,7 @@ def test_a_repeated_view_is_not_recomputed():
             Counting.calls += 1
             return super().decide(view, pattern)
 
-    e = Engine([(0, 0), (5, 5)], [(0, 0), (5, 5)], Counting(), max_events=1_000)
+    e = Engine([(0, 0), (5, 5)], [(0, 0), (1, 0)], Counting(), max_events=1_000)
     for _ in range(30):
         e.step([0])  # robot 0 alone, nothing changes: one decision, then cache hits
         if e.finished:

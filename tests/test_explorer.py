@@ -63,7 +63,7 @@ def test_a_deadlock_is_found():
 
 
 def test_a_livelock_is_found_as_a_fair_lasso():
-    result = Explorer(Toggle(), [(0, 0), (2, 0)], [(0, 0), (2, 0)], [True, True]).run()
+    result = Explorer(Toggle(), [(0, 0), (2, 0)], [(0, 0), (0, 2)], [True, True]).run()
     assert result.verdict == "livelock" and result.loop_start is not None
     loop = result.schedule[result.loop_start :]
     assert {r for step in loop for r in step} == {0, 1}  # every robot acts in the loop

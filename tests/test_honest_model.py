@@ -31,11 +31,12 @@ class Spy:
 
 
 START = [(0, 0), (2, 1), (3, -2), (5, 0), (1, 4)]
+PATTERN = [(x, 0) for x in range(5)]  # not the start: a start that is the pattern is formed before any Look
 
 
 def _views_and_decisions(points, y_up):
     spy = Spy()
-    engine = Engine(points, START, spy, y_up=y_up)
+    engine = Engine(points, PATTERN, spy, y_up=y_up)
     out = []
     for r in range(len(points)):
         engine.step([r])  # Look
@@ -65,7 +66,7 @@ def test_the_algorithm_receives_nothing_but_a_snapshot_and_the_pattern():
         assert set(view._fields) == {"light", "robots"}
         assert all(type(s) is Seen and set(s._fields) == {"dx", "dy", "light"} for s in view.robots)
         assert all(isinstance(s.dx, int) and isinstance(s.dy, int) for s in view.robots)
-        assert pattern == tuple(START)
+        assert pattern == tuple(PATTERN)
         # The robot itself is the origin: it never appears in its own view.
         assert all((s.dx, s.dy) != (0, 0) for s in view.robots)
 
@@ -73,8 +74,8 @@ def test_the_algorithm_receives_nothing_but_a_snapshot_and_the_pattern():
 def test_view_order_carries_no_identity():
     """Renumbering the robots changes no view: robot 0 of A and robot 2 of B stand on the same point."""
     perm = [START[i] for i in (4, 2, 0, 3, 1)]
-    a = Engine(START, START, Spy())
-    b = Engine(perm, START, Spy())
+    a = Engine(START, PATTERN, Spy())
+    b = Engine(perm, PATTERN, Spy())
     assert a.look(0) == b.look(2)
     a.step([0])
     b.step([2])

@@ -10,6 +10,7 @@ from apf_viz.core.run import advance
 from apf_viz.core.schedulers import ManualScheduler, make_scheduler, starve_bound, step_rng
 
 START = [(x, (x * 7) % 5) for x in range(0, 24, 2)]
+PATTERN = [(x, 0) for x in range(len(START))]  # not the start: a start that is the pattern is formed at once
 AUTO = ["fsync", "ssync", "async", "round-robin", "stale-first"]
 
 
@@ -27,7 +28,7 @@ class Forever:
 
 @pytest.mark.parametrize("name", AUTO)
 def test_every_robot_gets_an_event_within_the_bound(name):
-    e = Engine(START, START, Forever(), max_events=100_000)
+    e = Engine(START, PATTERN, Forever(), max_events=100_000)
     bound = starve_bound(e)
     last = [0] * e.k
     sched = make_scheduler(name)
@@ -42,7 +43,7 @@ def test_every_robot_gets_an_event_within_the_bound(name):
 @pytest.mark.parametrize("name", AUTO)
 def test_same_seed_same_run_other_seed_other_run(name):
     def run(seed):
-        e = Engine(START, START, CompactLeft(), max_events=20_000)
+        e = Engine(START, PATTERN, CompactLeft(), max_events=20_000)
         advance(e, make_scheduler(name), seed)
         return [(s.record.robots, s.record.round) for s in e.history.steps]
 
@@ -52,7 +53,7 @@ def test_same_seed_same_run_other_seed_other_run(name):
 
 
 def test_fsync_rounds_are_all_look_then_all_compute_then_all_move():
-    e = Engine(START, START, CompactLeft(), max_events=20_000)
+    e = Engine(START, PATTERN, CompactLeft(), max_events=20_000)
     advance(e, make_scheduler("fsync"), 1, steps=9)
     for i, s in enumerate(e.history.steps):
         assert s.record.robots == tuple(range(e.k))
@@ -61,7 +62,7 @@ def test_fsync_rounds_are_all_look_then_all_compute_then_all_move():
 
 
 def test_ssync_rounds_are_atomic_cycles_of_a_subset():
-    e = Engine(START, START, CompactLeft(), max_events=20_000)
+    e = Engine(START, PATTERN, CompactLeft(), max_events=20_000)
     advance(e, make_scheduler("ssync"), 2, steps=30)
     subsets = set()
     for i in range(0, 30, 3):
@@ -73,14 +74,14 @@ def test_ssync_rounds_are_atomic_cycles_of_a_subset():
 
 
 def test_round_robin_runs_whole_cycles_in_index_order():
-    e = Engine(START, START, Forever(), max_events=20_000)
+    e = Engine(START, PATTERN, Forever(), max_events=20_000)
     advance(e, make_scheduler("round-robin"), 1, steps=3 * e.k)
     order = [s.record.robots[0] for s in e.history.steps]
     assert order == [r for r in range(e.k) for _ in range(3)]
 
 
 def test_stale_first_moves_the_oldest_snapshot_after_everyone_has_looked():
-    e = Engine(START, START, CompactLeft(), max_events=20_000)
+    e = Engine(START, PATTERN, CompactLeft(), max_events=20_000)
     sched = make_scheduler("stale-first")
     advance(e, sched, 1, steps=2 * e.k)
     assert all(e.next_event(r) == "move" for r in range(e.k))  # everyone looked and computed first
@@ -89,7 +90,7 @@ def test_stale_first_moves_the_oldest_snapshot_after_everyone_has_looked():
 
 
 def test_manual_scheduler_runs_the_picked_robot():
-    e = Engine(START, START, Forever())
+    e = Engine(START, PATTERN, Forever())
     manual = ManualScheduler()
     manual.pick(5)
     manual.pick(5)

@@ -1,38 +1,77 @@
-"""The algorithm registry: built-in algorithms by name, and ``module:attribute`` for your own."""
+"""The algorithm registry: built-in algorithms by name, and plug-ins the command line loads.
+
+A name that comes from a file or a browser (a trace header, an upload) is resolved by
+:func:`get_algorithm`, which never imports anything: it knows the built-in names, the
+``apf-opaque-grid@…`` resolution sets, and the plug-ins the person at the command line loaded. Only
+:func:`load_plugin`, called for a ``--algorithm module:Name`` typed on the command line, imports code.
+"""
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
 
 from apf_viz.algorithms.apf_opaque_grid import ApfOpaqueGrid
 from apf_viz.algorithms.examples import CompactLeft, Stay
 from apf_viz.core.algorithm import Algorithm
 
-ALGORITHMS: dict[str, Callable[[], Algorithm]] = {
-    "apf-opaque-grid": lambda: ApfOpaqueGrid.parse("apf-opaque-grid"),
-    "apf-opaque-grid-literal": lambda: ApfOpaqueGrid.parse("apf-opaque-grid-literal"),
-    "stay": Stay,
-    "compact-left": CompactLeft,
-}
+Factory = Callable[[], Algorithm]
+
+ALGORITHMS: Mapping[str, Factory] = MappingProxyType(
+    {
+        "apf-opaque-grid": lambda: ApfOpaqueGrid.parse("apf-opaque-grid"),
+        "apf-opaque-grid-literal": lambda: ApfOpaqueGrid.parse("apf-opaque-grid-literal"),
+        "stay": Stay,
+        "compact-left": CompactLeft,
+    }
+)
 
 DEFAULT_ALGORITHM = "apf-opaque-grid"
+_VARIANT_PREFIX = "apf-opaque-grid@"
 
 
-def get_algorithm(name: str) -> Algorithm:
-    """A registered algorithm, or ``package.module:Name`` (a class or factory taking no arguments)."""
+def get_algorithm(name: str, plugins: Mapping[str, Factory] | None = None) -> Algorithm:
+    """A built-in algorithm, a resolution set ``apf-opaque-grid@R1,R2``, or one of ``plugins`` (the
+    algorithms the command line loaded, by their spec and their name). Imports nothing: safe for names
+    read from files and browsers. Raises ``ValueError`` with a one-line message for any other name."""
     if name in ALGORITHMS:
         return ALGORITHMS[name]()
-    if name.startswith("apf-opaque-grid@"):
+    if name.startswith(_VARIANT_PREFIX):
         return ApfOpaqueGrid.parse(name)
-    if ":" in name:
-        module, _, attr = name.partition(":")
-        try:
-            factory = getattr(importlib.import_module(module), attr)
-        except (ImportError, AttributeError) as e:
-            raise ValueError(f"cannot load algorithm {name!r}: {e}") from None
-        algo = factory()
-        if not isinstance(algo, Algorithm):
-            raise ValueError(f"{name!r} is not an algorithm (needs name, lights and decide())")
-        return algo
-    raise ValueError(f"unknown algorithm {name!r}; choose one of {', '.join(ALGORITHMS)} or module:Name")
+    if plugins and name in plugins:
+        return plugins[name]()
+    loaded = f", or the plug-ins loaded: {', '.join(sorted(plugins))}" if plugins else ""
+    raise ValueError(
+        f"unknown algorithm {name[:80]!r}: not built in (choose one of {', '.join(ALGORITHMS)}, or "
+        f"{_VARIANT_PREFIX}R1,R2{loaded})"
+    )
+
+
+def load_plugin(spec: str) -> dict[str, Factory]:
+    """Import ``package.module:Name`` (a class or factory taking no arguments) for the command line.
+
+    Returns the plug-in under its spec and under the algorithm's own ``name``, for
+    :func:`get_algorithm`'s ``plugins``. Never call this with a name read from a file or a browser."""
+    module, sep, attr = spec.partition(":")
+    if not sep or not module or not attr:
+        raise ValueError(f"cannot load algorithm {spec!r}: a plug-in is named package.module:Name")
+    try:
+        factory = getattr(importlib.import_module(module), attr)
+    except (ImportError, AttributeError) as e:
+        raise ValueError(f"cannot load algorithm {spec!r}: {e}") from None
+    if not callable(factory):
+        raise ValueError(f"{spec!r} is not an algorithm class or factory")
+    algo = factory()
+    if not isinstance(algo, Algorithm):
+        raise ValueError(f"{spec!r} is not an algorithm (needs name, lights and decide())")
+    return {spec: factory, str(algo.name): factory}
+
+
+def algorithm_from_command_line(name: str) -> tuple[Algorithm, dict[str, Factory]]:
+    """What ``--algorithm`` names: a registry name, or a plug-in ``module:Name`` that is imported here.
+    Returns the algorithm and the plug-ins loaded (empty for a registry name)."""
+    if ":" in name and name not in ALGORITHMS and not name.startswith(_VARIANT_PREFIX):
+        plugins = load_plugin(name)
+        return get_algorithm(name, plugins), plugins
+    return get_algorithm(name), {}

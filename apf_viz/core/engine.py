@@ -26,7 +26,7 @@ import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
@@ -143,6 +143,9 @@ class Engine:
             raise EngineError("a run needs at least one robot")
         if len({tuple(p) for p in robots}) != k:
             raise EngineError("two robots start on the same point")
+        problem = coordinate_problem(robots, "robot") or coordinate_problem(pattern, "pattern point")
+        if problem:
+            raise EngineError(problem)
         self.k = k
         self.start: tuple[Point, ...] = tuple((int(x), int(y)) for x, y in robots)
         self.pattern: Pattern = tuple((int(x), int(y)) for x, y in pattern)
@@ -503,4 +506,7 @@ class Engine:
             last_act=np.zeros(k, dtype=np.int64),
             last_cycle_end=np.zeros(k, dtype=np.int64),
             lights_used={first},
+            # The pattern is already formed: nothing any robot does can form it sooner (docs/ALGORITHM.md,
+            # "A start that is the pattern").
+            outcome="formed" if matches_pattern(self.start, self.pattern) else None,
         )

@@ -16,7 +16,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
 
-from apf_viz.core.grid import Direction, Point
+from apf_viz.core.frames import random_y_up
+from apf_viz.core.grid import Direction, Point, coordinate_problem
 from apf_viz.core.history import Event
 
 TRACE_FORMAT = "apf-viz-trace"
@@ -31,7 +32,11 @@ class InputError(ValueError):
 GridPoint = Annotated[tuple[StrictInt, StrictInt], Field(description="[x, y] on the grid")]
 
 
-def _no_duplicates(points: Sequence[tuple[int, int]], what: str) -> None:
+def _check_points(points: Sequence[tuple[int, int]], what: str) -> None:
+    """Inside the supported coordinate range, and no two on one point."""
+    problem = coordinate_problem(points, what)
+    if problem:
+        raise ValueError(problem)
     seen: set[tuple[int, int]] = set()
     for p in points:
         if p in seen:
@@ -48,10 +53,15 @@ class RobotsFile(BaseModel):
 
     @model_validator(mode="after")
     def _check(self) -> RobotsFile:
-        _no_duplicates(self.robots, "robot")
+        _check_points(self.robots, "robot")
         if self.y_up is not None and len(self.y_up) != len(self.robots):
             raise ValueError(f"y_up has {len(self.y_up)} entries for {len(self.robots)} robots")
         return self
+
+    def flips(self, seed: int) -> list[bool]:
+        """The robots' y-axes: the file's ``y_up``, or, when it gives none, the adversary's random choice
+        from ``seed`` (the same in ``run``, ``check``, the visualiser and every upload)."""
+        return list(self.y_up) if self.y_up is not None else random_y_up(len(self.robots), seed)
 
 
 class PatternFile(BaseModel):
@@ -63,7 +73,7 @@ class PatternFile(BaseModel):
 
     @model_validator(mode="after")
     def _check(self) -> PatternFile:
-        _no_duplicates(self.points, "pattern point")
+        _check_points(self.points, "pattern point")
         return self
 
 
@@ -84,10 +94,14 @@ class TraceHeader(BaseModel):
 
     @model_validator(mode="after")
     def _check(self) -> TraceHeader:
-        _no_duplicates(self.robots, "robot")
-        _no_duplicates(self.pattern, "pattern point")
+        _check_points(self.robots, "robot")
+        _check_points(self.pattern, "pattern point")
         if self.y_up is not None and len(self.y_up) != len(self.robots):
             raise ValueError(f"y_up has {len(self.y_up)} entries for {len(self.robots)} robots")
+        if len(self.pattern) != len(self.robots):
+            raise ValueError(
+                f"the pattern has {len(self.pattern)} points but there are {len(self.robots)} robots"
+            )
         return self
 
 
@@ -176,6 +190,10 @@ def _parse_json(text: str, where: str) -> Any:
         return json.loads(text)
     except json.JSONDecodeError as e:
         raise InputError(f"{where}: not valid JSON ({e.msg} at line {e.lineno} column {e.colno})") from None
+    except RecursionError:
+        raise InputError(f"{where}: not valid JSON (nested too deeply)") from None
+    except ValueError as e:  # e.g. an integer of more than 4,300 digits
+        raise InputError(f"{where}: not valid JSON ({e})") from None
 
 
 def _validate(model: type[BaseModel], data: Any, where: str) -> Any:
@@ -233,6 +251,19 @@ def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "p
 
 
 # ---------------------------------------------------------------------------------------------- writing
+def check_writable(path: Path | str) -> None:
+    """Refuse, before any work is done, an output path that :func:`write_atomic` could not write: its
+    folder missing or read-only, or the path a folder. The message names the path as given."""
+    p = Path(path)
+    folder = p.parent
+    if p.is_dir():
+        raise InputError(f"{path}: is a directory, not a file")
+    if not folder.is_dir():
+        raise InputError(f"{path}: cannot write: folder {str(folder)!r} does not exist")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputError(f"{path}: cannot write: folder {str(folder)!r} is not writable")
+
+
 def write_atomic(path: Path | str, text: str) -> None:
     """Write the whole file or nothing: a temp file in the same folder, fsync, then rename over."""
     p = Path(path)

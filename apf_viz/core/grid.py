@@ -9,12 +9,41 @@ points (:func:`visible_from_naive`, kept as the test oracle).
 
 from __future__ import annotations
 
+import math
+from collections.abc import Iterable, Sequence
 from enum import Enum
 from math import gcd
 
 import numpy as np
 
 Point = tuple[int, int]
+
+COORD_LIMIT = 10**9
+"""The largest |x| or |y| a start, a pattern or a click may have (docs/ARCHITECTURE.md, *Coordinates*).
+
+The grid is infinite, but the engine keeps positions in int64. Inside this range every position,
+offset, gcd and sort key is exact with room to spare: offsets stay below 2^31 + (moves made), and a
+run would need about 4·10^18 moves to reach int64's limit."""
+
+
+def short_int(v: int) -> str:
+    """An integer for a one-line message: in full below 10^15, else its order of magnitude (never the
+    digits of a huge number, which Python even refuses to print beyond 4,300 of them)."""
+    if abs(v) < 10**15:
+        return str(v)
+    return f"{'-' if v < 0 else ''}~10^{math.floor(math.log10(abs(v)))}"
+
+
+def coordinate_problem(points: Iterable[Sequence[int]], what: str) -> str | None:
+    """A one-line description of the first point outside ±COORD_LIMIT (``what`` names the points, e.g.
+    "robot"), or None when all are inside."""
+    for i, (x, y) in enumerate(points):
+        if abs(x) > COORD_LIMIT or abs(y) > COORD_LIMIT:
+            return (
+                f"{what} {i} at ({short_int(x)}, {short_int(y)}) is outside the supported range: "
+                f"|x| and |y| must be at most {COORD_LIMIT:,}"
+            )
+    return None
 
 
 class Direction(Enum):
@@ -44,7 +73,7 @@ _DELTAS: dict[Direction, Point] = {
     Direction.DOWN: (0, -1),
 }
 
-# Above this offset span the packed sort key could overflow int64; a two-key sort is used instead.
+# Below this offset span one packed int64 sort key per robot is exact; above it, a three-key sort.
 _PACKED_SPAN_LIMIT = 1 << 20
 
 
@@ -71,21 +100,28 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     dx, dy = offsets[:, 0], offsets[:, 1]
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
+    ddx, ddy = dx // g, dy // g  # the primitive direction of each robot
     span = int(np.abs(offsets).max()) + 1
     if span < _PACKED_SPAN_LIMIT:
-        key = (dx // g) * (2 * span + 1) + dy // g  # unique per primitive direction
+        # One packed key (direction, then distance g) sorts fastest; below this span it cannot overflow:
+        # |key| < (2·span + 1)², |packed| < (2·span + 1)² · span + span < 2^63.
+        key = ddx * (2 * span + 1) + ddy  # unique per primitive direction
         packed = key * span + g  # by direction, nearest first
         packed[i] = np.iinfo(np.int64).min
         order = np.argsort(packed, kind="stable")
+        sorted_key = key[order]
+        first = np.empty(k, dtype=bool)
+        np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
     else:
-        key = (dx // g) * (1 << 31) + (dy // g)
-        key[i] = np.iinfo(np.int64).min
-        order = np.lexsort((g, key))
-    sorted_key = key[order]
-    first = np.empty(k, dtype=bool)
+        # Far apart: sort by the direction's two components and the distance as three keys, so no sum or
+        # product of coordinates is formed (exact for every offset int64 holds).
+        ddx[i] = np.iinfo(np.int64).min  # the observer sorts first
+        order = np.lexsort((g, ddy, ddx))
+        sx, sy = ddx[order], ddy[order]
+        first = np.empty(k, dtype=bool)
+        first[2:] = (sx[2:] != sx[1:-1]) | (sy[2:] != sy[1:-1])
     first[0] = False  # the observer
     first[1] = True
-    np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
     return order[first]
 
 

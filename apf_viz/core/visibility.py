@@ -220,16 +220,28 @@ class Views:
         insort(self._ids[r], j)
         self._cached[r] = None
 
-    @staticmethod
     def _walk(
-        start: Sequence[int], d: Direction2, g: int, lo: list[int], hi: list[int], occupied: dict[Point, int]
+        self,
+        start: Sequence[int],
+        d: Direction2,
+        g: int,
+        lo: list[int],
+        hi: list[int],
+        occupied: dict[Point, int],
     ) -> tuple[int, int] | None:
-        """The nearest robot along direction d from ``start`` beyond distance g, as (distance, robot)."""
+        """The nearest robot along direction d from ``start`` beyond distance g, as (distance, robot).
+
+        Walks the lattice points while that is shorter than a pass over the k robots; a long way across
+        a sparse box (robots far apart) is one vectorised pass instead, so a move never costs more than
+        O(k) per observer whatever the coordinates."""
         ddx, ddy = d
         t = g + 1
         x, y = start[0] + t * ddx, start[1] + t * ddy
         lox, loy = lo
         hix, hiy = hi
+        left = min(_steps_inside(x, lox, hix, ddx), _steps_inside(y, loy, hiy, ddy))
+        if left > len(occupied) + 16:
+            return self._nearest_along(start, d, g, occupied)
         while lox <= x <= hix and loy <= y <= hiy:
             j = occupied.get((x, y))
             if j is not None:
@@ -238,6 +250,33 @@ class Views:
             y += ddy
             t += 1
         return None
+
+    def _nearest_along(
+        self, start: Sequence[int], d: Direction2, g: int, occupied: dict[Point, int]
+    ) -> tuple[int, int] | None:
+        """:meth:`_walk` as one pass over the robots: those whose primitive direction from ``start`` is d,
+        beyond distance g, and that stand where ``occupied`` says (mid-way through simultaneous moves a
+        mover's new point is not occupied yet). Gcds and quotients only: no product of coordinates, so
+        nothing can overflow."""
+        offsets = self._P - np.array(start, dtype=np.int64)
+        ox, oy = offsets[:, 0], offsets[:, 1]
+        dist = np.gcd(ox, oy)
+        dist[dist == 0] = 1  # the observer itself: direction (0, 0), never d
+        candidates = np.flatnonzero((ox // dist == d[0]) & (oy // dist == d[1]) & (dist > g))
+        points = self.points
+        for j in candidates[np.argsort(dist[candidates], kind="stable")].tolist():
+            if occupied.get(points[j]) == j:
+                return int(dist[j]), j
+        return None
+
+
+def _steps_inside(c: int, lo: int, hi: int, step: int) -> int:
+    """How many more points of the walk c, c + step, ... stay within [lo, hi] on one axis."""
+    if step > 0:
+        return (hi - c) // step + 1
+    if step < 0:
+        return (c - lo) // -step + 1
+    return 1 << 62 if lo <= c <= hi else 0
 
 
 def _directions(observers: list[int], here: np.ndarray, px: int, py: int):

@@ -15,15 +15,15 @@ from pathlib import Path
 
 import viser
 
-from apf_viz.core.formats import InputError, load_pattern, load_robots, load_trace
-from apf_viz.ui.panels import DEMO_DIR, Panels
+from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
+from apf_viz.core.formats import check_sizes, load_pattern, load_robots, load_trace
+from apf_viz.demos import DEMO_PATTERN, DEMO_START
+from apf_viz.ui.panels import Panels
 from apf_viz.ui.scene import SceneRenderer, cell_of_ray
 from apf_viz.ui.session import Session
 
 FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
-DEMO_START = DEMO_DIR / "starts" / "demo-10.json"
-DEMO_PATTERN = DEMO_DIR / "heart.json"
 
 
 def free_port(host: str = "127.0.0.1") -> int:
@@ -141,22 +141,26 @@ class App:
         return b[0] < f[0] - 2 or b[1] < f[1] - 2 or b[2] > f[2] + 2 or b[3] > f[3] + 2
 
 
-def demo_session(algorithm: str = "apf-opaque-grid") -> Session:
+def demo_session(**options) -> Session:
+    """The built-in demo: a heart from 10 robots. ``options`` go to :class:`Session`."""
     robots = load_robots(DEMO_START)
     pattern = load_pattern(DEMO_PATTERN)
+    options.setdefault("seed", 1)
     return Session(
         [tuple(p) for p in robots.robots],
         [tuple(p) for p in pattern.points],
-        y_up=robots.y_up,
-        algorithm=algorithm,
-        seed=1,
+        y_up=robots.flips(options["seed"]),
+        **options,
     )
 
 
 def session_from_args(args: argparse.Namespace) -> Session:
-    algorithm = args.algorithm or "apf-opaque-grid"
+    """The session ``apf-viz serve`` starts with. ``--algorithm`` may load a plug-in (the command line is
+    the one place allowed to); a trace then names only built-ins or that plug-in."""
+    algorithm, plugins = algorithm_from_command_line(args.algorithm or DEFAULT_ALGORITHM)
+    options = {"algorithm": algorithm.name, "scheduler": args.scheduler, "seed": args.seed}
     if args.trace:
-        session = demo_session(algorithm)
+        session = demo_session(**options, plugins=plugins)
         path = Path(args.trace)
         header, _ = load_trace(path)  # validates the file with a one-line error before the UI starts
         session.load_trace(path.name, path.read_bytes())
@@ -164,16 +168,14 @@ def session_from_args(args: argparse.Namespace) -> Session:
         return session
     robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
     pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)
-    if len(robots.robots) != len(pattern.points):
-        raise InputError(
-            f"{args.pattern or DEMO_PATTERN}: the pattern has {len(pattern.points)} points but there are "
-            f"{len(robots.robots)} robots"
-        )
+    check_sizes(robots, pattern, str(args.pattern or DEMO_PATTERN))
     return Session(
         [tuple(p) for p in robots.robots],
         [tuple(p) for p in pattern.points],
-        y_up=robots.y_up,
-        algorithm=algorithm,
+        y_up=robots.flips(args.seed),
+        light_semantics=args.light_semantics,
+        plugins=plugins,
+        **options,
     )
 
 

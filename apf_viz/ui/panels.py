@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 import viser
 import viser.uplot
 
 from apf_viz.core.formats import InputError
+from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.scene import LIGHT_COLORS
@@ -24,12 +24,6 @@ from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
-DEMO_DIR = Path(__file__).resolve().parent.parent.parent / "demo_patterns"
-
-
-def demo_files(sub: str = "") -> dict[str, Path]:
-    folder = DEMO_DIR / sub if sub else DEMO_DIR
-    return {p.stem: p for p in sorted(folder.glob("*.json"))}
 
 
 class Panels:
@@ -123,7 +117,7 @@ class Panels:
             try:
                 fn(event)
             except (InputError, ValueError) as err:
-                self.notify("Not loaded", str(err), True)
+                self.notify("Refused", str(err), True)
             self.changed()
 
         return wrapped
@@ -143,44 +137,49 @@ class Panels:
             s.reset()
         self.changed()
 
+    # Values from a browser are checked by the session (a page may send any value over its websocket).
     def _set_speed(self, event) -> None:
         if event.client is not None:
-            self.session.speed = float(self.speed.value)
+            self._guard(lambda e: self.session.set_speed(self.speed.value))(event)
 
     def _on_timeline(self, event) -> None:
         if event.client is not None:
-            self.session.playing = False
-            self.session.seek(int(self.timeline.value))
-            self.changed()
+            self._guard(lambda e: self.session.seek_from_browser(self.timeline.value))(event)
 
     def _on_scheduler(self, event) -> None:
         if event.client is not None:
-            self.session.set_scheduler(self.scheduler.value)
-            self.changed()
+            self._guard(lambda e: self.session.set_scheduler(self.scheduler.value))(event)
 
     def _on_seed(self, event) -> None:
         if event.client is not None:
-            self.session.set_seed(int(self.seed.value))
+            self._guard(lambda e: self.session.set_seed(self.seed.value))(event)
 
     def _on_mode(self, event) -> None:
         if event.client is None:
             return
+        mode = MODES.get(self.mode.value)
         # A refused switch queues its reason as a session message: every browser is told once.
-        if self.session.set_mode(MODES[self.mode.value]):  # type: ignore[arg-type]
+        if mode is None or self.session.set_mode(mode):  # type: ignore[arg-type]
             self.mode.value = MODE_LABELS[self.session.mode]
         self.changed()
 
     def _on_demo_pattern(self, event) -> None:
-        if event.client is None or self.demo.value == "—":
-            return
-        path = demo_files()[self.demo.value]
-        self._guard(lambda e: self.session.load_pattern(path.name, path.read_bytes()))(event)
+        if event.client is not None and self.demo.value != "—":
+            self._guard(lambda e: self._load_demo("", self.demo.value, self.session.load_pattern))(event)
 
     def _on_demo_start(self, event) -> None:
-        if event.client is None or self.demo_start.value == "—":
-            return
-        path = demo_files("starts")[self.demo_start.value]
-        self._guard(lambda e: self.session.load_robots(path.name, path.read_bytes()))(event)
+        if event.client is not None and self.demo_start.value != "—":
+            self._guard(lambda e: self._load_demo("starts", self.demo_start.value, self.session.load_robots))(
+                event
+            )
+
+    @staticmethod
+    def _load_demo(folder: str, name: str, load: Callable[[str, bytes], None]) -> None:
+        """A dropdown's value names a file only through the list of demo files: never a path."""
+        path = demo_files(folder).get(name)
+        if path is None:
+            raise InputError(f"no demo called {name[:80]!r}")
+        load(path.name, path.read_bytes())
 
     def _uploader(self, loader: Callable[[str, bytes], None]) -> Callable:
         def on_upload(event) -> None:

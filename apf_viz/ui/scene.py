@@ -13,6 +13,7 @@ compiles its shader again. docs/PERFORMANCE.md has the measurements.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Literal
 
@@ -486,4 +487,7 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     t = -oz / dz
     if t < 0:
         return None
-    return (round(ox + t * dx), round(oy + t * dy))
+    x, y = ox + t * dx, oy + t * dy
+    if not (math.isfinite(x) and math.isfinite(y)):
+        return None  # a browser may send any ray
+    return (round(x), round(y))

@@ -7,14 +7,14 @@ Every call is serialised by one lock, so all connected browsers drive the same r
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import repeat
 from typing import Literal, NamedTuple
 
 import numpy as np
 
-from apf_viz.algorithms import get_algorithm
+from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.algorithms.apf_opaque_grid import embedded_targets
 from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.formats import (
@@ -29,7 +29,8 @@ from apf_viz.core.formats import (
     trace_text,
 )
 from apf_viz.core.frames import move_to_global, random_y_up, to_local
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import COORD_LIMIT, Point, short_int
+from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import engine_for_trace, replay, trace_header
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
@@ -45,6 +46,7 @@ SCHEDULER_LABELS = {
     "Manual": "manual",
 }
 MAX_UPLOAD_BYTES = 2_000_000
+MAX_SPEED = 500.0  # steps per second: the Speed slider's top
 
 
 _PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
@@ -104,8 +106,11 @@ class Session:
         seed: int = 1,
         light_semantics: str = "compute",
         max_events: int = 5_000_000,
+        plugins: Mapping[str, Factory] | None = None,
     ) -> None:
         self.lock = threading.RLock()
+        # The only algorithms a name from a trace may choose: built-ins and what the command line loaded.
+        self.plugins: Mapping[str, Factory] = dict(plugins or {})
         self.algorithm_name = algorithm
         self.scheduler_name = scheduler
         self.seed = seed
@@ -128,7 +133,7 @@ class Session:
         self.engine = Engine(
             self.robots,
             self.pattern,
-            get_algorithm(self.algorithm_name),
+            get_algorithm(self.algorithm_name, self.plugins),
             y_up=self.y_up,
             light_semantics=self.light_semantics,  # type: ignore[arg-type]
             max_events=self.max_events,
@@ -171,14 +176,32 @@ class Session:
         with self.lock:
             self.engine.seek(max(0, min(step, self.engine.history.length)))
 
+    def seek_from_browser(self, step: float) -> None:
+        """The Timeline slider: stop playing and go to that step (any number is clamped; NaN refused)."""
+        if not isinstance(step, int | float) or step != step:
+            raise InputError(f"timeline position {step!r} is not a number")
+        with self.lock:
+            self.playing = False
+            self.seek(int(min(max(step, 0), self.engine.history.length)))
+
     def set_scheduler(self, label_or_name: str) -> None:
         with self.lock:
             self.scheduler_name = SCHEDULER_LABELS.get(label_or_name, label_or_name)
             make_scheduler(self.scheduler_name)  # validates the name
 
-    def set_seed(self, seed: int) -> None:
+    def set_seed(self, seed: float) -> None:
+        """A seed typed in the browser: a whole number in 0 .. 2^63 − 1, anything else is refused."""
+        if not (isinstance(seed, int | float) and float(seed).is_integer() and 0 <= seed < 2**63):
+            raise InputError(f"seed {seed!r}: a seed is a whole number from 0 to 2^63 − 1")
         with self.lock:
             self.seed = int(seed)
+
+    def set_speed(self, speed: float) -> None:
+        """Steps per second while playing, clamped to 1 .. MAX_SPEED (a browser may send anything)."""
+        if not isinstance(speed, int | float) or speed != speed:  # NaN
+            raise InputError(f"speed {speed!r} is not a number")
+        with self.lock:
+            self.speed = float(min(max(speed, 1.0), MAX_SPEED))
 
     # ------------------------------------------------------------------ clicks
     def robot_at(self, cell: Point) -> int | None:
@@ -188,6 +211,13 @@ class Session:
     def click(self, cell: Point) -> str:
         """A click on a grid cell, interpreted by the current mode. Returns what happened."""
         with self.lock:
+            if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
+                message = (
+                    f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
+                    f"(|x|, |y| ≤ {COORD_LIMIT:,})"
+                )
+                self.messages.append(message)
+                return message
             if self.mode == "edit-pattern":
                 return self._toggle(self.draft_pattern, cell, "target")
             if self.mode == "edit-robots":
@@ -252,7 +282,7 @@ class Session:
                 f"{len(self.draft_robots)} robots"
             )
         axis = unsolvable_axis(self.draft_robots)
-        if axis is not None:
+        if axis is not None and not matches_pattern(self.draft_robots, self.draft_pattern):
             return (
                 f"unsolvable start: the robots are mirror-symmetric about {describe_axis(axis)}, "
                 "a horizontal line through no robot (Theorem 1); move or add a robot to break the symmetry"
@@ -287,7 +317,7 @@ class Session:
         parsed = self._parse(filename, content, parse_robots)
         assert isinstance(parsed, RobotsFile)
         points = [tuple(p) for p in parsed.robots]
-        y_up = parsed.y_up if parsed.y_up is not None else [True] * len(points)
+        y_up = parsed.flips(self.seed)  # the same rule as every other way in (RobotsFile.flips)
         with self.lock:
             self.draft_robots, self.draft_y_up = points, list(y_up)
             self.draft_pattern = list(self.pattern)
@@ -304,9 +334,11 @@ class Session:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
         text = self._decode(filename, content)
         header, events = parse_trace(text, filename)
-        engine = engine_for_trace(
-            header, get_algorithm(header.algorithm), max(self.max_events, len(events) + 1)
-        )
+        try:  # a file names built-in algorithms (or the command line's plug-ins) only: it never loads code
+            algorithm = get_algorithm(header.algorithm, self.plugins)
+        except ValueError as e:
+            raise InputError(f"{filename}: {e}") from None
+        engine = engine_for_trace(header, algorithm, max(self.max_events, len(events) + 1))
         replay(engine, events, filename)
         with self.lock:
             self.playing = False
