@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import subprocess
 import sys
@@ -243,3 +244,184 @@ def test_help_documents_every_command():
 def test_input_error_is_a_value_error():
     assert issubclass(InputError, ValueError)
     assert Path  # keeps the import used in type hints
+
+
+# ---------------------------------------------------------------------------------------------- hardening
+def one_line_error(proc: subprocess.CompletedProcess, *parts: str) -> None:
+    assert proc.returncode == 2, (proc.returncode, proc.stderr)
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in proc.stderr, proc.stderr
+    for part in parts:
+        assert part in lines[0], (part, lines[0])
+
+
+def test_coordinates_beyond_the_range_are_one_line_errors_in_run_and_replay(write_json):
+    robots = write_json("r.json", '{"robots": [[0, 0], [100000000000000000000000, 1]]}')
+    pattern = write_json("p.json", {"points": [[0, 0], [1, 0]]})
+    one_line_error(
+        run_cli("run", "--robots", str(robots), "--pattern", str(pattern)),
+        str(robots),
+        "robot 1 at (~10^23, 1)",
+        "1,000,000,000,000",
+    )
+    header = {
+        "format": "apf-viz-trace",
+        "version": 1,
+        "robots": [[0, 0], [0, 2**63 - 1]],
+        "pattern": [[0, 0], [1, 0]],
+        "scheduler": "async",
+        "algorithm": "stay",
+    }
+    trace = write_json("t.jsonl", json.dumps(header) + "\n")
+    one_line_error(run_cli("replay", "--trace", str(trace)), str(trace), "robot 1 at (0, ~10^18)")
+
+
+def test_replay_refuses_a_pattern_of_the_wrong_size(write_json):
+    header = {
+        "format": "apf-viz-trace",
+        "version": 1,
+        "robots": [[0, 0], [1, 0], [2, 2]],
+        "pattern": [[0, 0], [1, 0]],
+        "scheduler": "async",
+        "algorithm": "stay",
+    }
+    trace = write_json("t.jsonl", json.dumps(header) + "\n")
+    one_line_error(
+        run_cli("replay", "--trace", str(trace)), str(trace), "the pattern has 2 points but there are 3 robots"
+    )
+
+
+@pytest.mark.parametrize("value", ["0", "-5", "many"])
+def test_event_and_state_limits_must_be_positive(write_json, value):
+    robots = write_json("r.json", GOOD_ROBOTS)
+    pattern = write_json("p.json", GOOD_PATTERN)
+    one_line_error(
+        run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--max-events", value),
+        "--max-events",
+    )
+    one_line_error(
+        run_cli("check", "--robots", str(robots), "--pattern", str(pattern), "--max-states", value),
+        "--max-states",
+    )
+
+
+def test_a_bad_output_path_is_refused_before_any_work(write_json, tmp_path):
+    robots = write_json("r.json", GOOD_ROBOTS)
+    pattern = write_json("p.json", GOOD_PATTERN)
+    bad = tmp_path / "no-such-folder" / "run.jsonl"
+    proc = run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--trace", str(bad))
+    one_line_error(proc, str(bad), "does not exist")
+    assert proc.stdout == ""  # no run happened: its summary was never printed
+    assert ".tmp" not in proc.stderr  # names the user's path, not a temporary file
+    one_line_error(
+        run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--trace", str(tmp_path)),
+        str(tmp_path),
+        "is a directory",
+    )
+    one_line_error(
+        run_cli("random-robots", "--count", "3", "--width", "5", "--height", "5", "--out", str(bad)), str(bad)
+    )
+    one_line_error(
+        run_cli("check", "--robots", str(robots), "--pattern", str(pattern), "--counterexample", str(bad)),
+        str(bad),
+    )
+
+
+def test_a_start_that_is_the_pattern_is_formed_at_time_0_even_when_symmetric(write_json):
+    # Mirror-symmetric about y = 0.5, a line through no robot: Theorem 1 would call it unsolvable.
+    robots = write_json("r.json", {"robots": [[0, 0], [0, 1], [2, 0], [2, 1]]})
+    pattern = write_json("p.json", {"points": [[5, 5], [5, 6], [7, 5], [7, 6]]})
+    proc = run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--json")
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout)
+    assert (out["outcome"], out["moves"], out["events"]) == ("formed", 0, 0)
+    check = run_cli("check", "--robots", str(robots), "--pattern", str(pattern), "--json", "--flips", "all")
+    assert check.returncode == 0 and json.loads(check.stdout)["verdict"] == "verified", check.stderr
+    other = write_json("q.json", {"points": [[0, 0], [1, 0], [2, 0], [3, 0]]})
+    assert run_cli("run", "--robots", str(robots), "--pattern", str(other)).returncode == 3  # still unsolvable
+
+
+def test_random_robots_in_a_huge_box_builds_only_the_drawn_cells():
+    """Today every cell of the box was built first (4.6 GB for 100,000 × 100,000): run it with 300 MB of
+    address space beyond what the interpreter has at start, so building the box fails loudly."""
+    code = (
+        "import resource, sys\n"
+        "from apf_viz.cli import main\n"
+        "import apf_viz.core.random_configs, apf_viz.core.symmetry\n"
+        "soft, hard = resource.getrlimit(resource.RLIMIT_AS)\n"
+        "used = int(open('/proc/self/statm').read().split()[0]) * resource.getpagesize()\n"
+        "resource.setrlimit(resource.RLIMIT_AS, (used + 300 * 2**20, hard))\n"
+        "sys.exit(main(['random-robots', '--count', '3', '--width', '100000', '--height', '100000']))\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr[-500:]
+    points = json.loads(proc.stdout)["robots"]
+    assert len(points) == 3 and all(0 <= x < 100_000 and 0 <= y < 100_000 for x, y in points)
+    one_line_error(
+        run_cli("random-robots", "--count", "3", "--width", str(10**13), "--height", "5"), "--width"
+    )
+    one_line_error(run_cli("random-robots", "--count", "0", "--width", "5", "--height", "5"), "--count")
+
+
+def test_random_pattern(tmp_path):
+    out = tmp_path / "p.json"
+    args = ["random-pattern", "--count", "7", "--width", "4", "--height", "4", "--seed", "3", "--name", "r7"]
+    assert main([*args, "--out", str(out)]) == 0
+    data = json.loads(out.read_text())
+    assert data["name"] == "r7" and len({tuple(p) for p in data["points"]}) == 7
+    assert json.loads(run_cli(*args).stdout) == data  # the same seed draws the same pattern
+    one_line_error(run_cli("random-pattern", "--count", "17", "--width", "4", "--height", "4"), "do not fit")
+
+
+def test_every_option_of_every_command_has_help_and_shows_its_default(monkeypatch):
+    from apf_viz.cli import build_parser
+
+    monkeypatch.setenv("COLUMNS", "400")  # no line wrapping inside a default
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    assert {"run", "replay", "random-robots", "random-pattern", "check", "serve"} <= set(commands)
+    for name, sub in commands.items():
+        text = sub.format_help()
+        for action in sub._actions:
+            if not action.option_strings or action.dest == "help":
+                continue
+            assert action.help, f"{name} {action.option_strings[0]} has no help"
+            if action.default not in (None, False):
+                flag = action.option_strings[0]
+                after = " ".join(text.split(flag, 2)[-1].split())
+                assert f"(default: {action.default})" in after, f"{name} {flag} hides its default"
+    serve = commands["serve"].format_help()
+    for word in ("--scheduler", "--seed", "apf-opaque-grid-literal", "compact-left", "--algorithm"):
+        assert word in serve
+
+
+def test_a_robots_file_without_y_up_gets_the_same_flips_everywhere(write_json, tmp_path):
+    from apf_viz.core.frames import random_y_up
+    from apf_viz.ui.app import session_from_args
+    from apf_viz.ui.session import Session
+
+    start = [[0, 0], [3, 0], [5, 1], [2, 2], [6, 2], [1, 4], [4, 5]]
+    robots = write_json("r.json", {"robots": start})
+    pattern = write_json("p.json", {"points": [[x, 0] for x in range(7)]})
+    seed = 11
+    expected = random_y_up(7, seed)
+    assert len(set(expected)) == 2  # a real mixture, so "all up" would differ
+    trace = tmp_path / "t.jsonl"
+    run = ["run", "--robots", str(robots), "--pattern", str(pattern), "--seed", str(seed)]
+    assert run_cli(*run, "--trace", str(trace), "--max-events", "10").returncode in (0, 1)
+    assert load_trace(trace)[0].y_up == expected
+    check = run_cli("check", *run[1:], "--json", "--max-states", "10")
+    assert json.loads(check.stdout)["y_up"] == expected, check.stderr
+    args = build_serve_args(robots, pattern, seed)
+    assert session_from_args(args).y_up == expected
+    session = Session([(0, y) for y in range(7)], [(x, 0) for x in range(7)], seed=seed)
+    session.load_robots("r.json", robots.read_bytes())  # an upload (a demo start loads the same way)
+    assert session.mode == "run" and session.y_up == expected
+
+
+def build_serve_args(robots, pattern, seed) -> argparse.Namespace:
+    from apf_viz.cli import build_parser
+
+    return build_parser().parse_args(
+        ["serve", "--robots", str(robots), "--pattern", str(pattern), "--seed", str(seed)]
+    )

@@ -115,3 +115,23 @@ def test_grid_density_follows_the_width_of_the_run():
         assert all(s * VIEW_PX / width < GRID_SECTION_PX for s in smaller)
         if step < steps[-1]:
             assert step * VIEW_PX / width >= GRID_SECTION_PX and width / step <= VIEW_PX / GRID_SECTION_PX
+
+
+def test_a_run_at_the_edge_of_the_grid_is_drawn_exactly_around_a_nearby_origin(renderer):
+    from apf_viz.core.grid import COORD_LIMIT
+
+    far = COORD_LIMIT - 10  # float32 alone would round these to multiples of 65,536
+    start = [(far, -far), (far + 2, -far + 1), (far + 3, -far + 3)]
+    s = Session(start, [(0, 0), (1, 0), (2, 0)], y_up=[True, False, True])
+    s.selected = 0
+    renderer.render(s.view())
+    ox, oy = renderer.origin
+    assert abs(ox - far) < 10 and abs(oy + far) < 10
+    drawn = np.asarray(renderer._handles["/robots"].batched_positions)[:, :2]
+    assert drawn.tolist() == [[x - ox, y - oy] for x, y in start]  # exact, not rounded
+    rays = np.asarray(renderer._handles["/rays"].points)[:, :, :2]
+    assert {tuple(map(float, p)) for p in rays.reshape(-1, 2)} <= {(x - ox, y - oy) for x, y in start}
+    # A click ray straight down onto a robot's drawn position names that robot's grid cell.
+    x, y = renderer.to_scene(start[1])
+    assert renderer.cell_of_ray((x, y, 50.0), (0.0, 0.0, -1.0)) == start[1]
+    assert renderer.cell_of_ray((x, y, 50.0), (float("nan"), 0.0, -1.0)) is None

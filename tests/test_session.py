@@ -181,3 +181,19 @@ def test_view_shows_line_K_leader_frame_targets_and_stats():
 def test_demo_session_is_the_built_in_demo():
     s = demo_session()
     assert s.engine.k == 10 and len(s.pattern) == 10
+
+
+def test_a_start_that_is_the_pattern_is_formed_at_once_even_when_symmetric():
+    symmetric = [(0, 0), (0, 1), (2, 0), (2, 1)]  # mirror-symmetric about y = 0.5 (Theorem 1)
+    s = Session(symmetric, [(5, 6), (5, 5), (7, 6), (7, 5)], y_up=[True] * 4)
+    assert s.view().outcome == "formed" and not s.step()
+    s = Session(START, PATTERN, y_up=[True] * 4)
+    s.set_mode("edit-robots")
+    s.draft_robots, s.draft_y_up = list(symmetric), [True] * 4
+    s.set_mode("edit-pattern")
+    s.draft_pattern = [(1, 1), (1, 2), (3, 1), (3, 2)]
+    assert s.set_mode("run") is None  # not refused as unsolvable: it is already formed
+    assert s.view().outcome == "formed" and s.view().moves == 0
+    s.set_mode("edit-pattern")
+    s.draft_pattern = [(0, 0), (1, 0), (2, 0), (3, 0)]
+    assert "unsolvable" in s.set_mode("run")

@@ -89,7 +89,7 @@ def screen_of(app: App, page, cell: tuple[int, int]) -> tuple[float, float]:
     r = np.cross(f, [0.0, 0.0, 1.0])
     r /= np.linalg.norm(r)
     u = np.cross(r, f)
-    d = np.array([cell[0], cell[1], 0.0]) - p
+    d = np.array([*app.renderer.to_scene(cell), 0.0]) - p
     box = page.locator("canvas").first.bounding_box()
     w, h = box["width"], box["height"]
     t = np.tan(fov / 2)

@@ -62,7 +62,10 @@ def load_plugin(spec: str) -> dict[str, Factory]:
         raise ValueError(f"cannot load algorithm {spec!r}: {e}") from None
     if not callable(factory):
         raise ValueError(f"{spec!r} is not an algorithm class or factory")
-    algo = factory()
+    try:
+        algo = factory()
+    except Exception as e:  # the plug-in's own constructor failed: say so in one line
+        raise ValueError(f"cannot load algorithm {spec!r}: {type(e).__name__}: {e}") from None
     if not isinstance(algo, Algorithm):
         raise ValueError(f"{spec!r} is not an algorithm (needs name, lights and decide())")
     return {spec: factory, str(algo.name): factory}

@@ -18,11 +18,11 @@ import numpy as np
 
 Point = tuple[int, int]
 
-COORD_LIMIT = 10**9
+COORD_LIMIT = 10**12
 """The largest |x| or |y| a start, a pattern or a click may have (docs/ARCHITECTURE.md, *Coordinates*).
 
 The grid is infinite, but the engine keeps positions in int64. Inside this range every position,
-offset, gcd and sort key is exact with room to spare: offsets stay below 2^31 + (moves made), and a
+offset, gcd and sort key is exact with room to spare: offsets stay below 2^41 plus the moves made, and a
 run would need about 4·10^18 moves to reach int64's limit."""
 
 

@@ -28,5 +28,8 @@ def unsolvable_axis(robots: Iterable[Point]) -> Fraction | None:
 
 
 def describe_axis(c: Fraction) -> str:
-    value = str(c.numerator) if c.denominator == 1 else f"{float(c):g}"
-    return f"y = {value}"
+    """``y = c`` written exactly (the axis lies halfway between two rows: c is a whole number plus ½)."""
+    if c.denominator == 1:
+        return f"y = {c.numerator}"
+    whole, _ = divmod(abs(c.numerator), 2)
+    return f"y = {'-' if c < 0 else ''}{whole}.5"

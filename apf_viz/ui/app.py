@@ -19,7 +19,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
 from apf_viz.core.formats import check_sizes, load_pattern, load_robots, load_trace
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.ui.panels import Panels
-from apf_viz.ui.scene import SceneRenderer, cell_of_ray
+from apf_viz.ui.scene import SceneRenderer
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -72,7 +72,7 @@ class App:
 
     # ------------------------------------------------------------------ events
     def _on_click(self, event) -> None:
-        cell = cell_of_ray(event.ray_origin, event.ray_direction)
+        cell = self.renderer.cell_of_ray(event.ray_origin, event.ray_direction)
         if cell is not None:
             try:
                 self.session.click(cell)

@@ -158,6 +158,11 @@ def _xyz(points, z: float) -> np.ndarray:
     return np.column_stack([arr, np.full(len(arr), z, dtype=np.float32)])
 
 
+# The browser draws in float32, exact for integers only below 2^24 and smooth only well below: the scene is
+# drawn relative to an integer origin near the run, moved when the run is farther than this from it.
+REORIGIN_DISTANCE = 1 << 20
+
+
 class SceneRenderer:
     """Draws session views into one viser server's scene."""
 
@@ -174,7 +179,8 @@ class SceneRenderer:
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
         self._handles: dict[str, object] = {}
-        self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)
+        self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)  # scene units: grid minus origin
+        self.origin: tuple[int, int] = (0, 0)  # the grid point drawn at the scene's (0, 0)
         self._grid_key: tuple[int, int, int, int] | None = None
         self.framed_pose = self.camera_pose()  # the pose browsers were last sent (tests project with it)
 
@@ -299,17 +305,19 @@ class SceneRenderer:
     def render(self, view: SessionView) -> None:
         """Draw one frame; the caller wraps it in ``server.atomic()``."""
         editing_robots = view.mode == "edit-robots"
-        pts = np.array([r.position for r in view.robots], dtype=np.float32).reshape(-1, 2)
+        grid_pts = np.array([r.position for r in view.robots], dtype=np.int64).reshape(-1, 2)
+        self._place_origin(grid_pts, view)
+        pts = self._local(grid_pts)
         self._update_bounds(pts, view)
         self._grid()
         dense = len(pts) > DENSE
         self._robot_spheres(view, pts[:0] if dense else pts)
         self._robot_sprites(view, pts if dense else pts[:0])
         self._phase_halos(view, pts)
-        targets = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
+        targets = self._local(view.targets)
         target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
         self._points("/targets", _xyz(targets, 0.005), target_color, 0.8)
-        ghosts = np.array(view.ghosts, dtype=np.float32).reshape(-1, 2)
+        ghosts = self._local(view.ghosts)
         self._batched(
             "/ghosts",
             self._sphere,
@@ -325,8 +333,10 @@ class SceneRenderer:
         self._segments("/pending", pending[:0] if dense else pending, (230, 40, 40), 3.0)
         destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
         self._points("/pending_cells", destinations, (230, 40, 40), 0.3, "circle")
-        self._segments("/line_K", self._horizontal(view.line_K), (200, 0, 200), 3.0)
-        axis = view.axis if editing_robots else None
+        oy = self.origin[1]
+        line_K = view.line_K - oy if view.line_K is not None else None
+        self._segments("/line_K", self._horizontal(line_K), (200, 0, 200), 3.0)
+        axis = view.axis - oy if editing_robots and view.axis is not None else None
         self._segments("/axis", self._horizontal(axis), (255, 0, 0), 4.0)
         self._segments("/leader_frame", self._frame(view), (30, 30, 30), 3.0)
 
@@ -367,8 +377,34 @@ class SceneRenderer:
         for phase in ("looked", "computed"):
             self._points(f"/phase/{phase}", _xyz(pts[phases == phase], 0.01), PHASE_COLORS[phase], 0.92)
 
+    # ------------------------------------------------------------------ origin
+    def _place_origin(self, robots: np.ndarray, view: SessionView) -> None:
+        """Keep the origin near the run (robots and targets, grid coordinates)."""
+        allp = np.vstack([robots, np.array(view.targets, dtype=np.int64).reshape(-1, 2)])
+        if not len(allp):
+            return
+        lo, hi = allp.min(axis=0).tolist(), allp.max(axis=0).tolist()
+        ox, oy = self.origin
+        if max(abs(lo[0] - ox), abs(hi[0] - ox), abs(lo[1] - oy), abs(hi[1] - oy)) > REORIGIN_DISTANCE:
+            self.origin = ((lo[0] + hi[0]) // 2, (lo[1] + hi[1]) // 2)
+            self._grid_key = None  # the grid is drawn anew around the new origin
+
+    def _local(self, points) -> np.ndarray:
+        """Grid points as scene points, shape (n, 2) float32: minus the origin, in exact integers first."""
+        arr = np.asarray(points, dtype=np.int64).reshape(-1, 2)
+        return (arr - np.array(self.origin, dtype=np.int64)).astype(np.float32)
+
+    def to_scene(self, cell: tuple[int, int]) -> tuple[float, float]:
+        """Where a grid point is drawn (for tests and the camera)."""
+        return float(cell[0] - self.origin[0]), float(cell[1] - self.origin[1])
+
+    def cell_of_ray(self, origin, direction) -> tuple[int, int] | None:
+        """The grid cell a click ray hits (see :func:`cell_of_ray`), in grid coordinates."""
+        cell = cell_of_ray(origin, direction)
+        return None if cell is None else (cell[0] + self.origin[0], cell[1] + self.origin[1])
+
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
-        extra = np.array(view.targets, dtype=np.float32).reshape(-1, 2)
+        extra = self._local(view.targets)
         allp = np.vstack([pts, extra]) if len(extra) else pts
         if len(allp) == 0:
             allp = np.zeros((1, 2), dtype=np.float32)
@@ -412,19 +448,16 @@ class SceneRenderer:
             segments = np.concatenate([flat, np.full((len(flat), 2, 1), -0.01, np.float32)], axis=2)
             self._segments(name, segments, color, width)
 
-    @staticmethod
-    def _rays(view: SessionView) -> np.ndarray:
+    def _rays(self, view: SessionView) -> np.ndarray:
         if not view.rays:
             return np.zeros((0, 2, 3))
-        a = np.array(view.rays, dtype=np.float32)
+        a = self._local(np.array(view.rays, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
         return np.concatenate([a, np.full((len(a), 2, 1), Z, dtype=np.float32)], axis=2)
 
-    @staticmethod
-    def _pending(view: SessionView) -> np.ndarray:
-        segs = [
-            ((*r.position, Z + 0.35), (*r.pending, Z + 0.35)) for r in view.robots if r.pending is not None
-        ]
-        return np.array(segs, dtype=np.float32).reshape(-1, 2, 3)
+    def _pending(self, view: SessionView) -> np.ndarray:
+        pairs = [(r.position, r.pending) for r in view.robots if r.pending is not None]
+        ends = self._local(np.array(pairs, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
+        return np.concatenate([ends, np.full((len(ends), 2, 1), Z + 0.35, dtype=np.float32)], axis=2)
 
     def _horizontal(self, y: float | None) -> np.ndarray:
         if y is None:
@@ -432,11 +465,11 @@ class SceneRenderer:
         x0, _, x1, _ = self.bounds
         return np.array([[(x0 - 2, y, 0.05), (x1 + 2, y, 0.05)]], dtype=np.float32)
 
-    @staticmethod
-    def _frame(view: SessionView) -> np.ndarray:
+    def _frame(self, view: SessionView) -> np.ndarray:
         if view.leader_frame is None:
             return np.zeros((0, 2, 3))
-        (ox, oy), s = view.leader_frame
+        corner, s = view.leader_frame
+        ox, oy = self.to_scene(corner)
         z = 0.08
         return np.array(
             [
