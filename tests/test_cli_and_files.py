@@ -287,7 +287,9 @@ def test_replay_refuses_a_pattern_of_the_wrong_size(write_json):
     }
     trace = write_json("t.jsonl", json.dumps(header) + "\n")
     one_line_error(
-        run_cli("replay", "--trace", str(trace)), str(trace), "the pattern has 2 points but there are 3 robots"
+        run_cli("replay", "--trace", str(trace)),
+        str(trace),
+        "the pattern has 2 points but there are 3 robots",
     )
 
 
@@ -338,7 +340,8 @@ def test_a_start_that_is_the_pattern_is_formed_at_time_0_even_when_symmetric(wri
     check = run_cli("check", "--robots", str(robots), "--pattern", str(pattern), "--json", "--flips", "all")
     assert check.returncode == 0 and json.loads(check.stdout)["verdict"] == "verified", check.stderr
     other = write_json("q.json", {"points": [[0, 0], [1, 0], [2, 0], [3, 0]]})
-    assert run_cli("run", "--robots", str(robots), "--pattern", str(other)).returncode == 3  # still unsolvable
+    unsolvable = run_cli("run", "--robots", str(robots), "--pattern", str(other))
+    assert unsolvable.returncode == 3  # not the pattern: still unsolvable
 
 
 def test_random_robots_in_a_huge_box_builds_only_the_drawn_cells():
