@@ -1,12 +1,21 @@
 #!/usr/bin/env bash
-# Installs everything the tests need (the package, test tools, Debian's Chromium for the browser tests)
-# and runs the whole suite. `.ci/run` calls exactly this.
+# Installs everything the tests need (the package and test tools in .venv, Debian's Chromium for the
+# browser tests) and runs the whole suite. `.ci/run` calls exactly this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 if ! command -v chromium >/dev/null 2>&1; then
-  if [ "$(id -u)" = 0 ]; then apt-get update -qq && apt-get install -y -qq chromium >/dev/null;
-  else sudo apt-get update -qq && sudo apt-get install -y -qq chromium >/dev/null; fi
+  as_root apt-get update -qq && as_root apt-get install -y -qq chromium >/dev/null
 fi
-python3 -m pip install -q -e '.[test]'
-python3 -m ruff check .
-python3 -m pytest "$@"
+# A virtual environment, so that it works where the system Python refuses pip (PEP 668). It sees the
+# system's packages, so nothing already installed is downloaded again.
+if [ ! -x .venv/bin/python ]; then
+  if ! python3 -m venv --system-site-packages .venv 2>/dev/null; then  # Debian: venv is its own package
+    rm -rf .venv
+    as_root apt-get update -qq && as_root apt-get install -y -qq python3-venv >/dev/null
+    python3 -m venv --system-site-packages .venv
+  fi
+fi
+.venv/bin/python -m pip install -q -e '.[test]'
+.venv/bin/python -m ruff check .
+.venv/bin/python -m pytest "$@"

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from io import BytesIO
+
 import imageio.v3 as iio
 import numpy as np
 import pytest
+from PIL import Image, ImageSequence
 
 from apf_viz.ui.image import gif_on_white, png_on_white, shrink
 
@@ -38,13 +41,17 @@ def test_shrink_averages_whole_blocks_and_drops_the_ragged_edge():
     assert shrink(image, 1) is image
 
 
-def test_a_gif_loops_with_one_frame_per_render_at_the_given_rate():
+def test_a_gif_loops_with_one_frame_per_render_each_for_its_own_time():
     frames = [np.full((6, 8, 4), (v, v, v, 255), dtype=np.uint8) for v in (0, 128, 255)]
-    gif = gif_on_white(frames, fps=2.0)
+    gif = gif_on_white(frames, 0.5)
     decoded = iio.imread(gif, extension=".gif", index=None)
     assert decoded.shape == (3, 6, 8, 3)
     assert [int(f[0, 0, 0]) for f in decoded] == [0, 128, 255]
     meta = iio.immeta(gif, extension=".gif")
     assert meta["duration"] == 500 and meta["loop"] == 0
+    with Image.open(BytesIO(gif_on_white(frames, [0.25, 1.0, 0.3]))) as uneven:
+        assert [f.info["duration"] for f in ImageSequence.Iterator(uneven)] == [250, 1000, 300]
     with pytest.raises(ValueError, match="no frames"):
-        gif_on_white([], fps=4.0)
+        gif_on_white([], 0.25)
+    with pytest.raises(ValueError, match="2 durations for 3 frames"):
+        gif_on_white(frames, [0.25, 0.25])

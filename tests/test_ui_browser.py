@@ -55,8 +55,9 @@ def app() -> Iterator[App]:
 
 def open_page(browser, app: App):
     page = browser.new_page(viewport=VIEWPORT)
+    page.set_default_timeout(60_000)  # waits for behaviour; a loaded machine is only slower
     page.goto(f"http://127.0.0.1:{app.port}")
-    page.get_by_label("Event").wait_for(timeout=30_000)
+    page.get_by_label("Event").wait_for()
     time.sleep(1.0)  # the first frames of the scene
     return page
 
@@ -65,7 +66,8 @@ def event_value(page) -> int:
     return int(page.get_by_label("Event").input_value())
 
 
-def wait_for(predicate, timeout: float = 10.0) -> None:
+def wait_for(predicate, timeout: float = 30.0) -> None:
+    """Wait for behaviour, however loaded the machine (a timeout is a deadlock guard, not a speed test)."""
     end = time.time() + timeout
     while time.time() < end:
         if predicate():
@@ -128,14 +130,17 @@ def test_step_advances_event_and_back_restores_it(browser, app):
 def test_play_turns_into_pause_and_runs(browser, app):
     page = open_page(browser, app)
     page.get_by_role("button", name="Play").click()
-    page.get_by_role("button", name="Pause").wait_for(timeout=5000)
+    page.get_by_role("button", name="Pause").wait_for()
     wait_for(lambda: event_value(page) > 5)
     page.get_by_role("button", name="Pause").click()
-    page.get_by_role("button", name="Play").wait_for(timeout=5000)
-    time.sleep(0.5)
-    frozen = event_value(page)
-    time.sleep(0.7)
-    assert event_value(page) == frozen
+    page.get_by_role("button", name="Play").wait_for()
+    wait_for(lambda: not app.session.playing)
+    frozen = app.session.view().event
+    wait_for(lambda: event_value(page) == frozen)  # the page catches up, however loaded the machine
+    for _ in range(3):  # and nothing moves on while paused
+        app.request_render()
+        time.sleep(0.3)
+        assert app.session.view().event == frozen and event_value(page) == frozen
     page.close()
 
 
@@ -153,7 +158,7 @@ def test_manual_mode_a_click_on_a_robot_runs_its_next_phase(browser, app):
     wait_for(lambda: app.session.engine.next_event(robot) == "move")
     wait_for(lambda: event_value(page) == 2)
     assert all(app.session.engine.next_event(r) == "look" for r in range(10) if r != robot)
-    page.get_by_text("Manual — click a robot").wait_for(timeout=5000)
+    page.get_by_text("Manual — click a robot").wait_for()
     shot(page, "manual-click")
     page.close()
 
@@ -164,18 +169,18 @@ def test_edit_pattern_clicks_change_the_target_count(browser, app):
     page.get_by_role("option", name="Edit pattern").click()
     wait_for(lambda: app.session.mode == "edit-pattern")
     page.get_by_role("button", name="Clear pattern").click()
-    page.get_by_text("Targets: 0 / 10 robots").wait_for(timeout=5000)
+    page.get_by_text("Targets: 0 / 10 robots").wait_for()
     for cell in [(1, 1), (2, 1), (3, 1)]:
         x, y = screen_of(app, page, cell)
         page.mouse.click(x, y)
         time.sleep(0.2)
-    page.get_by_text("Targets: 3 / 10 robots").wait_for(timeout=5000)
+    page.get_by_text("Targets: 3 / 10 robots").wait_for()
     assert sorted(app.session.draft_pattern) == [(1, 1), (2, 1), (3, 1)]
     shot(page, "edit-pattern")
     # Back to Run with 3 targets for 10 robots: refused, the drawing is kept.
     page.get_by_role("combobox", name="Mode").click()
     page.get_by_role("option", name="Run").click()
-    page.get_by_text("the pattern has 3 points but there are 10 robots").wait_for(timeout=5000)
+    page.get_by_text("the pattern has 3 points but there are 10 robots").wait_for()
     assert app.session.mode == "edit-pattern" and len(app.session.draft_pattern) == 3
     page.close()
 
@@ -189,7 +194,7 @@ def test_a_malformed_upload_shows_a_notification_and_keeps_the_run(browser, app,
     with page.expect_file_chooser() as chooser:
         page.get_by_role("button", name="Upload pattern").click()
     chooser.value.set_files(str(bad))
-    page.get_by_text("duplicate pattern point at (0, 0)").wait_for(timeout=10_000)
+    page.get_by_text("duplicate pattern point at (0, 0)").wait_for()
     shot(page, "bad-upload")
     assert event_value(page) == 1 and app.session.view().steps == 1
     page.close()
@@ -213,7 +218,7 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
     wait_for(lambda: event_value(page) == app.session.view().event > 0)
     page.get_by_role("button", name="Save screenshot").click()
     link = page.locator("a[download$='.png']")
-    link.wait_for(timeout=30_000)
+    link.wait_for()
     assert link.get_attribute("download") == f"apf-viz-event-{event_value(page)}.png"
     data = page.evaluate(
         "async (a) => Array.from(new Uint8Array(await (await fetch(a.href)).arrayBuffer()))",
@@ -236,13 +241,21 @@ def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     page = open_page(browser, app)
     started = time.perf_counter()
     page.get_by_role("button", name="Record GIF").click()
-    page.get_by_role("button", name="Stop recording").wait_for(timeout=10_000)
-    for _ in range(3):
-        time.sleep(1.0)
+    page.get_by_role("button", name="Stop recording").wait_for()
+    wait_for(lambda: app.panels._recorder is not None)
+    recording = app.panels._recorder
+
+    def a_new_frame() -> None:  # paced by the recorder, not by the clock: a loaded machine is slower
+        n = len(recording.frames)
+        wait_for(lambda: len(recording.frames) > n, timeout=60)
+
+    for step in range(1, 4):
+        a_new_frame()
         page.get_by_role("button", name="Step").click()
-    time.sleep(1.5)
+        wait_for(lambda step=step: app.session.view().event == step)
+    a_new_frame()
+    a_new_frame()  # one asked for after the last step's frame was drawn
     page.get_by_role("button", name="Stop recording").click()
-    recorded_for = time.perf_counter() - started
     link = page.locator("a[download$='.gif']")
     link.wait_for(timeout=60_000)
     ended = time.perf_counter() - started
@@ -254,13 +267,16 @@ def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     OUT.mkdir(exist_ok=True)
     (OUT / "recorded.gif").write_bytes(bytes(data))
     frames = iio.imread(bytes(data), extension=".gif", index=None)
-    assert frames.ndim == 4 and len(frames) >= 3  # up to 4 frames a second for about 4.5 s
+    assert frames.ndim == 4 and len(frames) >= 3  # at least the frames waited for (repeats merge)
     assert not all(np.array_equal(frames[0], f) for f in frames[1:]), "every frame is the same"
     with Image.open(BytesIO(bytes(data))) as gif:  # frame by frame: the encoder merges repeated frames
         durations = [frame.info["duration"] / 1000 for frame in ImageSequence.Iterator(gif)]
-    assert min(durations) >= 0.25  # never faster than 4 frames a second
-    assert 0.5 * recorded_for <= sum(durations) <= ended + 0.5  # plays in about real time
-    page.get_by_role("button", name="Record GIF").wait_for(timeout=10_000)  # ready for the next one
+    assert min(durations) >= 0.25  # never faster than 4 frames a second (by construction)
+    # The recording lies within the clicks that started and stopped it, so it cannot play longer than
+    # that, however loaded the machine; that it plays in real time on the recorder's own clock is
+    # tests/test_recorder.py's job (a bound on wall time from below is a bound on the machine's load).
+    assert sum(durations) <= ended + 0.01 * len(durations)  # GIF keeps hundredths of a second
+    page.get_by_role("button", name="Record GIF").wait_for()  # ready for the next one
     page.close()
 
 

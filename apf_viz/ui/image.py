@@ -39,9 +39,13 @@ def png_on_white(image: np.ndarray) -> bytes:
     return iio.imwrite("<bytes>", on_white(image), extension=".png")
 
 
-def gif_on_white(frames: Sequence[np.ndarray], fps: float) -> bytes:
-    """An animated GIF, looping, of renders of one size, ``fps`` frames a second."""
+def gif_on_white(frames: Sequence[np.ndarray], seconds: float | Sequence[float]) -> bytes:
+    """An animated GIF, looping, of renders of one size, each shown ``seconds`` (one for all, or one per
+    frame; GIF keeps hundredths of a second)."""
     if not frames:
         raise ValueError("no frames to encode")
+    each = [seconds] * len(frames) if isinstance(seconds, int | float) else list(seconds)
+    if len(each) != len(frames):
+        raise ValueError(f"{len(each)} durations for {len(frames)} frames")
     flat = np.stack([on_white(f) for f in frames])
-    return iio.imwrite("<bytes>", flat, extension=".gif", duration=round(1000 / fps), loop=0)
+    return iio.imwrite("<bytes>", flat, extension=".gif", duration=[round(1000 * s) for s in each], loop=0)

@@ -4,15 +4,15 @@ A thread asks the browser for a render up to ``RECORD_FPS`` times a second (vise
 browser draws the scene once more and sends it back) until it is stopped, ``MAX_SECONDS`` have passed or
 the browser goes away. The engine and the render loop never wait for it. Frames are rendered at the
 canvas's own size and shrunk here: a render at another size would draw point sprites out of scale. The
-GIF plays at the rate the frames were actually taken (a software-rendered browser is slower than
-``RECORD_FPS``), so it runs in real time.
+GIF shows each frame until the next was asked for (a software-rendered browser is slower than
+``RECORD_FPS``), so it runs in real time on the recorder's own clock.
 """
 
 from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Literal
 
 import numpy as np
@@ -43,13 +43,31 @@ def render_view(
     return client.get_render(height, width, transport_format=transport_format, timeout=RENDER_TIMEOUT)
 
 
+def frame_durations(taken: Sequence[float], ended: float) -> list[float]:
+    """How long each frame shows, in seconds: until the next frame was asked for, the last one until the
+    recording ended. The GIF then lasts exactly as long as the recording, on the recorder's own clock,
+    however slowly a loaded machine rendered."""
+    return [b - a for a, b in zip(taken, [*taken[1:], ended], strict=True)]
+
+
 class GifRecorder:
     """Frames of one client's view. When recording ends, ``done`` gets the GIF (None if no frame was
-    taken) and why it ended early ("" when stopped or out of time)."""
+    taken) and why it ended early ("" when stopped or out of time).
 
-    def __init__(self, client, done: Callable[[bytes | None, str], None]) -> None:
+    ``taken`` holds when each frame was asked for and ``ended`` when the recording stopped, both on
+    ``clock``: frames are asked for at least ``1 / RECORD_FPS`` apart, so no frame shows shorter."""
+
+    def __init__(
+        self,
+        client,
+        done: Callable[[bytes | None, str], None],
+        clock: Callable[[], float] = time.perf_counter,
+    ) -> None:
         self.client = client
         self.frames: list[np.ndarray] = []
+        self.taken: list[float] = []
+        self.ended: float | None = None
+        self._clock = clock
         self._done = done
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="apf-viz-gif", daemon=True)
@@ -63,18 +81,22 @@ class GifRecorder:
         reason = ""
         size = canvas_size(self.client)  # fixed for the recording: a GIF's frames share one size
         factor = -(-size[1] // GIF_WIDTH)
-        started = time.perf_counter()
-        while not self._stop.is_set() and time.perf_counter() - started < MAX_SECONDS:
-            t0 = time.perf_counter()
+        clock = self._clock
+        started = clock()
+        while not self._stop.is_set() and clock() - started < MAX_SECONDS:
+            asked = clock()
             try:
                 # JPEG: a smaller payload, already on white; the GIF's palette is lossy anyway
-                self.frames.append(shrink(render_view(self.client, "jpeg", size), factor))
+                frame = shrink(render_view(self.client, "jpeg", size), factor)
             except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
                 reason = str(err)
                 break
-            self._stop.wait(max(0.0, 1.0 / RECORD_FPS - (time.perf_counter() - t0)))
+            self.frames.append(frame)
+            self.taken.append(asked)
+            while not self._stop.is_set() and clock() < asked + 1.0 / RECORD_FPS:
+                self._stop.wait(asked + 1.0 / RECORD_FPS - clock())
+        self.ended = max(clock(), self.taken[-1] + 1.0 / RECORD_FPS) if self.taken else clock()
         if not self.frames:
             self._done(None, reason or "no frame was recorded")
             return
-        taken = len(self.frames) / max(time.perf_counter() - started, 1e-3)
-        self._done(gif_on_white(self.frames, min(RECORD_FPS, taken)), reason)
+        self._done(gif_on_white(self.frames, frame_durations(self.taken, self.ended)), reason)

@@ -1,0 +1,85 @@
+"""Installable anywhere: a wheel carries the demo patterns, and an installed apf-viz serves the demo from
+any folder (the top-level demo_patterns/ is the source; pyproject.toml ships it inside the package)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import urllib.request
+import venv
+from pathlib import Path
+
+from apf_viz.ui.app import free_port
+
+ROOT = Path(__file__).resolve().parent.parent
+IGNORED = (".git", ".venv", "build", "*.egg-info", "__pycache__", "test-output", ".hypothesis", ".*_cache")
+
+
+def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
+    source = tmp_path / "source"  # a copy: a build leaves build/ and egg-info behind, and may reuse them
+    shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(*IGNORED))
+    wheels = tmp_path / "wheels"
+    built = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(wheels), str(source)],
+        capture_output=True,
+        text=True,
+    )
+    assert built.returncode == 0, built.stderr[-2000:]
+    (wheel,) = wheels.glob("apf_viz-*.whl")
+    env_dir = tmp_path / "venv"
+    # The venv sees this interpreter's packages (numpy, viser, ...), so only the wheel is installed.
+    venv.EnvBuilder(system_site_packages=True, with_pip=True).create(env_dir)
+    python = env_dir / "bin" / "python"
+    installed = subprocess.run(
+        [str(python), "-m", "pip", "install", "-q", "--no-deps", str(wheel)], capture_output=True, text=True
+    )
+    assert installed.returncode == 0, installed.stderr[-2000:]
+    elsewhere = tmp_path / "elsewhere"  # not the repository: nothing found by the working directory
+    elsewhere.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    probe = subprocess.run(
+        [
+            str(python),
+            "-c",
+            "import json, apf_viz, apf_viz.demos as d; "
+            "print(json.dumps([apf_viz.__file__, str(d.DEMO_START), sorted(d.demo_files()), "
+            "sorted(d.demo_files('starts'))]))",
+        ],
+        cwd=elsewhere,
+        env=env,
+        capture_output=True,
+        text=True,
+    )
+    assert probe.returncode == 0, probe.stderr
+    module, start, patterns, starts = json.loads(probe.stdout)
+    assert Path(module).is_relative_to(env_dir)  # the installed copy, not this checkout
+    assert Path(start).is_relative_to(env_dir) and Path(start).is_file()
+    assert patterns == sorted(p.stem for p in (ROOT / "demo_patterns").glob("*.json"))
+    assert starts == sorted(p.stem for p in (ROOT / "demo_patterns" / "starts").glob("*.json"))
+    port = free_port()
+    server = subprocess.Popen(
+        [str(env_dir / "bin" / "apf-viz"), "--port", str(port)],
+        cwd=elsewhere,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        deadline = time.time() + 90
+        while True:
+            assert server.poll() is None, server.stderr.read()
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as page:
+                    assert page.status == 200
+                    break
+            except OSError:
+                assert time.time() < deadline, "the installed apf-viz did not serve the demo"
+                time.sleep(0.3)
+    finally:
+        server.terminate()
+        server.communicate(timeout=60)
