@@ -2,7 +2,8 @@
 
 An algorithm sees a :class:`~apf_viz.core.view.Snapshot` (and the target pattern, its input) and returns a
 :class:`Decision`: the new light, an optional unit move in the robot's *local* frame, and the rule that
-fired, in the algorithm's own words (the visualiser captions it; traces record it). The engine alone maps
+fired, in the algorithm's own words and as a stable id (the visualiser captions them; traces record
+them). The engine alone maps
 the move to the global frame, applies it later (possibly on a stale snapshot), and detects collisions.
 """
 
@@ -24,6 +25,7 @@ class Decision:
     light: str
     move: Direction | None = None
     rule: str = ""
+    rule_id: str = ""  # stable, for tests and traces (e.g. "A1.off.terminal"); ``rule`` is the prose
 
     def is_noop(self, current_light: str) -> bool:
         """True when acting on this decision changes nothing: same light, no move."""

@@ -72,6 +72,7 @@ class EngineState:
     look_step: np.ndarray  # shape (k,): step index of each robot's latest Look
     look_version: list[int]  # configuration version at each robot's latest Look
     pending: list[Decision | None]
+    decided: list[Snapshot | None]  # the snapshot of each robot's latest Compute (kept after its Move)
     last_act: np.ndarray  # shape (k,): step index of each robot's latest event (fairness)
     last_cycle_end: np.ndarray  # shape (k,): step index of each robot's latest Move (round-robin)
     steps: int = 0
@@ -95,6 +96,7 @@ class EngineState:
             look_step=self.look_step.copy(),
             look_version=list(self.look_version),
             pending=list(self.pending),
+            decided=list(self.decided),
             last_act=self.last_act.copy(),
             last_cycle_end=self.last_cycle_end.copy(),
             steps=self.steps,
@@ -299,7 +301,7 @@ class Engine:
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
         st.phase[r] = _LOOKED
-        return _new(Event, (r, "look", ids, None, None, None, None, round, False))
+        return _new(Event, (r, "look", ids, None, None, None, None, round, False, None))
 
     def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
         """Robot r's snapshot (entries sorted by offset in r's own frame: a canonical, identity-free
@@ -317,6 +319,7 @@ class Engine:
         assert snap is not None
         decision = self._decide(r, snap)
         st.pending[r] = decision
+        st.decided[r] = snap
         st.phase[r] = _COMPUTED
         if decision.light != st.lights[r]:
             st.lights[r] = decision.light
@@ -324,8 +327,10 @@ class Engine:
             st.version += 1
             self._views.relit(r)
         gmove = move_to_global(decision.move, self.y_up[r])
+        rule_id = decision.rule_id or None
         return _new(
-            Event, (r, "compute", None, decision.light, gmove, decision.rule or None, None, round, False)
+            Event,
+            (r, "compute", None, decision.light, gmove, decision.rule or None, None, round, False, rule_id),
         )
 
     def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
@@ -368,18 +373,18 @@ class Engine:
         here = self._views.points[r]
         if move is None:
             self._finish_cycle(r)
-            return [_new(Event, (r, "move", None, None, None, None, here, round, False))]
+            return [_new(Event, (r, "move", None, None, None, None, here, round, False, None))]
         dx, dy = move_to_global(move, self.y_up[r]).delta
         to = (here[0] + dx, here[1] + dy)
         if to in self._views.occupied:
             st.outcome = "collision"
-            return [_new(Event, (r, "move", None, None, None, None, to, round, True))]
+            return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
         st.positions[r] = to
         self._views.moved((r,), (here,))
         st.moves += 1
         st.version += 1
         self._finish_cycle(r)
-        return [_new(Event, (r, "move", None, None, None, None, to, round, False))]
+        return [_new(Event, (r, "move", None, None, None, None, to, round, False, None))]
 
     def _collisions(self, targets: dict[int, Point]) -> set[int]:
         """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""
@@ -503,6 +508,7 @@ class Engine:
             look_step=np.zeros(k, dtype=np.int64),
             look_version=[-1] * k,
             pending=[None] * k,
+            decided=[None] * k,
             last_act=np.zeros(k, dtype=np.int64),
             last_cycle_end=np.zeros(k, dtype=np.int64),
             lights_used={first},

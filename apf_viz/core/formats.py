@@ -118,6 +118,7 @@ class TraceEvent(BaseModel):
     to: GridPoint | None = None
     round: StrictInt | None = None
     collision: bool | None = None
+    rule_id: str | None = None
 
     @model_validator(mode="after")
     def _check(self) -> TraceEvent:
@@ -137,6 +138,7 @@ class TraceEvent(BaseModel):
             to=tuple(self.to) if self.to is not None else None,
             round=self.round,
             collision=bool(self.collision),
+            rule_id=self.rule_id,
         )
 
 
@@ -150,6 +152,8 @@ def event_to_json(e: Event) -> dict[str, Any]:
         out["move"] = e.move.value if e.move else None
         if e.rule:
             out["rule"] = e.rule
+        if e.rule_id:
+            out["rule_id"] = e.rule_id
     else:
         out["to"] = list(e.to) if e.to else None
         if e.collision:

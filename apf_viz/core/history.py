@@ -31,6 +31,7 @@ class Event(NamedTuple):
     to: Point | None = None  # move: where the robot goes (its own point for a stay)
     round: int | None = None  # fsync/ssync round number
     collision: bool = False  # move: this move collided (the run stops, the move is not applied)
+    rule_id: str | None = None  # compute: the stable id of the rule that fired (the algorithm's)
 
 
 class StepRecord(NamedTuple):

@@ -8,6 +8,7 @@ the robot's own light and the lights it sees (docs/ALGORITHM.md, "Phase dispatch
 
 from __future__ import annotations
 
+from apf_viz.algorithms.apf_opaque_grid import portrayal
 from apf_viz.algorithms.apf_opaque_grid.pattern_formation import (
     embedded_targets,
     pattern_formation_leader,
@@ -22,74 +23,96 @@ from apf_viz.algorithms.apf_opaque_grid.phase2 import (
     two_deciders_on_left_line,
 )
 from apf_viz.algorithms.apf_opaque_grid.predicates import lights_of
-from apf_viz.algorithms.apf_opaque_grid.resolutions import ALL, LITERAL, RESOLUTIONS
+from apf_viz.algorithms.apf_opaque_grid.resolutions import (
+    ALL,
+    LITERAL,
+    RESOLUTIONS,
+    R,
+    Resolution,
+    Resolutions,
+    deviation,
+    parse_resolutions,
+)
 from apf_viz.core.algorithm import Decision, Pattern
+from apf_viz.core.portrayal import NO_EVIDENCE, Configuration, Evidence, Explanation, LightStyle, Overlays
 from apf_viz.core.view import Snapshot
 
 LIGHTS = ("off", "terminal1", "symmetric", "decider", "call", "leader1", "leader", "done")
 LEADERS = {"leader1", "leader"}
 
-__all__ = ["LIGHTS", "RESOLUTIONS", "ApfOpaqueGrid", "dispatch", "embedded_targets"]
+__all__ = ["LIGHTS", "RESOLUTIONS", "ApfOpaqueGrid", "Resolution", "dispatch", "embedded_targets"]
 
 
-def dispatch(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
+def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Which procedure a robot runs, decided from its light and the lights it sees."""
     light = view.light
     if light == "done":
-        return stay(view, "done: stay")
+        return stay(view, "done: stay", "done")
     seen = lights_of(view.robots)
     if light == "leader":
-        return pattern_formation_leader(view, pattern, res)
+        return pattern_formation_leader(view, pattern, res, ev)
     if light == "leader1":
-        if "G3" in res and "leader" in seen:
-            return Decision("off", None, "leader1: a leader is visible → off (G3)")
-        if "LW" in res and any(s.dx < 0 and s.light in LEADERS for s in view.robots):
-            return Decision("off", None, "leader1: a leader1/leader to my left → off (LW)")
-        return phase2_leader1(view, res)
+        if R.G3 in res and deviation(ev, R.G3, "leader" in seen):
+            return Decision("off", None, "leader1: a leader is visible → off (G3)", "A2.leader1.G3-off")
+        if R.LW in res and deviation(ev, R.LW, any(s.dx < 0 and s.light in LEADERS for s in view.robots)):
+            return Decision(
+                "off", None, "leader1: a leader1/leader to my left → off (LW)", "A2.leader1.LW-off"
+            )
+        return phase2_leader1(view, res, ev)
     if light == "decider":
-        if "G3" in res and seen & LEADERS:
-            return Decision("off", None, "decider: a leader1/leader is visible → off (G3)")
-        return phase2_decider(view, res)
+        if R.G3 in res and deviation(ev, R.G3, bool(seen & LEADERS)):
+            return Decision(
+                "off", None, "decider: a leader1/leader is visible → off (G3)", "A2.decider.G3-off"
+            )
+        return phase2_decider(view, res, ev)
     if light == "call":
-        return phase2_call(view, res)
+        return phase2_call(view, res, ev)
     if light in ("terminal1", "symmetric"):
-        if "G2" in res and seen & LEADERS:
-            return Decision("off", None, f"{light}: a leader1/leader is visible → off (G2)")
-        return phase1_terminal1(view, res) if light == "terminal1" else phase1_symmetric(view, res)
+        if R.G2 in res and deviation(ev, R.G2, bool(seen & LEADERS)):
+            rule_id = "A1.terminal1.G2-off" if light == "terminal1" else "A1.symmetric.G2-off"
+            return Decision("off", None, f"{light}: a leader1/leader is visible → off (G2)", rule_id)
+        return phase1_terminal1(view, res, ev) if light == "terminal1" else phase1_symmetric(view, res, ev)
     # light == "off"
-    if seen & {"leader", "done"}:
-        return pattern_formation_off(view, pattern, res)
-    if two_deciders_on_left_line(view):
-        return phase2_off(view, res)
-    if "G1" in res and seen - {"off", "terminal1"}:
-        return stay(view, "off: Phase 1 is over (a later light is visible) → wait (G1)")
-    return phase1_off(view, res)
+    if ev.test("a leader or done robot in sight", bool(seen & {"leader", "done"}), "Phase 3 has begun"):
+        return pattern_formation_off(view, pattern, res, ev)
+    if ev.test("two deciders on L_I", two_deciders_on_left_line(view), "Phase 2 has begun to my left"):
+        return phase2_off(view, res, ev)
+    if R.G1 in res and deviation(ev, R.G1, bool(seen - {"off", "terminal1"})):
+        return stay(view, "off: Phase 1 is over (a later light is visible) → wait (G1)", "A1.off.G1-wait")
+    return phase1_off(view, res, ev)
 
 
 class ApfOpaqueGrid:
     """The paper's algorithm with a chosen set of resolutions (see :data:`RESOLUTIONS`).
 
     ``apf-opaque-grid`` enables all of them; ``apf-opaque-grid-literal`` only LA, which any run needs to
-    finish; ``apf-opaque-grid@G1,G2`` enables exactly the ones listed."""
+    finish; ``apf-opaque-grid@G1,G2`` enables exactly the ones listed. It describes itself to the
+    screen (:mod:`apf_viz.core.portrayal`): a legend, overlays, and :meth:`explain`."""
 
     lights = LIGHTS
 
-    def __init__(self, resolutions: frozenset[str] | set[str] = ALL) -> None:
-        unknown = set(resolutions) - set(RESOLUTIONS)
-        if unknown:
-            raise ValueError(
-                f"unknown resolution(s) {', '.join(sorted(unknown))}; known: {', '.join(RESOLUTIONS)}"
-            )
-        self.resolutions = frozenset(resolutions)
+    def __init__(self, resolutions: Resolutions | set[str] | frozenset[str] = ALL) -> None:
+        self.resolutions: Resolutions = parse_resolutions(set(resolutions))
         if self.resolutions == ALL:
             self.name = "apf-opaque-grid"
         elif self.resolutions == LITERAL:
             self.name = "apf-opaque-grid-literal"
         else:
-            self.name = "apf-opaque-grid@" + ",".join(r for r in RESOLUTIONS if r in self.resolutions)
+            self.name = "apf-opaque-grid@" + ",".join(r for r in Resolution if r in self.resolutions)
 
     def decide(self, view: Snapshot, pattern: Pattern) -> Decision:
         return dispatch(view, pattern, self.resolutions)
+
+    def explain(self, view: Snapshot, pattern: Pattern) -> Explanation:
+        """The decision of :meth:`decide` on this view, with the predicates and regions it tested."""
+        ev = Evidence()
+        return ev.explanation(dispatch(view, pattern, self.resolutions, ev))
+
+    def legend(self) -> dict[str, LightStyle]:
+        return dict(portrayal.LEGEND)
+
+    def overlays(self, config: Configuration) -> Overlays:
+        return portrayal.overlays(config)
 
     @classmethod
     def parse(cls, name: str) -> ApfOpaqueGrid:

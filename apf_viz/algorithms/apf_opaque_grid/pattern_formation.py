@@ -19,8 +19,10 @@ from functools import lru_cache
 from operator import itemgetter
 
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
+from apf_viz.algorithms.apf_opaque_grid.resolutions import R, Resolutions, deviation
 from apf_viz.core.algorithm import Decision, Pattern
 from apf_viz.core.grid import Direction, Point
+from apf_viz.core.portrayal import NO_EVIDENCE, Band, Evidence, Frame, Line
 from apf_viz.core.view import Seen, Snapshot
 
 
@@ -95,10 +97,19 @@ def line_move(frame: LeaderFrame, j: int, light: str) -> Decision:
     x, y = frame.me
     if y == 0:
         if x == j:
-            return Decision(light, frame.local_move(0, -1), f"LineMove({j}): at ({j}, 0) → move to ({j}, −1)")
+            return Decision(
+                light,
+                frame.local_move(0, -1),
+                f"LineMove({j}): at ({j}, 0) → move to ({j}, −1)",
+                "LineMove.into-line",
+            )
         step = frame.local_move(1 if j > x else -1, 0)
-        return Decision(light, step, f"LineMove({j}): on L_H1 → move horizontally towards ({j}, 0)")
-    return Decision(light, frame.local_move(0, -1), f"LineMove({j}): above L_H1 → move down towards L_H1")
+        return Decision(
+            light, step, f"LineMove({j}): on L_H1 → move horizontally towards ({j}, 0)", "LineMove.along"
+        )
+    return Decision(
+        light, frame.local_move(0, -1), f"LineMove({j}): above L_H1 → move down towards L_H1", "LineMove.down"
+    )
 
 
 def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decision:
@@ -107,98 +118,170 @@ def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decisi
     tx, ty = target
     name = f"TargetMove({j}) to t_{j} = ({tx}, {ty})"
     if (x, y) == target:
-        return Decision("done", None, f"{name}: at t_{j} → done")
+        return Decision("done", None, f"{name}: at t_{j} → done", "TargetMove.done")
     if y == ty - 1:
         if x == tx:
-            return Decision(light, frame.local_move(0, 1), f"{name}: below t_{j} → move up into it")
+            return Decision(
+                light, frame.local_move(0, 1), f"{name}: below t_{j} → move up into it", "TargetMove.into"
+            )
         step = frame.local_move(1 if tx > x else -1, 0)
-        return Decision(light, step, f"{name}: on L_(t_j−1) → move horizontally")
+        return Decision(light, step, f"{name}: on L_(t_j−1) → move horizontally", "TargetMove.along")
     step = frame.local_move(0, 1 if ty - 1 > y else -1)
-    return Decision(light, step, f"{name}: move vertically towards L_(t_j−1)")
+    return Decision(light, step, f"{name}: move vertically towards L_(t_j−1)", "TargetMove.vertical")
 
 
 _dy = itemgetter(1)
 _light = itemgetter(2)
 
 
-def leftmost_on_own_row(view: Snapshot) -> bool:
+def leftmost_on_own_row(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """r is leftmost on L_H(r): no visible robot on r's row to its left (exact: the nearest one there
     would be visible). The snapshot is sorted by dx, so the robots left of r are a prefix."""
-    return 0 not in map(_dy, view.robots[: bisect_left(view.robots, (0,))])
+    value = 0 not in map(_dy, view.robots[: bisect_left(view.robots, (0,))])
+    if ev.active:
+        ev.region(Line("y", 0, "L_H(r)"))
+        ev.test("r leftmost on L_H(r)", value, "no robot on my row to my left")
+    return value
 
 
-def robots_between(view: Snapshot, frame: LeaderFrame) -> bool:
+def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_B^O(r) ∩ H_U^O(r₀) ≠ ∅: a robot strictly between r's row and the leader's row (exact by V1: the
     strip is convex). In the leader frame that is −1 < y′ < y; in r's frame, y′ − y = s·dy."""
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    return any(lo <= dy <= hi for dy in map(_dy, view.robots))
+    value = any(lo <= dy <= hi for dy in map(_dy, view.robots))
+    if ev.active:
+        if lo <= hi:
+            ev.region(Band("y", lo, hi, "H_B^O(r) ∩ H_U^O(r₀)"))
+        ev.test("H_B^O(r) ∩ H_U^O(r₀) ≠ ∅", value, "a robot strictly between my row and the leader's")
+    return value
 
 
-def pattern_formation_off(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
+def _frame_region(ev: Evidence, frame: LeaderFrame) -> None:
+    ev.region(Frame(frame.origin, frame.s, "the leader's frame"))
+
+
+def pattern_formation_off(
+    view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = NO_EVIDENCE
+) -> Decision:
     """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader."""
     try:
         leader = view.robots[list(map(_light, view.robots)).index("leader")]
     except ValueError:
-        return stay(view, "Phase 3 (off): the leader is not in sight → wait")
+        ev.test("the leader in sight", False, "I see the robot with light leader")
+        return stay(view, "Phase 3 (off): the leader is not in sight → wait", "A3.off.no-leader")
+    ev.test("the leader in sight", True, "I see the robot with light leader")
     targets = embedded_targets(pattern)
     n = len(targets)
     frame = follower_frame(view, leader)
+    _frame_region(ev, frame)
     x, y = frame.me
+    ev.test("my place in the leader's frame", f"({x}, {y})", "the line is row −1, L_H1 is row 0")
     if y > -1:
         # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
-        if leftmost_on_own_row(view) and not robots_between(view, frame):
+        if leftmost_on_own_row(view, ev) and not robots_between(view, frame, ev):
             placed = [(frame.of(s), s) for s in view.robots if s is not leader]
             line = sorted(p[0] for p, _ in placed if p[1] == -1)
             i = len(line)
+            ev.test("robots on the line", i, "robots I see on row −1 of the leader's frame")
             if i == 0:
-                if any(s.light == "done" for _, s in placed) or ("N2" in res and n == 2):
-                    return _to_target(frame, n - 2, targets, "line empty, a done robot in sight")
-                return line_move(frame, 1, "off")
-            if line == list(range(1, i + 1)):
-                return line_move(frame, i + 1, "off")
-            if line == list(range(n - i, n)):
-                return _to_target(frame, n - i - 2, targets, f"{i} robots left on the line")
-            return stay(view, "Phase 3 (off): the line is neither growing nor shrinking as expected → wait")
-        return stay(view, "Phase 3 (off): not the leftmost of the lowest row above the line → wait")
-    if y == -1:
-        blocking = {"off"} if "P3" not in res else None
-        above = [s for s in view.robots if s is not leader and frame.of(s)[1] > -1]
-        waiting_for = [s for s in above if (s.light in blocking if blocking else s.light != "done")]
-        if not waiting_for:
-            return Decision(
-                "off",
-                frame.local_move(0, 1),
-                f"Phase 3 (off): left end of the line at ({x}, −1) → move to ({x}, 0)",
+                done_seen = any(s.light == "done" for _, s in placed)
+                ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
+                if done_seen or (R.N2 in res and deviation(ev, R.N2, n == 2)):
+                    return _to_target(
+                        frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
+                    )
+                return _compose(line_move(frame, 1, "off"), "A3.off.start-line")
+            if ev.test("the line is (1..i, −1)", line == list(range(1, i + 1)), "the line is still growing"):
+                return _compose(line_move(frame, i + 1, "off"), "A3.off.grow-line")
+            if ev.test(
+                f"the line is ({n - i}..{n - 1}, −1)", line == list(range(n - i, n)), "it is emptying"
+            ):
+                return _to_target(
+                    frame, n - i - 2, targets, f"{i} robots left on the line", "A3.off.next-target"
+                )
+            return stay(
+                view,
+                "Phase 3 (off): the line is neither growing nor shrinking as expected → wait",
+                "A3.off.line-unexpected",
             )
-        return stay(view, "Phase 3 (off): on the line, robots above are not done → wait")
-    return stay(view, "Phase 3 (off): below the leader's row → wait")
+        return stay(
+            view,
+            "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
+            "A3.off.not-my-turn",
+        )
+    # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
+    # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
+    p3 = R.P3 in res
+    above = [s for s in view.robots if s is not leader and frame.of(s)[1] > -1]
+    waiting_for = [s for s in above if (s.light != "done" if p3 else s.light == "off")]
+    if p3 and any(s.light not in ("off", "done") for s in above):
+        deviation(ev, R.P3, True)
+    blockers = "not done" if p3 else "off"
+    if not ev.test(f"a robot above the line is {blockers}", bool(waiting_for), "a robot is still on its way"):
+        return Decision(
+            "off",
+            frame.local_move(0, 1),
+            f"Phase 3 (off): left end of the line at ({x}, −1) → move to ({x}, 0)",
+            "A3.off.leave-line",
+        )
+    return stay(view, "Phase 3 (off): on the line, robots above are not done → wait", "A3.off.line-wait")
 
 
-def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str) -> Decision:
+def _compose(decision: Decision, rule_id: str) -> Decision:
+    return Decision(decision.light, decision.move, decision.rule, f"{rule_id}/{decision.rule_id}")
+
+
+def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str, rule_id: str) -> Decision:
     if not 0 <= j < len(targets):
-        return Decision("off", None, f"Phase 3 (off): {why}, but t_{j} does not exist → wait")
+        return Decision(
+            "off",
+            None,
+            f"Phase 3 (off): {why}, but t_{j} does not exist → wait",
+            f"{rule_id}/TargetMove.missing",
+        )
     decision = target_move(frame, j, targets[j], "off")
-    return Decision(decision.light, decision.move, f"Phase 3 (off): {why} → {decision.rule}")
+    return Decision(
+        decision.light,
+        decision.move,
+        f"Phase 3 (off): {why} → {decision.rule}",
+        f"{rule_id}/{decision.rule_id}",
+    )
 
 
-def pattern_formation_leader(view: Snapshot, pattern: Pattern, res: frozenset[str]) -> Decision:
+def pattern_formation_leader(
+    view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = NO_EVIDENCE
+) -> Decision:
     """Algorithm 3, r.light = leader (lines 23–27): wait for the others, then fill t_{n−1}."""
     targets = embedded_targets(pattern)
     n = len(targets)
-    pending = [s for s in view.robots if (s.light != "done" if "P3" in res else s.light == "off")]
-    if pending:
-        return stay(view, "Phase 3 (leader): robots are still forming → wait")
-    if n == 1:
-        return Decision("done", None, "Phase 3 (leader): alone, the pattern is one point → done")
+    p3 = R.P3 in res
+    pending = [s for s in view.robots if (s.light != "done" if p3 else s.light == "off")]
+    if p3 and any(s.light not in ("off", "done") for s in view.robots):
+        deviation(ev, R.P3, True)
+    if ev.test("a robot still forming", bool(pending), "a robot I see is not done"):
+        return stay(view, "Phase 3 (leader): robots are still forming → wait", "A3.leader.wait")
+    if ev.test("n = 1", n == 1, "the pattern is one point"):
+        return Decision(
+            "done", None, "Phase 3 (leader): alone, the pattern is one point → done", "A3.leader.alone"
+        )
     done = [s for s in view.robots if s.light == "done"]
-    if not done:
-        return stay(view, "Phase 3 (leader): no done robot in sight → wait")
+    if not ev.test("a done robot in sight", bool(done), "I can anchor my frame on the placed robots"):
+        return stay(view, "Phase 3 (leader): no done robot in sight → wait", "A3.leader.no-done")
     s = _up_towards(done)
     # Without LA, the paper's frame: r₀ itself is always (0, −1).
-    frame = _anchored_frame(done, targets[n - 2], s) if "LA" in res else LeaderFrame((0, s), s)
+    if R.LA in res and deviation(ev, R.LA, True):
+        frame = _anchored_frame(done, targets[n - 2], s)
+    else:
+        frame = LeaderFrame((0, s), s)
+    _frame_region(ev, frame)
     decision = target_move(frame, n - 1, targets[n - 1], "leader")
-    return Decision(decision.light, decision.move, f"Phase 3 (leader): all others done → {decision.rule}")
+    return Decision(
+        decision.light,
+        decision.move,
+        f"Phase 3 (leader): all others done → {decision.rule}",
+        f"A3.leader.last-target/{decision.rule_id}",
+    )
 
 
 def _up_towards(done: list[Seen]) -> int:

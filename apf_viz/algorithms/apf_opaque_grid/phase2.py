@@ -18,13 +18,16 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     left_neighbour_line,
     left_open_half_empty,
     lights_of,
+    mark_K,
     right_neighbour_line,
     robot_on_K,
     upper_closed_half_has_other,
     vertical_line,
 )
+from apf_viz.algorithms.apf_opaque_grid.resolutions import R, Resolutions, deviation
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
+from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
 from apf_viz.core.view import Snapshot
 
 
@@ -33,99 +36,146 @@ def two_deciders_on_left_line(view: Snapshot) -> bool:
     return sum(1 for s in left_neighbour_line(view) if s.light == "decider") == 2
 
 
-def phase2_decider(view: Snapshot, res: frozenset[str]) -> Decision:
+def phase2_decider(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = decider (lines 3–22)."""
-    if "L2" in res and _lone_decider(view):
-        return Decision("leader1", None, "decider (L2): no other decider, nothing to my left → leader1 again")
-    r_i = right_neighbour_line(view)
-    column = vertical_line(view)
-    if "leader1" in lights_of(r_i) | lights_of(column):
-        return Decision("off", None, "Phase 2 (decider): a leader1 on R_I or L_V → off")
+    if R.L2 in res and deviation(ev, R.L2, _lone_decider(view, ev)):
+        return Decision(
+            "leader1",
+            None,
+            "decider (L2): no other decider, nothing to my left → leader1 again",
+            "A2.decider.L2-alone",
+        )
+    r_i = right_neighbour_line(view, ev)
+    column = vertical_line(view, ev)
+    if ev.test(
+        "a leader1 on R_I or L_V", "leader1" in lights_of(r_i) | lights_of(column), "a robot elected itself"
+    ):
+        return Decision(
+            "off", None, "Phase 2 (decider): a leader1 on R_I or L_V → off", "A2.decider.leader1-off"
+        )
     partner = column_neighbour_with(view, {"decider"})
-    if partner is not None:
+    if ev.test("the other decider r′ on L_V", partner is not None, "my partner is on my vertical line"):
         k2 = k2_of(partner)
-        if robot_on_K(r_i, k2) is None:
-            if is_symmetric_wrt_K(r_i, k2):
-                if all(s.light == "call" for s in r_i):
+        if robot_on_K(r_i, k2, ev) is None:
+            if is_symmetric_wrt_K(r_i, k2, ev):
+                if ev.test("all of R_I call", all(s.light == "call" for s in r_i), "R_I has answered"):
                     return Decision(
                         "decider",
                         Direction.RIGHT,
                         "Phase 2 (decider): R_I symmetric and all call → move right",
+                        "A2.decider.all-call",
                     )
-                return stay(view, "Phase 2 (decider): R_I symmetric → wait until all of R_I is call")
-            if in_dominant_half(view, k2):
-                return Decision(
-                    "leader1", None, "Phase 2 (decider): R_I asymmetric, I am in the dominant half → leader1"
+                return stay(
+                    view,
+                    "Phase 2 (decider): R_I symmetric → wait until all of R_I is call",
+                    "A2.decider.wait-call",
                 )
-            return stay(view, "Phase 2 (decider): R_I asymmetric, the other decider is dominant → wait")
-    if "decider" in lights_of(r_i):
+            if in_dominant_half(view, k2, ev):
+                return Decision(
+                    "leader1",
+                    None,
+                    "Phase 2 (decider): R_I asymmetric, I am in the dominant half → leader1",
+                    "A2.decider.dominant",
+                )
+            return stay(
+                view,
+                "Phase 2 (decider): R_I asymmetric, the other decider is dominant → wait",
+                "A2.decider.not-dominant",
+            )
+    if ev.test("the other decider on R_I", "decider" in lights_of(r_i), "my partner moved right already"):
         return Decision(
-            "decider", Direction.RIGHT, "Phase 2 (decider): the other decider is on R_I → move right"
+            "decider",
+            Direction.RIGHT,
+            "Phase 2 (decider): the other decider is on R_I → move right",
+            "A2.decider.follow",
         )
-    l_i = left_neighbour_line(view)
+    l_i = left_neighbour_line(view, ev)
     if (
-        "call" in lights_of(column)
-        and "decider" not in lights_of(l_i)
-        and all(s.light == "call" for s in r_i)
+        ev.test("a call robot on L_V", "call" in lights_of(column), "a robot of my line answered")
+        and ev.test("no decider on L_I", "decider" not in lights_of(l_i), "I am the left decider")
+        and ev.test("all of R_I call", all(s.light == "call" for s in r_i), "R_I has answered")
     ):
         return Decision(
             "decider",
             Direction.RIGHT,
             "Phase 2 (decider): call on L_V, no decider on L_I, all of R_I call → move right",
+            "A2.decider.call-right",
         )
-    return stay(view, "Phase 2 (decider): waiting (a robot on K ∩ R_I, or the other decider)")
+    return stay(
+        view, "Phase 2 (decider): waiting (a robot on K ∩ R_I, or the other decider)", "A2.decider.wait"
+    )
 
 
-def _lone_decider(view: Snapshot) -> bool:
+def _lone_decider(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """L2's other half: a decider made from a leader1 whose partner turned off instead sees no decider
     anywhere, nothing to its left, and only off robots on its own line (a partner still symmetric is on
     its way to becoming a decider; deciders hidden from each other by call robots, B12, see those)."""
     return (
-        left_open_half_empty(view)
-        and "decider" not in lights_of(view.robots)
-        and lights_of(vertical_line(view)) <= {"off"}
+        left_open_half_empty(view, ev)
+        and ev.test("no decider in sight", "decider" not in lights_of(view.robots), "no partner anywhere")
+        and ev.test("L_V all off", lights_of(vertical_line(view, ev)) <= {"off"}, "my line shows only off")
     )
 
 
-def phase2_off(view: Snapshot, res: frozenset[str]) -> Decision:
+def phase2_off(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = off, with two deciders on L_I(r) (lines 23–35)."""
-    a, b = (s for s in left_neighbour_line(view) if s.light == "decider")
+    a, b = (s for s in left_neighbour_line(view, ev) if s.light == "decider")
+    ev.test("two deciders on L_I", True, "Phase 2 has begun to my left")
     k2 = k2_of(a, b)
-    r_i = right_neighbour_line(view)
-    symmetric = is_symmetric_wrt_K(r_i, k2)
-    if k2 == 0:
-        if "KD" in res and not symmetric:
+    mark_K(ev, k2)
+    r_i = right_neighbour_line(view, ev)
+    symmetric = is_symmetric_wrt_K(r_i, k2, ev)
+    if ev.test("r on K", k2 == 0, "I am on K, the midline of the two deciders"):
+        if R.KD in res and not symmetric:
             up = dominant_side_is_up(r_i, k2)
-            if any((s.dy > 0) == up for s in vertical_line(view)):
+            if deviation(ev, R.KD, any((s.dy > 0) == up for s in vertical_line(view, ev))):
                 return stay(
-                    view, "Phase 2 (off): on K, but a robot of L_V is on the dominant side → defer (KD)"
+                    view,
+                    "Phase 2 (off): on K, but a robot of L_V is on the dominant side → defer (KD)",
+                    "A2.off.KD-defer",
                 )
-        return Decision("leader1", None, "Phase 2 (off): two deciders on L_I and I am on K → leader1")
-    if symmetric:
-        if closest_to_K(view, k2) or "call" in lights_of(vertical_line(view)):
-            return Decision(
-                "call", None, "Phase 2 (off): R_I symmetric, I am closest to K (or see call) → call"
-            )
-        return stay(view, "Phase 2 (off): R_I symmetric, not closest to K → wait")
-    if is_terminal(view) and in_dominant_half(view, k2):
         return Decision(
-            "leader1", None, "Phase 2 (off): R_I asymmetric, terminal in the dominant half → leader1"
+            "leader1", None, "Phase 2 (off): two deciders on L_I and I am on K → leader1", "A2.off.on-K"
         )
-    return stay(view, "Phase 2 (off): R_I asymmetric, not the dominant terminal → wait")
+    if symmetric:
+        if closest_to_K(view, k2, ev) or ev.test(
+            "a call robot on L_V", "call" in lights_of(vertical_line(view, ev)), "my line answered already"
+        ):
+            return Decision(
+                "call",
+                None,
+                "Phase 2 (off): R_I symmetric, I am closest to K (or see call) → call",
+                "A2.off.call",
+            )
+        return stay(view, "Phase 2 (off): R_I symmetric, not closest to K → wait", "A2.off.symmetric-wait")
+    if is_terminal(view, ev) and in_dominant_half(view, k2, ev):
+        return Decision(
+            "leader1",
+            None,
+            "Phase 2 (off): R_I asymmetric, terminal in the dominant half → leader1",
+            "A2.off.dominant",
+        )
+    return stay(view, "Phase 2 (off): R_I asymmetric, not the dominant terminal → wait", "A2.off.wait")
 
 
-def phase2_call(view: Snapshot, res: frozenset[str]) -> Decision:
+def phase2_call(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = call (lines 36–38)."""
-    if "G3" in res:
+    if R.G3 in res:
         seen = lights_of(view.robots)
-        if seen & {"leader1", "leader"}:
-            return Decision("off", None, "Phase 2 (call): a leader1/leader is visible → off (G3)")
-    elif "leader1" in lights_of(right_neighbour_line(view)) | lights_of(left_neighbour_line(view)):
-        return Decision("off", None, "Phase 2 (call): a leader1 on R_I or L_I → off")
-    return stay(view, "Phase 2 (call): waiting for a leader1")
+        if deviation(ev, R.G3, bool(seen & {"leader1", "leader"})):
+            return Decision(
+                "off", None, "Phase 2 (call): a leader1/leader is visible → off (G3)", "A2.call.G3-off"
+            )
+    elif ev.test(
+        "a leader1 on R_I or L_I",
+        "leader1" in lights_of(right_neighbour_line(view, ev)) | lights_of(left_neighbour_line(view, ev)),
+        "a robot next to me elected itself",
+    ):
+        return Decision("off", None, "Phase 2 (call): a leader1 on R_I or L_I → off", "A2.call.off")
+    return stay(view, "Phase 2 (call): waiting for a leader1", "A2.call.wait")
 
 
-def two_leader1_become_deciders(view: Snapshot) -> Decision | None:
+def two_leader1_become_deciders(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> Decision | None:
     """L2 (found by the explorer, docs/VERIFICATION.md): two leader1 robots on one leftmost line (one
     promoted on a stale view) would walk left in lockstep forever. Settle them the way the paper settles two
     robots on L_1: with R_I symmetric about their K they take the symmetric light and move apart to
@@ -136,52 +186,90 @@ def two_leader1_become_deciders(view: Snapshot) -> Decision | None:
     partner = column_neighbour_with(view, {"leader1"})
     if partner is None or not left_open_half_empty(view):
         return None
-    extreme = not (upper_closed_half_has_other(view) and bottom_closed_half_has_other(view))
-    r_i = right_neighbour_line(view)
+    deviation(ev, R.L2, True)
+    left_open_half_empty(view, ev)
+    extreme = not (upper_closed_half_has_other(view, ev) and bottom_closed_half_has_other(view, ev))
+    r_i = right_neighbour_line(view, ev)
     k2 = k2_of(partner)
-    if not extreme and robot_on_K(r_i, k2) is None and is_symmetric_wrt_K(r_i, k2):
-        return Decision("symmetric", None, "leader1 (L2): another leader1 on L_V, R_I symmetric → symmetric")
-    return Decision("decider", None, "leader1 (L2): another leader1 on L_V → decider")
+    if not extreme and robot_on_K(r_i, k2, ev) is None and is_symmetric_wrt_K(r_i, k2, ev):
+        return Decision(
+            "symmetric",
+            None,
+            "leader1 (L2): another leader1 on L_V, R_I symmetric → symmetric",
+            "A2.leader1.L2-symmetric",
+        )
+    return Decision(
+        "decider", None, "leader1 (L2): another leader1 on L_V → decider", "A2.leader1.L2-decider"
+    )
 
 
-def phase2_leader1(view: Snapshot, res: frozenset[str]) -> Decision:
+def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = leader1 (lines 39–58)."""
-    if "L2" in res:
-        if column_neighbour_with(view, {"terminal1", "symmetric"}) is not None:
+    if R.L2 in res:
+        if deviation(ev, R.L2, column_neighbour_with(view, {"terminal1", "symmetric"}) is not None):
             # It may be promoted on a view older than my light (B3): moving now could make the
             # configuration symmetric; it turns off on seeing me (G2), or we settle as two leader1.
-            return stay(view, "leader1 (L2): a terminal1/symmetric robot on L_V → wait for it to settle")
-        settled = two_leader1_become_deciders(view)
+            return stay(
+                view,
+                "leader1 (L2): a terminal1/symmetric robot on L_V → wait for it to settle",
+                "A2.leader1.L2-wait",
+            )
+        settled = two_leader1_become_deciders(view, ev)
         if settled is not None:
             return settled
-    l_i = left_neighbour_line(view)
-    r_i = right_neighbour_line(view)
-    left_all_off = all(s.light == "off" for s in l_i) and ("NV" not in res or bool(l_i))
-    may_act = left_all_off or (left_open_half_empty(view) and all(s.light == "off" for s in r_i))
+    l_i = left_neighbour_line(view, ev)
+    r_i = right_neighbour_line(view, ev)
+    left_all_off = all(s.light == "off" for s in l_i)
+    if left_all_off and R.NV in res and deviation(ev, R.NV, not l_i):
+        left_all_off = False  # the paper's "all of L_I off" holds vacuously for an empty L_I
+    ev.test("all of L_I off", left_all_off, "every robot on the line to my left shows off")
+    may_act = left_all_off or (
+        left_open_half_empty(view, ev)
+        and ev.test("all of R_I off", all(s.light == "off" for s in r_i), "every robot of R_I shows off")
+    )
     if may_act:
-        upper, bottom = upper_closed_half_has_other(view), bottom_closed_half_has_other(view)
+        upper, bottom = upper_closed_half_has_other(view, ev), bottom_closed_half_has_other(view, ev)
         if not upper or not bottom:
-            if left_closed_half_has_other(view):
+            if left_closed_half_has_other(view, ev):
                 return Decision(
                     "leader1",
                     Direction.LEFT,
                     "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
+                    "A2.leader1.extreme-left",
                 )
-            return Decision("leader", None, "Phase 2 (leader1): H_L^C empty and an extreme row → leader")
-        if not is_terminal(view):
-            return Decision("leader1", Direction.LEFT, "Phase 2 (leader1): not terminal on L_V → move left")
-        if not is_singleton(view):
+            return Decision(
+                "leader",
+                None,
+                "Phase 2 (leader1): H_L^C empty and an extreme row → leader",
+                "A2.leader1.leader",
+            )
+        if not is_terminal(view, ev):
+            return Decision(
+                "leader1",
+                Direction.LEFT,
+                "Phase 2 (leader1): not terminal on L_V → move left",
+                "A2.leader1.inner-left",
+            )
+        if not is_singleton(view, ev):
             (neighbour,) = vertical_line(view)
             return Decision(
                 "leader1",
                 away_from(neighbour.dy),
                 "Phase 2 (leader1): terminal, not alone on L_V → move away from r′",
+                "A2.leader1.away",
             )
-        if "SD" in res and r_i and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i)):
+        if R.SD in res and deviation(
+            ev, R.SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
+        ):
             return Decision(
-                "leader1", away_from(r_i[0].dy), "Phase 2 (leader1): alone on L_V → move away from R_I (SD)"
+                "leader1",
+                away_from(r_i[0].dy),
+                "Phase 2 (leader1): alone on L_V → move away from R_I (SD)",
+                "A2.leader1.SD-away",
             )
-        return Decision("leader1", Direction.UP, "Phase 2 (leader1): alone on L_V → move along my +y")
-    if "leader1" in lights_of(l_i):
-        return Decision("off", None, "Phase 2 (leader1): another leader1 on L_I → off")
-    return stay(view, "Phase 2 (leader1): waiting for L_I (or R_I) to turn off")
+        return Decision(
+            "leader1", Direction.UP, "Phase 2 (leader1): alone on L_V → move along my +y", "A2.leader1.up"
+        )
+    if ev.test("a leader1 on L_I", "leader1" in lights_of(l_i), "another robot to my left elected itself"):
+        return Decision("off", None, "Phase 2 (leader1): another leader1 on L_I → off", "A2.leader1.off")
+    return stay(view, "Phase 2 (leader1): waiting for L_I (or R_I) to turn off", "A2.leader1.wait")

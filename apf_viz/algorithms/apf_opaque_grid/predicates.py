@@ -20,6 +20,7 @@ from __future__ import annotations
 from bisect import bisect_left
 from operator import itemgetter
 
+from apf_viz.core.portrayal import NO_EVIDENCE, Evidence, HalfPlane, Line
 from apf_viz.core.view import Seen, Snapshot
 
 _light = itemgetter(2)
@@ -54,50 +55,92 @@ def _columns(view: Snapshot) -> tuple[list[Seen], list[Seen], list[Seen]]:
     return columns
 
 
-def vertical_line(view: Snapshot) -> list[Seen]:
+def _lights_text(robots: list[Seen]) -> str:
+    return ", ".join(s.light for s in robots) if robots else "none"
+
+
+def vertical_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
     """L_V(r): the visible robots on r's own vertical line (at most the nearest above and below, V3)."""
-    return _columns(view)[1]
+    column = _columns(view)[1]
+    if ev.active:
+        ev.region(Line("x", 0, "L_V"))
+        ev.test("L_V(r)", _lights_text(column), "the robots I see on my own vertical line")
+    return column
 
 
-def left_neighbour_line(view: Snapshot) -> list[Seen]:
+def left_neighbour_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
     """L_I(r): the robots on the nearest occupied vertical line strictly left of r (all visible, V2)."""
-    return _columns(view)[0]
+    line = _columns(view)[0]
+    if ev.active:
+        if line:
+            ev.region(Line("x", line[0].dx, "L_I"))
+        ev.test("L_I(r)", _lights_text(line), "the robots on the nearest occupied line to my left")
+    return line
 
 
-def right_neighbour_line(view: Snapshot) -> list[Seen]:
+def right_neighbour_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
     """R_I(r): the robots on the nearest occupied vertical line strictly right of r (all visible, V2)."""
-    return _columns(view)[2]
+    line = _columns(view)[2]
+    if ev.active:
+        if line:
+            ev.region(Line("x", line[0].dx, "R_I"))
+        ev.test("R_I(r)", _lights_text(line), "the robots on the nearest occupied line to my right")
+    return line
 
 
-def left_open_half_empty(view: Snapshot) -> bool:
+def left_open_half_empty(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_L^O(r) = ∅: no robot strictly left of r (exact by V1). Equivalently, r is on L_1."""
-    return not view.robots or view.robots[0].dx >= 0
+    value = not view.robots or view.robots[0].dx >= 0
+    if ev.active:
+        ev.region(HalfPlane("x", 0, -1, False, "H_L^O"))
+        ev.test("H_L^O(r) = ∅", value, "no robot strictly left of me, in the open half-plane (I am on L_1)")
+    return value
 
 
-def left_closed_half_has_other(view: Snapshot) -> bool:
+def left_closed_half_has_other(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_L^C(r) ∖ {r} ≠ ∅: some robot with dx ≤ 0 (exact by V1)."""
-    return bool(view.robots) and view.robots[0].dx <= 0
+    value = bool(view.robots) and view.robots[0].dx <= 0
+    if ev.active:
+        ev.region(HalfPlane("x", 0, -1, True, "H_L^C"))
+        ev.test("H_L^C(r) ∖ {r} ≠ ∅", value, "another robot on my line or to its left (closed half-plane)")
+    return value
 
 
-def upper_closed_half_has_other(view: Snapshot) -> bool:
+def upper_closed_half_has_other(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_U^C(r) ∖ {r} ≠ ∅: some robot with dy ≥ 0 in r's frame (exact by V1)."""
-    return any(s.dy >= 0 for s in view.robots)
+    value = any(s.dy >= 0 for s in view.robots)
+    if ev.active:
+        ev.region(HalfPlane("y", 0, 1, True, "H_U^C"))
+        ev.test("H_U^C(r) ∖ {r} ≠ ∅", value, "another robot on my row or above it (my own +y)")
+    return value
 
 
-def bottom_closed_half_has_other(view: Snapshot) -> bool:
+def bottom_closed_half_has_other(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_B^C(r) ∖ {r} ≠ ∅: some robot with dy ≤ 0 in r's frame (exact by V1)."""
-    return any(s.dy <= 0 for s in view.robots)
+    value = any(s.dy <= 0 for s in view.robots)
+    if ev.active:
+        ev.region(HalfPlane("y", 0, -1, True, "H_B^C"))
+        ev.test("H_B^C(r) ∖ {r} ≠ ∅", value, "another robot on my row or below it (my own −y)")
+    return value
 
 
-def is_terminal(view: Snapshot) -> bool:
+def is_terminal(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """Terminal robot: L_V(r) ∩ H_U^O(r) = ∅ or L_V(r) ∩ H_B^O(r) = ∅ (the nearest ones are visible)."""
     column = vertical_line(view)
-    return not (any(s.dy > 0 for s in column) and any(s.dy < 0 for s in column))
+    value = not (any(s.dy > 0 for s in column) and any(s.dy < 0 for s in column))
+    if ev.active:
+        ev.region(Line("x", 0, "L_V"))
+        ev.test("r is terminal", value, "no robot above me or none below me on L_V")
+    return value
 
 
-def is_singleton(view: Snapshot) -> bool:
+def is_singleton(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """r is alone on L_V(r)."""
-    return not vertical_line(view)
+    value = not vertical_line(view)
+    if ev.active:
+        ev.region(Line("x", 0, "L_V"))
+        ev.test("L_V(r) = {r}", value, "I am alone on my vertical line")
+    return value
 
 
 def column_neighbour_with(view: Snapshot, lights: set[str]) -> Seen | None:
@@ -117,9 +160,18 @@ def on_K(s: Seen, k2: int) -> bool:
     return 2 * s.dy == k2
 
 
-def robot_on_K(line: list[Seen], k2: int) -> Seen | None:
+def robot_on_K(line: list[Seen], k2: int, ev: Evidence = NO_EVIDENCE, name: str = "R_I") -> Seen | None:
     """The robot of this vertical line on K (K ∩ line), if any."""
-    return next((s for s in line if on_K(s, k2)), None)
+    found = next((s for s in line if on_K(s, k2)), None)
+    if ev.active:
+        mark_K(ev, k2)
+        ev.test(f"K ∩ {name} = ∅", found is None, f"no robot of {name} lies on K")
+    return found
+
+
+def mark_K(ev: Evidence, k2: int) -> None:
+    """K as a region (it may pass between two rows)."""
+    ev.region(Line("y", k2 / 2, "K"))
 
 
 def _sides(line: list[Seen], k2: int) -> tuple[set[int], set[int]]:
@@ -129,10 +181,15 @@ def _sides(line: list[Seen], k2: int) -> tuple[set[int], set[int]]:
     return up, down
 
 
-def is_symmetric_wrt_K(line: list[Seen], k2: int) -> bool:
+def is_symmetric_wrt_K(line: list[Seen], k2: int, ev: Evidence = NO_EVIDENCE, name: str = "R_I") -> bool:
     """λ₁ = λ₂: the line reads the same from K upwards and downwards (a robot on K is ignored; an empty
     line is symmetric)."""
     up, down = _sides(line, k2)
+    if ev.active:
+        mark_K(ev, k2)
+        ev.test(
+            f"{name} symmetric w.r.t. K (λ₁ = λ₂)", up == down, f"{name} reads the same up and down from K"
+        )
     return up == down
 
 
@@ -143,18 +200,32 @@ def dominant_side_is_up(line: list[Seen], k2: int) -> bool:
     return min(up ^ down) in up
 
 
-def in_dominant_half(view: Snapshot, k2: int) -> bool:
+def in_dominant_half(view: Snapshot, k2: int, ev: Evidence = NO_EVIDENCE) -> bool:
     """*Dominant half*: R_I(r) is not symmetric w.r.t. K, and r lies on the side of K whose λ is larger."""
     line = right_neighbour_line(view)
-    if is_symmetric_wrt_K(line, k2) or k2 == 0:
-        return False
-    return dominant_side_is_up(line, k2) == (k2 < 0)
+    value = not (is_symmetric_wrt_K(line, k2) or k2 == 0) and dominant_side_is_up(line, k2) == (k2 < 0)
+    if ev.active:
+        mark_K(ev, k2)
+        ev.region(HalfPlane("y", k2 / 2, -1 if k2 > 0 else 1, False, "my side of K"))
+        ev.test(
+            "r in the dominant half", value, "R_I is asymmetric about K and my side of K has the larger λ"
+        )
+    return value
 
 
-def closest_to_K(view: Snapshot, k2: int) -> bool:
+def closest_to_K(view: Snapshot, k2: int, ev: Evidence = NO_EVIDENCE) -> bool:
     """r is the robot of L_V(r) closest to K (a robot on K makes every other robot not closest).
 
     Only r's visible neighbour towards K can be closer, so the answer is exact (V3)."""
+    value = _closest_to_K(view, k2)
+    if ev.active:
+        mark_K(ev, k2)
+        ev.region(Line("x", 0, "L_V"))
+        ev.test("r closest to K on L_V", value, "no robot of my vertical line is nearer to K than I am")
+    return value
+
+
+def _closest_to_K(view: Snapshot, k2: int) -> bool:
     if k2 == 0:
         return True
     towards = [s for s in vertical_line(view) if (s.dy > 0) == (k2 > 0)]

@@ -6,22 +6,61 @@ enables only what the paper needs to run at all.
 
 from __future__ import annotations
 
-RESOLUTIONS: dict[str, str] = {
-    "G1": "an off robot that sees any light other than off/terminal1 does not run Phase 1 again (B1)",
-    "G2": "terminal1/symmetric robots that see a leader1/leader turn off (hidden window, B2/B3)",
-    "G3": "decider/call robots turn off on seeing any leader1/leader, wherever it is (B5, B10)",
-    "NV": "'all robots in L_I are off' requires L_I to be non-empty (B6)",
-    "KD": "the K robot defers to the dominant terminal robot of its line when R_I is asymmetric (B7)",
-    "LW": "a leader1 that sees a leader1/leader to its left turns off (B8)",
-    "E2": "off rule (b) needs L_I to hold exactly the two terminal1 robots (B4)",
-    "SD": "a singleton leader1 moves away from R_I when R_I lies on one side (B3)",
-    "P3": "Phase 3 waits for robots that are not done, not only for off ones (B19)",
-    "LA": "the leader anchors its frame on t_{n-2}, not on itself, for its last TargetMove (B18)",
-    "N2": "with n = 2 the single follower goes to its target instead of LineMove(1) again (B17)",
-    "L2": "two leader1 on one leftmost line, on extreme rows, become the deciders of a stable configuration",
+from enum import StrEnum
+
+
+class Resolution(StrEnum):
+    """A named resolution of one of the paper's gaps: a typed flag, compared as ``R.G3 in res``."""
+
+    G1 = "G1"
+    G2 = "G2"
+    G3 = "G3"
+    NV = "NV"
+    KD = "KD"
+    LW = "LW"
+    E2 = "E2"
+    SD = "SD"
+    P3 = "P3"
+    LA = "LA"
+    N2 = "N2"
+    L2 = "L2"
+
+
+R = Resolution
+Resolutions = frozenset[Resolution]
+
+RESOLUTIONS: dict[Resolution, str] = {
+    R.G1: "an off robot that sees any light other than off/terminal1 does not run Phase 1 again (B1)",
+    R.G2: "terminal1/symmetric robots that see a leader1/leader turn off (hidden window, B2/B3)",
+    R.G3: "decider/call robots turn off on seeing any leader1/leader, wherever it is (B5, B10)",
+    R.NV: "'all robots in L_I are off' requires L_I to be non-empty (B6)",
+    R.KD: "the K robot defers to the dominant terminal robot of its line when R_I is asymmetric (B7)",
+    R.LW: "a leader1 that sees a leader1/leader to its left turns off (B8)",
+    R.E2: "off rule (b) needs L_I to hold exactly the two terminal1 robots (B4)",
+    R.SD: "a singleton leader1 moves away from R_I when R_I lies on one side (B3)",
+    R.P3: "Phase 3 waits for robots that are not done, not only for off ones (B19)",
+    R.LA: "the leader anchors its frame on t_{n-2}, not on itself, for its last TargetMove (B18)",
+    R.N2: "with n = 2 the single follower goes to its target instead of LineMove(1) again (B17)",
+    R.L2: "two leader1 on one leftmost line, on extreme rows, become the deciders of a stable configuration",
 }
 
-ALL = frozenset(RESOLUTIONS)
+ALL: Resolutions = frozenset(Resolution)
 # LA is needed for any run to finish: without it the leader's frame moves with it and TargetMove(n-1)
 # never ends (B18), whatever n is. Every other resolution fixes a failure that happens only sometimes.
-LITERAL = frozenset({"LA"})
+LITERAL: Resolutions = frozenset({R.LA})
+
+
+def parse_resolutions(names: set[str] | frozenset[str]) -> Resolutions:
+    """Resolution flags from their names; an unknown name is a one-line ``ValueError``."""
+    unknown = sorted(set(names) - set(Resolution))
+    if unknown:
+        raise ValueError(f"unknown resolution(s) {', '.join(unknown)}; known: {', '.join(Resolution)}")
+    return frozenset(Resolution(n) for n in names)
+
+
+def deviation(ev, r: Resolution, applies: bool) -> bool:
+    """A branch where resolution ``r`` changes the paper's line: returns ``applies`` and, when it does,
+    shows the deviation by name in the explanation."""
+    if applies and ev.active:
+        ev.test(f"deviation {r.value}", True, RESOLUTIONS[r])
+    return applies

@@ -1,0 +1,222 @@
+"""How an algorithm describes itself to the screen (optional; Mesa calls this a portrayal).
+
+The visualiser knows no particular algorithm. It draws what the algorithm describes:
+
+- a **legend**: a colour and a one-line meaning per light (:meth:`Portrayed.legend`);
+- **overlays** of the whole run: marks in the global frame computed from the global configuration (the
+  line K, the leader's frame, where the pattern will form) and the stage's name
+  (:meth:`Portrayed.overlays`). They are for the screen only and never reach ``decide``;
+- the **explanation** of one decision: the same :class:`~apf_viz.core.algorithm.Decision` as ``decide``
+  plus the predicates its rule tested (symbol, value, meaning) and the regions it looked at, in the
+  robot's own frame (:meth:`Portrayed.explain`), computed from the snapshot the decision used.
+
+All three are optional: :func:`legend_of`, :func:`overlays_of` and :func:`explain` give every algorithm
+defaults (a palette, no marks, a bare decision). Marks are plain frozen data, so the core stays free of
+viser; ``ui/scene.py`` draws them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal, Protocol, TypeVar, runtime_checkable
+
+from apf_viz.core.algorithm import Algorithm, Decision, Pattern
+from apf_viz.core.grid import Point
+from apf_viz.core.view import Snapshot
+
+RGB = tuple[int, int, int]
+
+# Colours for lights an algorithm does not describe: distinct, and readable on white.
+PALETTE: tuple[RGB, ...] = (
+    (150, 150, 150),
+    (50, 110, 255),
+    (255, 150, 0),
+    (40, 170, 60),
+    (220, 30, 30),
+    (160, 80, 220),
+    (0, 190, 200),
+    (255, 80, 170),
+    (140, 90, 40),
+    (90, 90, 200),
+)
+
+
+@dataclass(frozen=True)
+class LightStyle:
+    """How a light looks and what it means."""
+
+    color: RGB
+    meaning: str = ""
+
+
+# ------------------------------------------------------------------------------------------------ marks
+@dataclass(frozen=True)
+class Line:
+    """A horizontal (``axis="y"``: y = at) or vertical (``axis="x"``: x = at) line; ``at`` may be a
+    half-integer (K can pass between two rows)."""
+
+    axis: Literal["x", "y"]
+    at: float
+    label: str
+
+
+@dataclass(frozen=True)
+class Band:
+    """The strip lo ≤ coordinate ≤ hi across ``axis`` (``"x"``: columns, ``"y"``: rows)."""
+
+    axis: Literal["x", "y"]
+    lo: float
+    hi: float
+    label: str
+
+
+@dataclass(frozen=True)
+class HalfPlane:
+    """The points whose ``axis`` coordinate is beyond ``at`` on ``side`` (+1: greater, −1: smaller);
+    ``closed`` includes the boundary line."""
+
+    axis: Literal["x", "y"]
+    at: float
+    side: Literal[1, -1]
+    closed: bool
+    label: str
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A coordinate system: its (0, 0) at ``origin`` and its +y along ``y_sign`` (+1 or −1)."""
+
+    origin: Point
+    y_sign: int
+    label: str
+
+
+@dataclass(frozen=True)
+class Cells:
+    """A set of cells: ``style`` "placed" (final) or "preview" (not yet placed: drawn dimmed)."""
+
+    points: tuple[Point, ...]
+    label: str
+    style: Literal["placed", "preview"] = "placed"
+
+
+Mark = Line | Band | HalfPlane | Frame | Cells
+
+
+@dataclass(frozen=True)
+class Configuration:
+    """The whole run at one moment, global frame: what overlays are computed from (never ``decide``)."""
+
+    positions: tuple[Point, ...]
+    lights: tuple[str, ...]
+    pattern: Pattern
+    start: tuple[Point, ...]
+
+
+@dataclass(frozen=True)
+class Overlays:
+    """Marks over the whole run (global frame) and the stage the run is in."""
+
+    marks: tuple[Mark, ...] = ()
+    stage: str = ""
+
+
+# ------------------------------------------------------------------------------------------ explanation
+@dataclass(frozen=True)
+class Predicate:
+    """One test a rule made: its symbol in the paper's notation (``H_L^O(r) = ∅``), its value, and what
+    it means for this robot."""
+
+    symbol: str
+    value: bool | int | str
+    meaning: str
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """A decision with its evidence: the predicates tested, in order, and the regions looked at (the
+    robot's own frame: the robot at (0, 0), its own +y up)."""
+
+    decision: Decision
+    predicates: tuple[Predicate, ...] = ()
+    regions: tuple[Mark, ...] = ()
+
+
+T = TypeVar("T")
+
+
+@dataclass
+class Evidence:
+    """What a rule tests, collected while it decides. ``decide`` passes :data:`NO_EVIDENCE`, which keeps
+    nothing, so ``explain`` and ``decide`` run the very same code and cannot disagree."""
+
+    predicates: list[Predicate] = field(default_factory=list)
+    regions: list[Mark] = field(default_factory=list)
+    active = True  # False for NO_EVIDENCE: callers skip building what would be thrown away
+
+    def test(self, symbol: str, value: T, meaning: str) -> T:
+        """Record a predicate and return its value (use it inline: ``if ev.test(...):``)."""
+        self.predicates.append(Predicate(symbol, value, meaning))  # type: ignore[arg-type]
+        return value
+
+    def region(self, mark: Mark) -> None:
+        if mark not in self.regions:
+            self.regions.append(mark)
+
+    def explanation(self, decision: Decision) -> Explanation:
+        return Explanation(decision, tuple(self.predicates), tuple(self.regions))
+
+
+class _NoEvidence(Evidence):
+    active = False
+
+    def test(self, symbol: str, value: T, meaning: str) -> T:
+        return value
+
+    def region(self, mark: Mark) -> None:
+        pass
+
+
+NO_EVIDENCE: Evidence = _NoEvidence()
+
+
+# ------------------------------------------------------------------------------------------ the protocol
+@runtime_checkable
+class Portrayed(Protocol):
+    """The optional half of an algorithm: how it describes itself. Any subset may be provided."""
+
+    def legend(self) -> dict[str, LightStyle]: ...
+
+    def overlays(self, config: Configuration) -> Overlays: ...
+
+    def explain(self, view: Snapshot, pattern: Pattern) -> Explanation: ...
+
+
+def legend_of(algorithm: Algorithm) -> dict[str, LightStyle]:
+    """Every light of the algorithm with its style: its own legend where it gives one, the palette
+    elsewhere (in the order of ``lights``, so colours are stable)."""
+    own = getattr(algorithm, "legend", None)
+    given: dict[str, LightStyle] = dict(own()) if callable(own) else {}
+    return {
+        light: given.get(light, LightStyle(PALETTE[i % len(PALETTE)]))
+        for i, light in enumerate(algorithm.lights)
+    }
+
+
+def overlays_of(algorithm: Algorithm, config: Configuration) -> Overlays:
+    """The algorithm's overlays of this configuration, or none."""
+    own = getattr(algorithm, "overlays", None)
+    return own(config) if callable(own) else Overlays()
+
+
+def explain(algorithm: Algorithm, view: Snapshot, pattern: Pattern) -> Explanation:
+    """The algorithm's explanation of its decision on this view, or the bare decision."""
+    own = getattr(algorithm, "explain", None)
+    return own(view, pattern) if callable(own) else Explanation(algorithm.decide(view, pattern))
+
+
+def in_frame(points: Sequence[Point], origin: Point, y_up: bool) -> tuple[Point, ...]:
+    """Global points of a robot's local offsets (``origin`` its global position, ``y_up`` its flip)."""
+    s = 1 if y_up else -1
+    return tuple((origin[0] + x, origin[1] + s * y) for x, y in points)
