@@ -17,6 +17,7 @@ import time
 
 from playwright.sync_api import sync_playwright
 
+import apf_viz.ui.run_controller as run_controller
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.ui.app import App, free_port
 from apf_viz.ui.session import Session
@@ -72,13 +73,14 @@ def main() -> None:
         page.goto(f"http://127.0.0.1:{app.port}")
         page.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(2)
-        session.speed = 2000.0
-        session.playing = True
+        run_controller.MAX_SPEED = 2000.0  # above the slider's top: a harder case than a person can set
+        session.set_speed(2000.0)
+        session.toggle_play()
         time.sleep(1)
         frames_before = app.frames
         rate, page_fps = page.evaluate(COUNT_CHANGES, [5000])
         sent = (app.frames - frames_before) / 5.0
-        session.playing = False
+        session.pause()
         server_fps = app.frames
         print(f"| scene updates/s in the browser while playing, {args.robots} robots | {rate:.1f} |")
         print(f"| frames/s the server sent meanwhile (one atomic update each) | {sent:.1f} |")

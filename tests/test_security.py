@@ -147,4 +147,4 @@ def test_values_a_browser_sends_are_checked():
     assert session.engine.step_index == session.engine.history.length
     session.set_mode("edit-robots")
     message = session.click((10**13, 0))
-    assert "outside the grid" in message and (10**13, 0) not in session.draft_robots
+    assert "outside the grid" in message and (10**13, 0) not in session.editor.robots

@@ -7,6 +7,7 @@ import json
 import pytest
 
 from apf_viz.core.formats import InputError
+from apf_viz.core.portrayal import Cells, Frame, Line
 from apf_viz.ui.app import demo_session
 from apf_viz.ui.session import Session
 
@@ -105,14 +106,14 @@ def test_edit_robots_adds_flips_removes_and_rejects_an_unsolvable_start():
     s.click((0, 2))  # removes two robots: now (1, 0), (1, 3)
     s.click((1, 0))
     s.click((1, 0))  # removed
-    s.draft_robots, s.draft_y_up = [(0, 0), (0, 1)], [True, True]
-    s.draft_pattern = [(0, 0), (1, 0)]
+    s.editor.robots, s.editor.y_up = [(0, 0), (0, 1)], [True, True]
+    s.editor.pattern = [(0, 0), (1, 0)]
     problem = s.set_mode("run")
     assert problem and "y = 0.5" in problem and s.view().axis == 0.5
     assert [r.position for r in s.view().robots] == [(0, 0), (0, 1)]  # the scene shows the draft
-    s.draft_robots.append((3, 0))
-    s.draft_y_up.append(False)
-    s.draft_pattern.append((2, 0))
+    s.editor.robots.append((3, 0))
+    s.editor.y_up.append(False)
+    s.editor.pattern.append((2, 0))
     assert s.set_mode("run") is None
     assert s.engine.k == 3 and s.engine.y_up == (True, True, False)
 
@@ -160,21 +161,30 @@ def test_download_and_reupload_round_trip():
     assert u.robots == s.robots and u.pattern == s.pattern
 
 
-def test_view_shows_line_K_leader_frame_targets_and_stats():
+def test_view_shows_the_algorithms_overlays_K_leader_frame_targets_and_stats():
     s = Session(
         [(0, 0), (0, 2), (1, 0), (1, 2), (2, 5)], [*PATTERN, (4, 0)], y_up=[True] * 5, scheduler="fsync"
     )
     seen_K = seen_frame = False
+    stages = []
     while not s.engine.finished:
         s.step()
         v = s.view()
-        seen_K |= v.line_K is not None
-        if v.leader_frame is not None:
+        stages.append(v.stage)
+        seen_K |= any(isinstance(m, Line) and m.label == "K" for m in v.overlays.marks)
+        frame = next((m for m in v.overlays.marks if isinstance(m, Frame)), None)
+        cells = next(m for m in v.overlays.marks if isinstance(m, Cells))
+        if frame is not None:
             seen_frame = True
-            (ox, oy), sign = v.leader_frame
+            (ox, oy), sign = frame.origin, frame.y_sign
+            assert cells.style == "placed" and cells.points == v.targets
             assert len(v.targets) == 5 and all(sign * (y - oy) >= 1 for _, y in v.targets)
+        elif cells.style == "preview":
+            assert cells.label == "pattern, not yet placed"
     v = s.view()
-    assert seen_K and seen_frame and v.outcome == "formed" and v.stage == "targets"
+    assert seen_K and seen_frame and v.outcome == "formed" and v.stage.startswith("Formed")
+    assert stages[0].startswith("Phase 1") and any(st.startswith("Phase 3") for st in stages)
+    assert sorted(v.targets) == sorted(r.position for r in v.robots)  # formed: the targets stay under them
     assert v.moves_per_kD > 0 and v.move_series[-1][1] == v.moves
 
 
@@ -189,11 +199,11 @@ def test_a_start_that_is_the_pattern_is_formed_at_once_even_when_symmetric():
     assert s.view().outcome == "formed" and not s.step()
     s = Session(START, PATTERN, y_up=[True] * 4)
     s.set_mode("edit-robots")
-    s.draft_robots, s.draft_y_up = list(symmetric), [True] * 4
+    s.editor.robots, s.editor.y_up = list(symmetric), [True] * 4
     s.set_mode("edit-pattern")
-    s.draft_pattern = [(1, 1), (1, 2), (3, 1), (3, 2)]
+    s.editor.pattern = [(1, 1), (1, 2), (3, 1), (3, 2)]
     assert s.set_mode("run") is None  # not refused as unsolvable: it is already formed
     assert s.view().outcome == "formed" and s.view().moves == 0
     s.set_mode("edit-pattern")
-    s.draft_pattern = [(0, 0), (1, 0), (2, 0), (3, 0)]
+    s.editor.pattern = [(0, 0), (1, 0), (2, 0), (3, 0)]
     assert "unsolvable" in s.set_mode("run")

@@ -175,13 +175,13 @@ def test_edit_pattern_clicks_change_the_target_count(browser, app):
         page.mouse.click(x, y)
         time.sleep(0.2)
     page.get_by_text("Targets: 3 / 10 robots").wait_for()
-    assert sorted(app.session.draft_pattern) == [(1, 1), (2, 1), (3, 1)]
+    assert sorted(app.session.editor.pattern) == [(1, 1), (2, 1), (3, 1)]
     shot(page, "edit-pattern")
     # Back to Run with 3 targets for 10 robots: refused, the drawing is kept.
     page.get_by_role("combobox", name="Mode").click()
     page.get_by_role("option", name="Run").click()
     page.get_by_text("the pattern has 3 points but there are 10 robots").wait_for()
-    assert app.session.mode == "edit-pattern" and len(app.session.draft_pattern) == 3
+    assert app.session.mode == "edit-pattern" and len(app.session.editor.pattern) == 3
     page.close()
 
 

@@ -59,6 +59,7 @@ class Line:
     axis: Literal["x", "y"]
     at: float
     label: str
+    color: RGB | None = None  # None: the screen's default for lines
 
 
 @dataclass(frozen=True)
@@ -90,6 +91,7 @@ class Frame:
     origin: Point
     y_sign: int
     label: str
+    color: RGB | None = None
 
 
 @dataclass(frozen=True)

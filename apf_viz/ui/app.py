@@ -96,8 +96,7 @@ class App:
                 deadline = now + STEP_SHARE / FPS
                 while budget >= 1 and time.perf_counter() < deadline:
                     budget -= 1
-                    if not s.step():
-                        s.playing = False
+                    if not s.play_step():  # the run ended, or Manual: play stops by itself
                         break
                 self._dirty.set()
             else:
@@ -162,9 +161,8 @@ def session_from_args(args: argparse.Namespace) -> Session:
     if args.trace:
         session = demo_session(**options, plugins=plugins)
         path = Path(args.trace)
-        header, _ = load_trace(path)  # validates the file with a one-line error before the UI starts
+        load_trace(path)  # validates the file with a one-line error before the UI starts
         session.load_trace(path.name, path.read_bytes())
-        session.scheduler_name = "manual" if header.scheduler == "manual" else header.scheduler
         return session
     robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
     pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)

@@ -15,12 +15,13 @@ import numpy as np
 import viser
 import viser.uplot
 
+from apf_viz.algorithms import ALGORITHMS
 from apf_viz.core.formats import InputError
 from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
-from apf_viz.ui.scene import LIGHT_COLORS
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
+from apf_viz.ui.why import legend_html, why_markdown
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
@@ -72,8 +73,27 @@ class Panels:
             self.seed = gui.add_number("Seed", initial_value=session.seed, step=1)
             self.seed.on_update(self._on_seed)
             self.next_phase = gui.add_markdown("")
+        with gui.add_folder("Algorithm"):
+            self.algorithm = gui.add_dropdown(
+                "Algorithm", self._algorithm_names(), initial_value=session.algorithm_name
+            )
+            self.algorithm.on_update(self._on_algorithm)
+            self.variant = gui.add_text(
+                "Variant",
+                initial_value="apf-opaque-grid@",
+                hint="a resolution set, e.g. apf-opaque-grid@G1,G2,LA",
+            )
+            gui.add_button("Use variant").on_click(
+                self._guard(lambda e: self.session.set_algorithm(self.variant.value.strip()))
+            )
+            self.semantics = gui.add_dropdown(
+                "Light semantics", ("compute", "lc-atomic"), initial_value=session.config.light_semantics
+            )
+            self.semantics.on_update(self._on_semantics)
         with gui.add_folder("Selected robot"):
             self.caption = gui.add_markdown("")
+        with gui.add_folder("Why"):
+            self.why = gui.add_markdown("Select a robot to see why it acted.")
         with gui.add_folder("Edit"):
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
@@ -107,7 +127,8 @@ class Panels:
                 aspect=2.0,
             )
         with gui.add_folder("Lights"):
-            gui.add_html(self._legend())
+            self.legend = gui.add_html("")
+        self._legend_of: object = None
 
     # ------------------------------------------------------------------ callbacks
     def _guard(self, fn: Callable) -> Callable:
@@ -126,13 +147,12 @@ class Panels:
         value = event.target.value
         s = self.session
         if value == "Step":
-            s.playing = False
+            s.pause()
             s.step()
         elif value == "Back":
-            s.playing = False
             s.back()
         elif value in ("Play", "Pause"):
-            s.playing = not s.playing
+            s.toggle_play()
         elif value == "Reset":
             s.reset()
         self.changed()
@@ -153,6 +173,19 @@ class Panels:
     def _on_seed(self, event) -> None:
         if event.client is not None:
             self._guard(lambda e: self.session.set_seed(self.seed.value))(event)
+
+    def _on_algorithm(self, event) -> None:
+        if event.client is not None and self.algorithm.value != self.session.algorithm_name:
+            self._guard(lambda e: self.session.set_algorithm(self.algorithm.value))(event)
+
+    def _on_semantics(self, event) -> None:
+        if event.client is not None and self.semantics.value != self.session.config.light_semantics:
+            self._guard(lambda e: self.session.set_light_semantics(self.semantics.value))(event)
+
+    def _algorithm_names(self, current: str | None = None) -> tuple[str, ...]:
+        names = [*ALGORITHMS, *(n for n in self.session.run.plugins if ":" not in n)]
+        current = current or self.session.algorithm_name
+        return tuple(names if current in names else [*names, current])
 
     def _on_mode(self, event) -> None:
         if event.client is None:
@@ -209,6 +242,15 @@ class Panels:
         )
         self.banner.content = self._banner(view)
         self.caption.content = view.caption
+        self.why.content = why_markdown(view)
+        if self.algorithm.value != s.algorithm_name:
+            self.algorithm.options = self._algorithm_names(s.algorithm_name)
+            self.algorithm.value = s.algorithm_name
+        if self.semantics.value != s.config.light_semantics:
+            self.semantics.value = s.config.light_semantics
+        if self._legend_of is not view.legend and self._legend_of != view.legend:
+            self.legend.content = legend_html(view)
+        self._legend_of = view.legend
         self.counts.content = self._counts(view)
         if self.mode.value != MODE_LABELS[view.mode]:
             self.mode.value = MODE_LABELS[view.mode]
@@ -290,18 +332,3 @@ class Panels:
             for phase, rs in sorted(counts.items())
         ]
         return "Manual — click a robot to run its next phase.  \n" + "  \n".join(parts)
-
-    @staticmethod
-    def _legend() -> str:
-        cells = "".join(
-            f'<div style="display:flex;align-items:center;gap:6px;margin:2px 0">'
-            f'<span style="width:12px;height:12px;border-radius:6px;background:rgb{c}"></span>{name}</div>'
-            for name, c in LIGHT_COLORS.items()
-        )
-        key = (
-            '<div style="margin-top:4px">halo: <b style="color:rgb(230,180,0)">looked</b> · '
-            '<b style="color:rgb(250,120,30)">computed</b> · none: idle<br>'
-            "nose (many robots: grey diamond): the robot's own +y, down if flipped by the adversary<br>"
-            '<b style="color:rgb(230,40,40)">red</b> line (many robots: dot): the move a robot computed</div>'
-        )
-        return f'<div style="font-size:0.85em">{cells}{key}</div>'

@@ -20,18 +20,9 @@ from typing import Literal
 import numpy as np
 import viser
 
+from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
 from apf_viz.ui.session import SessionView
 
-LIGHT_COLORS: dict[str, tuple[int, int, int]] = {
-    "off": (150, 150, 150),
-    "terminal1": (50, 110, 255),
-    "symmetric": (160, 80, 220),
-    "decider": (0, 190, 200),
-    "call": (255, 150, 0),
-    "leader1": (255, 80, 170),
-    "leader": (220, 30, 30),
-    "done": (40, 170, 60),
-}
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.34
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
@@ -60,11 +51,16 @@ def grid_steps(width: int) -> tuple[bool, int]:
     return px >= GRID_CELL_PX, section
 
 
-def light_color(light: str) -> tuple[int, int, int]:
-    if light in LIGHT_COLORS:
-        return LIGHT_COLORS[light]
-    h = abs(hash(light))  # a plug-in algorithm's own lights: a stable colour per name
-    return (h % 200 + 30, (h // 200) % 200 + 30, (h // 40000) % 200 + 30)
+def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
+    """Each light's colour, from the algorithm's legend (core/portrayal.py gives every light one)."""
+    return {light: style.color for light, style in view.legend.items()}
+
+
+TARGET_COLORS = {"placed": (120, 215, 120), "preview": (205, 230, 205), "drawing": (240, 120, 190)}
+LINE_COLOR = (90, 90, 90)
+REGION_COLOR = (40, 120, 255)
+REGION_OPACITY = 0.13
+LABEL_SCALE = 1.1
 
 
 def _icosphere() -> tuple[np.ndarray, np.ndarray]:
@@ -182,6 +178,7 @@ class SceneRenderer:
         self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)  # scene units: grid minus origin
         self.origin: tuple[int, int] = (0, 0)  # the grid point drawn at the scene's (0, 0)
         self._grid_key: tuple[int, int, int, int] | None = None
+        self._slots: dict[str, int] = {}  # nodes made so far per kind of mark (reused, hidden when idle)
         self.framed_pose = self.camera_pose()  # the pose browsers were last sent (tests project with it)
 
     # ------------------------------------------------------------------ batched helpers
@@ -314,9 +311,7 @@ class SceneRenderer:
         self._robot_spheres(view, pts[:0] if dense else pts)
         self._robot_sprites(view, pts if dense else pts[:0])
         self._phase_halos(view, pts)
-        targets = self._local(view.targets)
-        target_color = (240, 120, 190) if view.mode == "edit-pattern" else (120, 215, 120)
-        self._points("/targets", _xyz(targets, 0.005), target_color, 0.8)
+        self._targets(view)
         ghosts = self._local(view.ghosts)
         self._batched(
             "/ghosts",
@@ -334,17 +329,17 @@ class SceneRenderer:
         destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
         self._points("/pending_cells", destinations, (230, 40, 40), 0.3, "circle")
         oy = self.origin[1]
-        line_K = view.line_K - oy if view.line_K is not None else None
-        self._segments("/line_K", self._horizontal(line_K), (200, 0, 200), 3.0)
         axis = view.axis - oy if editing_robots and view.axis is not None else None
         self._segments("/axis", self._horizontal(axis), (255, 0, 0), 4.0)
-        self._segments("/leader_frame", self._frame(view), (30, 30, 30), 3.0)
+        self._marks(view)
+        self._why_regions(view)
 
     def _robot_spheres(self, view: SessionView, pts: np.ndarray) -> None:
         """Robots as spheres coloured by light, one batched mesh. Each robot's own +y (the adversary's
         flip) is the nose of its sphere: a flipped robot is the same mesh turned half a turn about x."""
         robots = view.robots[: len(pts)]
-        colors = np.array([light_color(r.light) for r in robots], dtype=np.uint8).reshape(-1, 3)
+        palette = light_colors(view)
+        colors = np.array([palette[r.light] for r in robots], dtype=np.uint8).reshape(-1, 3)
         flipped = np.array([not r.y_up for r in robots], dtype=bool)
         wxyzs = np.where(flipped[:, None], _HALF_TURN_X, _IDENTITY).astype(np.float32).reshape(-1, 4)
         self._batched("/robots", self._sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS, wxyzs=wxyzs)
@@ -358,11 +353,11 @@ class SceneRenderer:
         robots = view.robots[: len(pts)]
         lights = np.array([r.light for r in robots], dtype=object)
         centre = _xyz(pts, Z)
+        palette = light_colors(view)
         for light in set(self._sprite_lights) | set(lights.tolist()):
             self._sprite_lights.add(light)
-            self._points(
-                f"/robots/{light}", centre[lights == light], light_color(light), 2 * ROBOT_RADIUS, "circle"
-            )
+            color = palette.get(light, (0, 0, 0))
+            self._points(f"/robots/{light}", centre[lights == light], color, 2 * ROBOT_RADIUS, "circle")
         sign = np.array([1.0 if r.y_up else -1.0 for r in robots], dtype=np.float32)
         nose = centre.copy()
         nose[:, 1] += 0.42 * sign
@@ -465,11 +460,50 @@ class SceneRenderer:
         x0, _, x1, _ = self.bounds
         return np.array([[(x0 - 2, y, 0.05), (x1 + 2, y, 0.05)]], dtype=np.float32)
 
-    def _frame(self, view: SessionView) -> np.ndarray:
-        if view.leader_frame is None:
-            return np.zeros((0, 2, 3))
-        corner, s = view.leader_frame
-        ox, oy = self.to_scene(corner)
+    # ------------------------------------------------------------------ the algorithm's marks
+    def _targets(self, view: SessionView) -> None:
+        """The first set of cells the algorithm gives (where the pattern forms), or the pattern drawn."""
+        cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
+        style = "drawing" if view.mode == "edit-pattern" else (cells.style if cells else "placed")
+        points = self._local(cells.points if cells else ())
+        self._points("/targets", _xyz(points, 0.005), TARGET_COLORS[style], 0.8)
+
+    def _marks(self, view: SessionView) -> None:
+        """Lines and frames of the overlays, each labelled on the canvas. A handful per run: a node each,
+        created once per slot and updated in place."""
+        lines = [m for m in view.overlays.marks if isinstance(m, Line)]
+        frames = [m for m in view.overlays.marks if isinstance(m, Frame)]
+        labels: list[tuple[str, tuple[float, float, float]]] = []
+        for i in range(max(len(lines), self._slots.get("line", 0))):
+            mark = lines[i] if i < len(lines) else None
+            segs = self._line(mark) if mark else np.zeros((0, 2, 3), np.float32)
+            color = (mark.color or LINE_COLOR) if mark else LINE_COLOR
+            self._segments(f"/marks/line{i}", segs, color, 3.0)
+            if mark:
+                labels.append((mark.label, tuple(segs[0, 1])))
+        self._slots["line"] = max(len(lines), self._slots.get("line", 0))
+        for i in range(max(len(frames), self._slots.get("frame", 0))):
+            mark = frames[i] if i < len(frames) else None
+            segs = self._frame(mark) if mark else np.zeros((0, 2, 3), np.float32)
+            self._segments(
+                f"/marks/frame{i}", segs, (mark.color or (30, 30, 30)) if mark else (30, 30, 30), 3.0
+            )
+            if mark:
+                labels.append((mark.label, tuple(segs[0, 0] + np.array([0.0, -0.6, 0.0], np.float32))))
+        self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
+        self._labels("/marks/labels", labels)
+
+    def _line(self, mark: Line) -> np.ndarray:
+        x0, y0, x1, y1 = self.bounds
+        if mark.axis == "y":
+            y = mark.at - self.origin[1]
+            return np.array([[(x0 - 2, y, 0.05), (x1 + 2, y, 0.05)]], dtype=np.float32)
+        x = mark.at - self.origin[0]
+        return np.array([[(x, y0 - 2, 0.05), (x, y1 + 2, 0.05)]], dtype=np.float32)
+
+    def _frame(self, mark: Frame) -> np.ndarray:
+        ox, oy = self.to_scene(mark.origin)
+        s = mark.y_sign
         z = 0.08
         return np.array(
             [
@@ -480,6 +514,102 @@ class SceneRenderer:
             ],
             dtype=np.float32,
         )
+
+    def _labels(self, prefix: str, labels: list[tuple[str, tuple[float, float, float]]]) -> None:
+        """Text on the canvas, one node per slot, updated in place (text and position) and hidden when
+        unused."""
+        key = tuple(labels)
+        if self._last.get(prefix) == (key, None, None):
+            return
+        self._last[prefix] = (key, None, None)
+        used = self._slots.get(prefix, 0)
+        for i in range(max(used, len(labels))):
+            name = f"{prefix}/{i}"
+            handle = self._handles.get(name)
+            if i < len(labels):
+                text, position = labels[i]
+                if handle is None:
+                    self._handles[name] = self.scene.add_label(
+                        name, text, position=position, font_screen_scale=LABEL_SCALE, anchor="bottom-left"
+                    )
+                else:
+                    handle.text = text  # type: ignore[attr-defined]
+                    handle.position = position  # type: ignore[attr-defined]
+                    handle.visible = True  # type: ignore[attr-defined]
+            elif handle is not None:
+                handle.visible = False  # type: ignore[attr-defined]
+        self._slots[prefix] = max(used, len(labels))
+
+    # ------------------------------------------------------------------ why: the regions a rule tested
+    def _why_regions(self, view: SessionView) -> None:
+        """The selected robot's regions, translucent so robots stay visible: half planes and bands as
+        flat quads, lines as segments, each labelled. Re-made only when they change (a selection or a
+        decision), so a playing run pays nothing for them."""
+        regions = view.why.regions if view.why is not None else ()
+        if self._last.get("/why") == (regions, None, None):
+            return
+        self._last["/why"] = (regions, None, None)
+        for name in [n for n in self._handles if n.startswith("/why/area")]:
+            self._handles.pop(name).remove()  # type: ignore[attr-defined]
+        x0, y0, x1, y1 = self.bounds
+        box = (x0 - 3, y0 - 3, x1 + 3, y1 + 3)
+        segments, labels = [], []
+        for i, mark in enumerate(regions):
+            if isinstance(mark, Line):
+                seg = self._line(mark)
+                segments.append(seg[0])
+                labels.append((mark.label, tuple(seg[0, 1])))
+            elif isinstance(mark, HalfPlane | Band):
+                lo, hi = self._extent(mark)
+                rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)
+                rect = (
+                    max(rect[0], box[0]),
+                    max(rect[1], box[1]),
+                    min(rect[2], box[2]),
+                    min(rect[3], box[3]),
+                )
+                if rect[0] >= rect[2] or rect[1] >= rect[3]:
+                    continue
+                vertices = np.array(
+                    [
+                        (rect[0], rect[1], 0.02),
+                        (rect[2], rect[1], 0.02),
+                        (rect[2], rect[3], 0.02),
+                        (rect[0], rect[3], 0.02),
+                    ],
+                    dtype=np.float32,
+                )
+                self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
+                    f"/why/area{i}",
+                    vertices,
+                    np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
+                    color=REGION_COLOR,
+                    opacity=REGION_OPACITY,
+                    side="double",
+                    cast_shadow=False,
+                    receive_shadow=False,
+                )
+                labels.append((mark.label, self._region_label_at(mark, rect)))
+        segs = np.array(segments, dtype=np.float32).reshape(-1, 2, 3)
+        self._segments("/why/lines", segs, REGION_COLOR, 2.0)
+        self._labels("/why/labels", labels)
+
+    def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:
+        """The region's span on its axis, in scene units (a half plane reaches far; the caller clips)."""
+        shift = self.origin[0] if mark.axis == "x" else self.origin[1]
+        far = 1e6
+        if isinstance(mark, Band):
+            return mark.lo - shift - 0.5, mark.hi - shift + 0.5
+        edge = mark.at - shift + (0.5 if mark.closed else -0.5) * mark.side * -1
+        # closed: the boundary row/column is inside (the area starts half a cell beyond it); open: not
+        return (edge, far) if mark.side > 0 else (-far, edge)
+
+    @staticmethod
+    def _region_label_at(mark: HalfPlane | Band, rect: tuple[float, ...]) -> tuple[float, float, float]:
+        x0, y0, x1, y1 = rect
+        if mark.axis == "x":
+            return ((x0 + x1) / 2, y1 - 0.2, 0.1)
+        return (x0 + 0.2, (y0 + y1) / 2, 0.1)
 
     # ------------------------------------------------------------------ camera
     def camera_pose(self) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:

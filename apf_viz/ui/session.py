@@ -1,12 +1,15 @@
-"""One shared run behind the visualiser: step, back, seek, play speed, manual picks, edits, files.
+"""The visualiser's state: one shared run, the drafts being drawn, the mode, the selection, and what the
+screen shows (:meth:`Session.view`).
 
-No viser here: the app turns clicks into calls on a :class:`Session` and renders :meth:`Session.view`.
-Every call is serialised by one lock, so all connected browsers drive the same run safely.
+No viser here, and no particular algorithm: what is drawn over the run (K, frames, targets, the stage)
+and why a robot acted come from the algorithm's own description (:mod:`apf_viz.core.portrayal`). The
+work is split by job: :class:`~apf_viz.ui.run_controller.RunController` (engine, adversary, play),
+:class:`~apf_viz.ui.editor.Editor` (drafts), :mod:`apf_viz.ui.loader` (files in). Every call is
+serialised by the run's lock, so all connected browsers drive the same run safely.
 """
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import repeat
@@ -14,27 +17,31 @@ from typing import Literal, NamedTuple
 
 import numpy as np
 
-from apf_viz.algorithms import Factory, get_algorithm
-from apf_viz.algorithms.apf_opaque_grid import embedded_targets
-from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
-from apf_viz.core.formats import (
-    InputError,
-    PatternFile,
-    RobotsFile,
-    parse_pattern,
-    parse_robots,
-    parse_trace,
-    pattern_json,
-    robots_json,
-    trace_text,
-)
+from apf_viz.algorithms import Factory
+from apf_viz.core.engine import NEXT_EVENT, Phase
+from apf_viz.core.formats import InputError, pattern_json, robots_json, trace_text
 from apf_viz.core.frames import move_to_global, random_y_up, to_local
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
-from apf_viz.core.pattern_match import matches_pattern
-from apf_viz.core.run import engine_for_trace, replay, trace_header
-from apf_viz.core.schedulers import make_scheduler, step_rng
-from apf_viz.core.symmetry import describe_axis, unsolvable_axis
-from apf_viz.ui.move_series import MoveSeries
+from apf_viz.core.portrayal import (
+    Band,
+    Cells,
+    Configuration,
+    Explanation,
+    Frame,
+    HalfPlane,
+    LightStyle,
+    Line,
+    Mark,
+    Overlays,
+    explain,
+    legend_of,
+    overlays_of,
+)
+from apf_viz.core.run import trace_header
+from apf_viz.ui import loader
+from apf_viz.ui.editor import Editor
+from apf_viz.ui.run_config import RunConfig
+from apf_viz.ui.run_controller import RunController
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
 SCHEDULER_LABELS = {
@@ -45,8 +52,6 @@ SCHEDULER_LABELS = {
     "round-robin": "round-robin",
     "Manual": "manual",
 }
-MAX_UPLOAD_BYTES = 2_000_000
-MAX_SPEED = 500.0  # steps per second: the Speed slider's top
 
 
 _PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
@@ -65,16 +70,28 @@ class RobotView(NamedTuple):
 
 
 @dataclass(frozen=True)
+class WhyView:
+    """The selected robot's last decision and its evidence; regions already in the global frame."""
+
+    robot: int
+    explanation: Explanation | None  # None: the robot has not decided yet
+    origin: Point  # where the robot stood when it looked (its frame's origin)
+    regions: tuple[Mark, ...]
+    holds_snapshot: bool  # it has looked again since (its next Compute will decide anew)
+
+
+@dataclass(frozen=True)
 class SessionView:
     """Everything the scene and panels show, computed in one place from the engine's state."""
 
     robots: tuple[RobotView, ...]
-    targets: tuple[Point, ...]
+    targets: tuple[Point, ...]  # the cells of the overlays (or of the pattern being drawn)
     selected: int | None
     rays: tuple[tuple[Point, Point], ...]
     ghosts: tuple[Point, ...]
-    line_K: float | None  # y of K, when two terminal1/decider robots define it
-    leader_frame: tuple[Point, int] | None  # global origin of the leader's frame and its +y sign
+    overlays: Overlays
+    legend: dict[str, LightStyle]
+    why: WhyView | None
     outcome: str | None
     caption: str
     event: int
@@ -93,7 +110,7 @@ class SessionView:
 
 
 class Session:
-    """The run everyone sees. Build it from a start and a pattern; reset rebuilds the engine from them."""
+    """What every browser sees and drives: the run, the drafts, the mode and the selection."""
 
     def __init__(
         self,
@@ -108,47 +125,91 @@ class Session:
         max_events: int = 5_000_000,
         plugins: Mapping[str, Factory] | None = None,
     ) -> None:
-        self.lock = threading.RLock()
-        # The only algorithms a name from a trace may choose: built-ins and what the command line loaded.
-        self.plugins: Mapping[str, Factory] = dict(plugins or {})
-        self.algorithm_name = algorithm
-        self.scheduler_name = scheduler
-        self.seed = seed
-        self.light_semantics = light_semantics
-        self.max_events = max_events
-        self.mode: Mode = "run"
-        self.selected: int | None = None
-        self.playing = False
-        self.speed = 10.0  # steps per second
-        self.messages: list[str] = []  # notifications for the UI to show, drained by the app
-        self._start(list(robots), list(pattern), y_up)
-
-    # ------------------------------------------------------------------ building runs
-    def _start(self, robots: list[Point], pattern: list[Point], y_up: Sequence[bool] | None) -> None:
         if len(robots) != len(pattern):
             raise InputError(f"the pattern has {len(pattern)} points but there are {len(robots)} robots")
-        self.robots = [tuple(p) for p in robots]
-        self.pattern = [tuple(p) for p in pattern]
-        self.y_up = list(y_up) if y_up is not None else random_y_up(len(robots), self.seed)
-        self.engine = Engine(
-            self.robots,
-            self.pattern,
-            get_algorithm(self.algorithm_name, self.plugins),
-            y_up=self.y_up,
-            light_semantics=self.light_semantics,  # type: ignore[arg-type]
-            max_events=self.max_events,
+        flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
+        config = RunConfig(
+            tuple(map(tuple, robots)),
+            flips,
+            tuple(map(tuple, pattern)),
+            algorithm,
+            light_semantics,  # type: ignore[arg-type]
+            scheduler,
+            seed,
+            max_events,
         )
-        self.draft_pattern = list(self.pattern)
-        self.draft_robots = list(self.robots)
-        self.draft_y_up = list(self.y_up)
+        self.run = RunController(config, plugins)
+        self.lock = self.run.lock
+        self.editor = Editor(config.robots, config.y_up, config.pattern)
+        self.mode: Mode = "run"
+        self.selected: int | None = None
+        self.messages: list[str] = []  # notifications for the UI to show, drained by the app
+
+    # ------------------------------------------------------------------ the run, read-only
+    @property
+    def engine(self):
+        return self.run.engine
+
+    @property
+    def config(self) -> RunConfig:
+        return self.run.config
+
+    @property
+    def playing(self) -> bool:
+        return self.run.playing
+
+    @property
+    def speed(self) -> float:
+        return self.run.speed
+
+    @property
+    def scheduler_name(self) -> str:
+        return self.run.config.scheduler
+
+    @property
+    def seed(self) -> int:
+        return self.run.config.seed
+
+    @property
+    def algorithm_name(self) -> str:
+        return self.run.config.algorithm
+
+    @property
+    def robots(self) -> list[Point]:
+        return list(self.run.config.robots)
+
+    @property
+    def pattern(self) -> list[Point]:
+        return list(self.run.config.pattern)
+
+    @property
+    def y_up(self) -> list[bool]:
+        return list(self.run.config.y_up)
+
+    # ------------------------------------------------------------------ building runs
+    def _start(self, config: RunConfig) -> None:
+        """A new run from ``config``; the drafts follow it and the selection is cleared."""
+        self.run.restart(config)
+        self.editor = Editor(config.robots, config.y_up, config.pattern)
         self.selected = None
-        self._series = MoveSeries(self.robots)
+        self.mode = "run"
 
     def reset(self) -> None:
         """Back to the start of the current run (same start, pattern, flips, algorithm)."""
         with self.lock:
-            self.playing = False
-            self._start(self.robots, self.pattern, self.y_up)
+            self.run.reset()
+            self.selected = None
+
+    def set_algorithm(self, name: str) -> None:
+        """The same start and pattern under another algorithm: the run restarts."""
+        with self.lock:
+            self.run.set_algorithm(name)
+            self.selected = None
+
+    def set_light_semantics(self, semantics: str) -> None:
+        with self.lock:
+            self.run.set_light_semantics(semantics)
+            self.selected = None
 
     # ------------------------------------------------------------------ stepping
     def step(self) -> bool:
@@ -160,48 +221,44 @@ class Session:
                 if self.selected is None:
                     self.messages.append("Manual: click a robot to run its next phase")
                     return False
-                self.engine.step([self.selected])
+                self.run.step_robot(self.selected)
                 return True
-            record = make_scheduler(self.scheduler_name).choose(
-                self.engine, step_rng(self.seed, self.engine.step_index)
-            )
-            self.engine.step(record.robots, round=record.round)
-            return True
+            return self.run.step()
+
+    def play_step(self) -> bool:
+        """One step of Play (the render thread's); stops playing when nothing ran."""
+        with self.lock:
+            if self.mode != "run":
+                self.run.pause()
+                return False
+            return self.run.play_step()
 
     def back(self) -> None:
-        with self.lock:
-            self.engine.back(1)
+        self.run.back()
 
     def seek(self, step: int) -> None:
-        with self.lock:
-            self.engine.seek(max(0, min(step, self.engine.history.length)))
+        self.run.seek(step)
 
     def seek_from_browser(self, step: float) -> None:
         """The Timeline slider: stop playing and go to that step (any number is clamped; NaN refused)."""
-        if not isinstance(step, int | float) or step != step:
-            raise InputError(f"timeline position {step!r} is not a number")
-        with self.lock:
-            self.playing = False
-            self.seek(int(min(max(step, 0), self.engine.history.length)))
+        self.run.seek(step)
 
     def set_scheduler(self, label_or_name: str) -> None:
-        with self.lock:
-            self.scheduler_name = SCHEDULER_LABELS.get(label_or_name, label_or_name)
-            make_scheduler(self.scheduler_name)  # validates the name
+        self.run.set_scheduler(SCHEDULER_LABELS.get(label_or_name, label_or_name))
 
     def set_seed(self, seed: float) -> None:
-        """A seed typed in the browser: a whole number in 0 .. 2^63 − 1, anything else is refused."""
-        if not (isinstance(seed, int | float) and float(seed).is_integer() and 0 <= seed < 2**63):
-            raise InputError(f"seed {seed!r}: a seed is a whole number from 0 to 2^63 − 1")
-        with self.lock:
-            self.seed = int(seed)
+        self.run.set_seed(seed)
 
     def set_speed(self, speed: float) -> None:
-        """Steps per second while playing, clamped to 1 .. MAX_SPEED (a browser may send anything)."""
-        if not isinstance(speed, int | float) or speed != speed:  # NaN
-            raise InputError(f"speed {speed!r} is not a number")
+        self.run.set_speed(speed)
+
+    def toggle_play(self) -> None:
         with self.lock:
-            self.speed = float(min(max(speed, 1.0), MAX_SPEED))
+            if self.mode == "run":
+                self.run.toggle_play()
+
+    def pause(self) -> None:
+        self.run.pause()
 
     # ------------------------------------------------------------------ clicks
     def robot_at(self, cell: Point) -> int | None:
@@ -219,40 +276,17 @@ class Session:
                 self.messages.append(message)
                 return message
             if self.mode == "edit-pattern":
-                return self._toggle(self.draft_pattern, cell, "target")
+                return self.editor.toggle_target(cell)
             if self.mode == "edit-robots":
-                return self._cycle_robot(cell)
+                return self.editor.cycle_robot(cell)
             r = self.robot_at(cell)
             if r is None:
                 self.selected = None
                 return "nothing here"
             self.selected = r
             if self.scheduler_name == "manual" and not self.engine.finished:
-                phase = self.engine.next_event(r)
-                self.engine.step([r])
-                return f"robot {r}: {phase}"
+                return f"robot {r}: {self.run.step_robot(r)}"
             return f"selected robot {r}"
-
-    def _toggle(self, points: list[Point], cell: Point, what: str) -> str:
-        if cell in points:
-            points.remove(cell)
-            return f"removed {what} {cell}"
-        points.append(cell)
-        return f"added {what} {cell}"
-
-    def _cycle_robot(self, cell: Point) -> str:
-        """Empty → robot (y up) → robot (y flipped) → empty."""
-        if cell not in self.draft_robots:
-            self.draft_robots.append(cell)
-            self.draft_y_up.append(True)
-            return f"added robot {cell}"
-        i = self.draft_robots.index(cell)
-        if self.draft_y_up[i]:
-            self.draft_y_up[i] = False
-            return f"robot {cell}: y-axis flipped"
-        del self.draft_robots[i]
-        del self.draft_y_up[i]
-        return f"removed robot {cell}"
 
     # ------------------------------------------------------------------ editing
     def set_mode(self, mode: Mode) -> str | None:
@@ -262,118 +296,81 @@ class Session:
             if mode == self.mode:
                 return None
             if self.mode != "run" and mode == "run":
-                problem = self.validate_drafts()
+                problem = self.editor.problem()
                 if problem:
                     self.messages.append(problem)
                     return problem
-                self.playing = False
-                self._start(self.draft_robots, self.draft_pattern, self.draft_y_up)
-            elif mode != "run":
-                self.playing = False
+                e = self.editor
+                self._start(
+                    self.config.but(robots=tuple(e.robots), y_up=tuple(e.y_up), pattern=tuple(e.pattern))
+                )
+                return None
+            self.run.pause()
             self.mode = mode
             return None
 
-    def validate_drafts(self) -> str | None:
-        if not self.draft_robots:
-            return "place at least one robot"
-        if len(self.draft_pattern) != len(self.draft_robots):
-            return (
-                f"the pattern has {len(self.draft_pattern)} points but there are "
-                f"{len(self.draft_robots)} robots"
-            )
-        axis = unsolvable_axis(self.draft_robots)
-        if axis is not None and not matches_pattern(self.draft_robots, self.draft_pattern):
-            return (
-                f"unsolvable start: the robots are mirror-symmetric about {describe_axis(axis)}, "
-                "a horizontal line through no robot (Theorem 1); move or add a robot to break the symmetry"
-            )
-        return None
-
     def clear_pattern(self) -> None:
         with self.lock:
-            self.draft_pattern = []
+            self.editor.clear_pattern()
 
     # ------------------------------------------------------------------ files
     def load_pattern(self, filename: str, content: bytes) -> None:
         """A pattern file; if its size fits the robots the run restarts with it, otherwise it becomes the
         pattern being drawn (Edit pattern), so nothing is lost."""
-        parsed = self._parse(filename, content, parse_pattern)
-        assert isinstance(parsed, PatternFile)
-        points = [tuple(p) for p in parsed.points]
+        points = tuple(tuple(p) for p in loader.pattern_upload(filename, content).points)
         with self.lock:
-            if len(points) == len(self.robots):
-                self.playing = False
-                self._start(self.robots, points, self.y_up)
-                self.mode = "run"
+            if len(points) == len(self.config.robots):
+                self._start(self.config.but(pattern=points))
             else:
-                self.draft_pattern = points
+                self.editor.pattern = list(points)
+                self.run.pause()
                 self.mode = "edit-pattern"
                 self.messages.append(
-                    f"{filename}: {len(points)} points for {len(self.robots)} robots: "
+                    f"{filename}: {len(points)} points for {len(self.config.robots)} robots: "
                     "edit the pattern or the robots, then switch back to Run"
                 )
 
     def load_robots(self, filename: str, content: bytes) -> None:
-        parsed = self._parse(filename, content, parse_robots)
-        assert isinstance(parsed, RobotsFile)
-        points = [tuple(p) for p in parsed.robots]
-        y_up = parsed.flips(self.seed)  # the same rule as every other way in (RobotsFile.flips)
+        parsed = loader.robots_upload(filename, content)
         with self.lock:
-            self.draft_robots, self.draft_y_up = points, list(y_up)
-            self.draft_pattern = list(self.pattern)
-            problem = self.validate_drafts()
+            points = tuple(tuple(p) for p in parsed.robots)
+            y_up = tuple(parsed.flips(self.seed))  # the same rule as every other way in (RobotsFile.flips)
+            self.editor = Editor(points, y_up, self.config.pattern)
+            problem = self.editor.problem()
             if problem is None:
-                self.playing = False
-                self._start(points, self.pattern, y_up)
-                self.mode = "run"
+                self._start(self.config.but(robots=points, y_up=y_up))
             else:
+                self.run.pause()
                 self.mode = "edit-robots"
                 self.messages.append(f"{filename}: {problem}")
 
     def load_trace(self, filename: str, content: bytes) -> None:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
-        text = self._decode(filename, content)
-        header, events = parse_trace(text, filename)
-        try:  # a file names built-in algorithms (or the command line's plug-ins) only: it never loads code
-            algorithm = get_algorithm(header.algorithm, self.plugins)
-        except ValueError as e:
-            raise InputError(f"{filename}: {e}") from None
-        engine = engine_for_trace(header, algorithm, max(self.max_events, len(events) + 1))
-        replay(engine, events, filename)
+        loaded = loader.trace_upload(filename, content, self.run.plugins, self.config.max_events)
+        h = loaded.header
+        config = self.config.but(
+            robots=tuple(map(tuple, h.robots)),
+            y_up=tuple(loaded.engine.y_up),
+            pattern=tuple(map(tuple, h.pattern)),
+            algorithm=h.algorithm,
+            light_semantics=h.light_semantics,
+            scheduler=h.scheduler if h.scheduler in SCHEDULER_LABELS.values() else self.scheduler_name,
+        )
         with self.lock:
-            self.playing = False
-            self.algorithm_name = header.algorithm
-            self.light_semantics = header.light_semantics
-            self.robots = list(engine.start)
-            self.pattern = list(engine.pattern)
-            self.y_up = list(engine.y_up)
-            self.draft_robots, self.draft_pattern = list(self.robots), list(self.pattern)
-            self.draft_y_up = list(self.y_up)
-            engine.seek(0)
-            self.engine = engine
-            self._series = MoveSeries(engine.start)
+            self.run.adopt(config, loaded.engine)
+            self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self.selected = None
 
-    def _decode(self, filename: str, content: bytes) -> str:
-        if len(content) > MAX_UPLOAD_BYTES:
-            size = len(content)
-            raise InputError(f"{filename}: file is too large ({size} bytes, limit {MAX_UPLOAD_BYTES})")
-        try:
-            return content.decode("utf-8")
-        except UnicodeDecodeError:
-            raise InputError(f"{filename}: not UTF-8 text") from None
-
-    def _parse(self, filename: str, content: bytes, parser):
-        return parser(self._decode(filename, content), filename)
-
     def robots_file(self) -> str:
         with self.lock:
-            return robots_json(self.draft_robots if self.mode == "edit-robots" else self.robots, self.y_up)
+            if self.mode == "edit-robots":
+                return robots_json(self.editor.robots, self.editor.y_up)
+            return robots_json(self.config.robots, self.config.y_up)
 
     def pattern_file(self) -> str:
         with self.lock:
-            return pattern_json(self.draft_pattern if self.mode == "edit-pattern" else self.pattern)
+            return pattern_json(self.editor.pattern if self.mode == "edit-pattern" else self.config.pattern)
 
     def trace_file(self) -> str:
         with self.lock:
@@ -388,12 +385,13 @@ class Session:
     def _view(self) -> SessionView:
         e = self.engine
         st = e.state
+        y_up = self.config.y_up
         pts = e.current_points()
         phases = st.phase.tolist()
         pending: list[Point | None] = [None] * e.k
         for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
             if st.pending[r].move is not None:
-                dx, dy = move_to_global(st.pending[r].move, self.y_up[r]).delta
+                dx, dy = move_to_global(st.pending[r].move, y_up[r]).delta
                 pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
         # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
         robots = list(
@@ -404,7 +402,7 @@ class Session:
                     pts,
                     st.lights,
                     [_PHASE_NAMES[p] for p in phases],
-                    self.y_up,
+                    y_up,
                     pending,
                     [NEXT_EVENT[p] for p in phases],
                     strict=True,
@@ -415,7 +413,7 @@ class Session:
             first = e.algorithm.lights[0]
             robots = [
                 RobotView(p, first, "idle", up, None, "look")
-                for p, up in zip(self.draft_robots, self.draft_y_up, strict=True)
+                for p, up in zip(self.editor.robots, self.editor.y_up, strict=True)
             ]
         sel = self.selected if self.selected is not None and self.selected < e.k else None
         if self.mode != "run":
@@ -427,16 +425,18 @@ class Session:
             snap = st.snapshot[sel]
             if snap is not None:
                 x, y = pts[sel]
-                ghosts = [(x + s.dx, y + to_local((0, s.dy), self.y_up[sel])[1]) for s in snap.robots]
-        frame = self._leader_frame(pts, st.lights)
+                ghosts = [(x + s.dx, y + to_local((0, s.dy), y_up[sel])[1]) for s in snap.robots]
+        overlays = self._overlays(pts, st.lights)
+        targets = next((m.points for m in overlays.marks if isinstance(m, Cells)), ())
         return SessionView(
             robots=tuple(robots),
-            targets=self._targets(frame),
+            targets=targets,
             selected=sel,
             rays=tuple(rays),
             ghosts=tuple(ghosts),
-            line_K=self._line_K(pts, st.lights),
-            leader_frame=frame,
+            overlays=overlays,
+            legend=legend_of(e.algorithm),
+            why=self._why(sel, pts) if sel is not None else None,
             outcome=st.outcome,
             caption=self._caption(sel),
             event=st.events,
@@ -444,94 +444,82 @@ class Session:
             history_length=e.history.length,
             moves=st.moves,
             cycles=st.cycles,
-            stage=self._stage(st.lights),
+            stage=overlays.stage,
             lights_in_use=tuple(sorted(set(st.lights), key=e.algorithm.lights.index)),
             moves_per_kD=st.moves / (e.k * self._D()),
             mode=self.mode,
-            draft_count=len(self.draft_pattern) if self.mode != "edit-robots" else len(self.draft_robots),
-            robot_count=len(self.draft_robots) if self.mode == "edit-robots" else e.k,
-            axis=(float(a) if (a := unsolvable_axis(self.draft_robots)) is not None else None)
-            if self.mode == "edit-robots"
-            else None,
-            move_series=self._series.at(e.history, e.step_index),
+            draft_count=len(self.editor.pattern) if self.mode != "edit-robots" else len(self.editor.robots),
+            robot_count=len(self.editor.robots) if self.mode == "edit-robots" else e.k,
+            axis=self.editor.axis() if self.mode == "edit-robots" else None,
+            move_series=self.run.series.at(e.history, e.step_index),
         )
+
+    def _overlays(self, pts: list[Point], lights: list[str]) -> Overlays:
+        """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead."""
+        if self.mode == "edit-pattern":
+            return Overlays(
+                (Cells(tuple(self.editor.pattern), "pattern being drawn"),), "editing the pattern"
+            )
+        config = Configuration(tuple(pts), tuple(lights), self.config.pattern, self.config.robots)
+        return overlays_of(self.engine.algorithm, config)
+
+    def _why(self, r: int, pts: list[Point]) -> WhyView:
+        """Robot r's last decision, explained from the snapshot it was computed on (the evidence is the
+        evidence), and its regions placed in the global frame where the robot stood at that Look."""
+        st = self.engine.state
+        view = st.decided[r]
+        holds = st.phase[r] == Phase.LOOKED
+        if view is None:
+            return WhyView(r, None, pts[r], (), holds)
+        explained = explain(self.engine.algorithm, view, self.engine.pattern)
+        up = self.config.y_up[r]
+        x, y = pts[r]
+        if st.phase[r] != Phase.COMPUTED and explained.decision.move is not None:
+            dx, dy = move_to_global(explained.decision.move, up).delta  # it has moved since that Look
+            x, y = x - dx, y - dy
+        regions = tuple(_to_global(m, (x, y), up) for m in explained.regions)
+        return WhyView(r, explained, (x, y), regions, holds)
 
     def _D(self) -> int:
         """D = max(m, n, M, N, k) of the paper: the enclosing rectangles of start and pattern, and k."""
 
-        def extent(points: list[Point]) -> tuple[int, int]:
+        def extent(points: Sequence[Point]) -> tuple[int, int]:
             xs, ys = [p[0] for p in points], [p[1] for p in points]
             return max(xs) - min(xs) + 1, max(ys) - min(ys) + 1
 
-        return max(*extent(self.robots), *extent(self.pattern), len(self.robots))
+        c = self.config
+        return max(*extent(c.robots), *extent(c.pattern), len(c.robots))
 
     def _caption(self, sel: int | None) -> str:
         if sel is None:
             return "Click a robot to see what it sees and why it acts."
         e = self.engine
         st = e.state
-        last = next(
-            (
-                ev
-                for s in reversed(e.history.steps[: e.step_index])
-                for ev in s.events
-                if ev.robot == sel and ev.phase == "compute"
-            ),
-            None,
-        )
         phase = ("idle", "looked", "computed")[st.phase[sel]]
         lines = [
             f"**Robot {sel}** — light `{st.lights[sel]}`, {phase}; next: {e.next_event(sel)}; "
-            f"y-axis {'up' if self.y_up[sel] else 'flipped'}",
+            f"y-axis {'up' if self.config.y_up[sel] else 'flipped'}",
         ]
-        if last is not None:
-            lines.append(f"Last decision: {last.rule or '(no rule given)'}")
         if st.phase[sel] != Phase.IDLE and st.look_version[sel] != st.version:
             lines.append("Its snapshot is stale: the configuration changed since its Look (ghosts show it).")
         return "\n\n".join(lines)
 
-    @staticmethod
-    def _line_K(pts: list[Point], lights: list[str]) -> float | None:
-        """K: the midline of two terminal1 or two decider robots on one vertical line."""
-        for light in ("decider", "terminal1"):
-            by_x: dict[int, list[int]] = {}
-            for (x, y), lt in zip(pts, lights, strict=True):
-                if lt == light:
-                    by_x.setdefault(x, []).append(y)
-            for ys in by_x.values():
-                if len(ys) == 2:
-                    return (ys[0] + ys[1]) / 2
-        return None
 
-    @staticmethod
-    def _leader_frame(pts: list[Point], lights: list[str]) -> tuple[Point, int] | None:
-        """The leader's frame in global terms: origin (leader + (0, s)), and s = the side of the others."""
-        if "leader" not in lights:
-            return None
-        lx, ly = pts[lights.index("leader")]
-        others = [y for (x, y), lt in zip(pts, lights, strict=True) if lt != "leader" and y != ly]
-        s = 1 if not others or others[0] > ly else -1
-        return (lx, ly + s), s
-
-    def _targets(self, frame: tuple[Point, int] | None) -> tuple[Point, ...]:
-        """Where the pattern will form: in the leader's frame once there is one, else beside the start."""
-        pattern = self.draft_pattern if self.mode == "edit-pattern" else self.pattern
-        if self.mode == "edit-pattern":
-            return tuple(pattern)
-        if not pattern:
-            return ()
-        targets = embedded_targets(tuple(pattern))
-        if frame is not None:
-            (ox, oy), s = frame
-            return tuple((ox + x, oy + s * y) for x, y in targets)
-        x0 = max(p[0] for p in self.robots) + 3
-        y0 = min(p[1] for p in self.robots) - 1
-        return tuple((x0 + x, y0 + y) for x, y in targets)
-
-    @staticmethod
-    def _stage(lights: list[str]) -> str:
-        if "leader" not in lights and "done" not in lights:
-            return "leader election"
-        if "done" in lights:
-            return "targets"
-        return "line"
+def _to_global(mark: Mark, origin: Point, y_up: bool) -> Mark:
+    """A mark in a robot's own frame (the robot at (0, 0), its own +y up) in the global frame."""
+    ox, oy = origin
+    s = 1 if y_up else -1
+    if isinstance(mark, Line):
+        return Line(mark.axis, ox + mark.at if mark.axis == "x" else oy + s * mark.at, mark.label)
+    if isinstance(mark, Band):
+        if mark.axis == "x":
+            return Band("x", ox + mark.lo, ox + mark.hi, mark.label)
+        lo, hi = sorted((oy + s * mark.lo, oy + s * mark.hi))
+        return Band("y", lo, hi, mark.label)
+    if isinstance(mark, HalfPlane):
+        if mark.axis == "x":
+            return HalfPlane("x", ox + mark.at, mark.side, mark.closed, mark.label)
+        return HalfPlane("y", oy + s * mark.at, mark.side * s, mark.closed, mark.label)  # type: ignore[arg-type]
+    if isinstance(mark, Frame):
+        return Frame((ox + mark.origin[0], oy + s * mark.origin[1]), mark.y_sign * s, mark.label)
+    return Cells(tuple((ox + x, oy + s * y) for x, y in mark.points), mark.label, mark.style)

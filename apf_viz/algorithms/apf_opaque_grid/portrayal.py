@@ -21,6 +21,8 @@ LEGEND: dict[str, LightStyle] = {
     "done": LightStyle((40, 170, 60), "Phase 3: on its target"),
 }
 
+K_COLOR = (200, 0, 200)
+
 STAGES = {
     1: "Phase 1: leader election (Algorithm 1)",
     2: "Phase 2: leader selection (Algorithm 2)",
@@ -69,7 +71,7 @@ def overlays(config: Configuration) -> Overlays:
     marks: list[Mark] = []
     k = line_K(config.positions, config.lights)
     if k is not None:
-        marks.append(Line("y", k, "K"))
+        marks.append(Line("y", k, "K", K_COLOR))
     frame = leader_frame(config.positions, config.lights)
     targets = embedded_targets(tuple(config.pattern))
     if frame is not None:

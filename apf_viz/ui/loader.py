@@ -1,0 +1,60 @@
+"""Files that come in from a browser (uploads, demo picks): size limits, decoding, parsing, one-line
+errors. Nothing here changes a run; the session decides what a parsed file does."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.core.engine import Engine
+from apf_viz.core.formats import (
+    InputError,
+    PatternFile,
+    RobotsFile,
+    TraceHeader,
+    parse_pattern,
+    parse_robots,
+    parse_trace,
+)
+from apf_viz.core.run import engine_for_trace, replay
+
+MAX_UPLOAD_BYTES = 2_000_000
+
+
+def decode(filename: str, content: bytes) -> str:
+    if len(content) > MAX_UPLOAD_BYTES:
+        raise InputError(f"{filename}: file is too large ({len(content)} bytes, limit {MAX_UPLOAD_BYTES})")
+    try:
+        return content.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(f"{filename}: not UTF-8 text") from None
+
+
+def robots_upload(filename: str, content: bytes) -> RobotsFile:
+    return parse_robots(decode(filename, content), filename)
+
+
+def pattern_upload(filename: str, content: bytes) -> PatternFile:
+    return parse_pattern(decode(filename, content), filename)
+
+
+@dataclass(frozen=True)
+class LoadedTrace:
+    header: TraceHeader
+    engine: Engine  # replayed to the trace's end, every event checked
+
+
+def trace_upload(
+    filename: str, content: bytes, plugins: Mapping[str, Factory], max_events: int
+) -> LoadedTrace:
+    """Parse a trace and replay it event by event. Its algorithm must be built in or one of the
+    command line's ``plugins``: a file never loads code."""
+    header, events = parse_trace(decode(filename, content), filename)
+    try:
+        algorithm = get_algorithm(header.algorithm, plugins)
+    except ValueError as e:
+        raise InputError(f"{filename}: {e}") from None
+    engine = engine_for_trace(header, algorithm, max(max_events, len(events) + 1))
+    replay(engine, events, filename)
+    return LoadedTrace(header, engine)

@@ -1,0 +1,155 @@
+"""The run everyone sees: the engine, the adversary (scheduler and seed) and the play state.
+
+Every change goes through a method, under one lock: viser runs callbacks on its own threads, and the
+render thread plays. A change of algorithm, light semantics, start or pattern rebuilds the run from a
+new :class:`~apf_viz.ui.run_config.RunConfig`; nothing is reset field by field.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Mapping
+
+from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.core.engine import Engine
+from apf_viz.core.formats import InputError
+from apf_viz.core.schedulers import make_scheduler, step_rng
+from apf_viz.ui.move_series import MoveSeries
+from apf_viz.ui.run_config import RunConfig
+
+MAX_SPEED = 500.0  # steps per second: the Speed slider's top
+
+
+class RunController:
+    """One run, its adversary and whether it plays."""
+
+    def __init__(self, config: RunConfig, plugins: Mapping[str, Factory] | None = None) -> None:
+        self.lock = threading.RLock()
+        # The only algorithms a name from a trace may choose: built-ins and what the command line loaded.
+        self.plugins: Mapping[str, Factory] = dict(plugins or {})
+        self._playing = False
+        self._speed = 10.0
+        self._rebuild(config)
+
+    # ------------------------------------------------------------------ reading
+    @property
+    def playing(self) -> bool:
+        return self._playing
+
+    @property
+    def speed(self) -> float:
+        """Steps per second while playing."""
+        return self._speed
+
+    @property
+    def series(self) -> MoveSeries:
+        return self._series
+
+    # ------------------------------------------------------------------ building
+    def _rebuild(self, config: RunConfig, engine: Engine | None = None) -> None:
+        make_scheduler(config.scheduler)  # validates the name
+        self.engine = engine if engine is not None else config.engine(self.plugins)
+        self.config = config
+        self._series = MoveSeries(self.engine.start)
+        self._playing = False
+
+    def restart(self, config: RunConfig) -> None:
+        """A new run from this configuration (a new start, pattern, algorithm or light semantics)."""
+        with self.lock:
+            self._rebuild(config)
+
+    def adopt(self, config: RunConfig, engine: Engine) -> None:
+        """Take over an engine built elsewhere (a replayed trace), at its start."""
+        with self.lock:
+            engine.seek(0)
+            self._rebuild(config, engine)
+
+    def reset(self) -> None:
+        """Back to the start of the same run."""
+        self.restart(self.config)
+
+    # ------------------------------------------------------------------ the adversary
+    def set_scheduler(self, name: str) -> None:
+        make_scheduler(name)  # validates the name before anything changes
+        with self.lock:
+            self.config = self.config.but(scheduler=name)
+
+    def set_seed(self, seed: float) -> None:
+        """A seed typed in the browser: a whole number in 0 .. 2^63 − 1, anything else is refused."""
+        if not (isinstance(seed, int | float) and float(seed).is_integer() and 0 <= seed < 2**63):
+            raise InputError(f"seed {seed!r}: a seed is a whole number from 0 to 2^63 − 1")
+        with self.lock:
+            self.config = self.config.but(seed=int(seed))
+
+    def set_algorithm(self, name: str) -> None:
+        """Restart the same start and pattern under another algorithm (built in, ``@…``, or a plug-in
+        the command line loaded)."""
+        get_algorithm(name, self.plugins)  # refuses an unknown name before anything changes
+        self.restart(self.config.but(algorithm=name))
+
+    def set_light_semantics(self, semantics: str) -> None:
+        if semantics not in ("compute", "lc-atomic"):
+            raise InputError(f"light semantics {semantics!r}: choose compute or lc-atomic")
+        self.restart(self.config.but(light_semantics=semantics))  # type: ignore[arg-type]
+
+    # ------------------------------------------------------------------ stepping
+    def step(self) -> bool:
+        """One step chosen by the scheduler. False if the run is over (or the scheduler is Manual)."""
+        with self.lock:
+            if self.engine.finished or self.config.scheduler == "manual":
+                return False
+            record = make_scheduler(self.config.scheduler).choose(
+                self.engine, step_rng(self.config.seed, self.engine.step_index)
+            )
+            self.engine.step(record.robots, round=record.round)
+            return True
+
+    def step_robot(self, robot: int) -> str:
+        """Manual: run this robot's next phase. Returns the phase run."""
+        with self.lock:
+            phase = self.engine.next_event(robot)
+            self.engine.step([robot])
+            return phase
+
+    def back(self) -> None:
+        with self.lock:
+            self._playing = False
+            self.engine.back(1)
+
+    def seek(self, step: float) -> None:
+        """Go to a step of the history (clamped); NaN or a non-number is refused."""
+        if not isinstance(step, int | float) or step != step:
+            raise InputError(f"timeline position {step!r} is not a number")
+        with self.lock:
+            self._playing = False
+            self.engine.seek(int(min(max(step, 0), self.engine.history.length)))
+
+    # ------------------------------------------------------------------ playing
+    def play(self) -> None:
+        with self.lock:
+            self._playing = not self.engine.finished
+
+    def pause(self) -> None:
+        with self.lock:
+            self._playing = False
+
+    def toggle_play(self) -> None:
+        with self.lock:
+            self._playing = not self._playing and not self.engine.finished
+
+    def set_speed(self, speed: float) -> None:
+        """Steps per second while playing, clamped to 1 .. MAX_SPEED (a browser may send anything)."""
+        if not isinstance(speed, int | float) or speed != speed:  # NaN
+            raise InputError(f"speed {speed!r} is not a number")
+        with self.lock:
+            self._speed = float(min(max(speed, 1.0), MAX_SPEED))
+
+    def play_step(self) -> bool:
+        """One step of Play; stops playing when nothing could run."""
+        with self.lock:
+            if not self._playing:
+                return False
+            if not self.step():
+                self._playing = False
+                return False
+            return True
