@@ -11,7 +11,7 @@ import viser
 
 from apf_viz.algorithms.examples import CompactLeft, Stay
 from apf_viz.core.formats import InputError
-from apf_viz.core.portrayal import PALETTE, Cells, HalfPlane, Line, LightStyle, explain, legend_of
+from apf_viz.core.portrayal import PALETTE, Cells, HalfPlane, LightStyle, Line, explain, legend_of
 from apf_viz.core.view import Seen, Snapshot
 from apf_viz.ui.app import demo_session, free_port
 from apf_viz.ui.scene import SceneRenderer

@@ -176,7 +176,7 @@ def test_view_shows_the_algorithms_overlays_K_leader_frame_targets_and_stats():
         cells = next(m for m in v.overlays.marks if isinstance(m, Cells))
         if frame is not None:
             seen_frame = True
-            (ox, oy), sign = frame.origin, frame.y_sign
+            oy, sign = frame.origin[1], frame.y_sign
             assert cells.style == "placed" and cells.points == v.targets
             assert len(v.targets) == 5 and all(sign * (y - oy) >= 1 for _, y in v.targets)
         elif cells.style == "preview":
