@@ -294,3 +294,65 @@ def test_the_moves_plot_reads_events_on_its_x_axis_not_dates(browser, app):
     event = text.split("event")[1].split("moves")[0].strip(" :")
     assert event.isdigit() and int(event) <= app.session.view().event, text
     page.close()
+
+
+def test_why_panel_lists_the_predicates_and_the_canvas_shades_the_regions(browser, app):
+    for _ in range(25):
+        app.session.step()
+    decided = [r for r in range(10) if app.session.engine.state.decided[r] is not None]
+    assert decided
+    page = open_page(browser, app)
+    r = decided[0]
+    x, y = screen_of(app, page, app.session.engine.current_points()[r])
+    page.mouse.click(x, y)
+    wait_for(lambda: app.session.selected == r)
+    why = app.session.view().why
+    assert why is not None and why.explanation is not None
+    page.get_by_text(f"Robot {r} · rule").wait_for()
+    page.get_by_text(why.explanation.decision.rule_id, exact=True).first.wait_for()
+    table = page.locator("table").filter(has_text="tested").first
+    table.wait_for()
+    text = table.inner_text()
+    assert ("yes" in text or "no" in text) and "meaning" in text
+    assert any(n.startswith("/why/") for n in app.renderer._handles)
+    shot(page, "why-panel")
+    page.set_viewport_size({"width": 1024, "height": 768})
+    time.sleep(1.0)
+    shot(page, "why-panel-1024")
+    page.close()
+
+
+def test_switching_the_algorithm_to_the_literal_paper_and_back(browser, app):
+    page = open_page(browser, app)
+    for _ in range(5):
+        page.get_by_role("button", name="Step").click()
+    wait_for(lambda: app.session.engine.step_index >= 5)
+    page.get_by_role("combobox", name="Algorithm").click()
+    page.get_by_role("option", name="apf-opaque-grid-literal").click()
+    wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid-literal")
+    assert app.session.engine.step_index == 0  # the run restarted on the same start and pattern
+    page.get_by_role("combobox", name="Algorithm").click()
+    page.get_by_role("option", name="apf-opaque-grid", exact=True).click()
+    wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid")
+    page.locator("input[value='apf-opaque-grid@']").fill("apf-opaque-grid@G1,LA")
+    page.get_by_role("button", name="Use variant").click()
+    wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid@G1,LA")
+    page.close()
+
+
+def test_the_example_algorithms_legend_shows_its_lights(browser):
+    from apf_viz.ui.session import Session
+
+    session = Session(
+        [(0, 0), (3, 0), (5, 1), (2, 2), (6, 3)], [(x, 0) for x in range(5)], algorithm="compact-left"
+    )
+    other = App(session, port=free_port(), verbose=False)
+    try:
+        page = open_page(browser, other)
+        page.get_by_text("still sliding left").wait_for()
+        page.get_by_text("the wall: the leftmost column").first.wait_for()
+        assert page.get_by_text("terminal1").count() == 0  # not the paper's legend
+        shot(page, "example-algorithm")
+        page.close()
+    finally:
+        other.stop()

@@ -319,7 +319,7 @@ class Panels:
         if view.mode == "edit-robots":
             axis = f"  \n⚠ symmetric about y = {view.axis:g}: unsolvable" if view.axis is not None else ""
             return f"Robots: **{view.robot_count}** — click: add, flip y, remove{axis}"
-        return f"Pattern: {len(view.targets)} targets for {len(view.robots)} robots"
+        return f"Pattern: {view.draft_count} points for {len(view.robots)} robots"
 
     def _next_phases(self, view: SessionView) -> str:
         if self.session.scheduler_name != "manual":

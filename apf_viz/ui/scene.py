@@ -14,6 +14,7 @@ compiles its shader again. docs/PERFORMANCE.md has the measurements.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from typing import Literal
 
@@ -56,7 +57,7 @@ def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
     return {light: style.color for light, style in view.legend.items()}
 
 
-TARGET_COLORS = {"placed": (120, 215, 120), "preview": (205, 230, 205), "drawing": (240, 120, 190)}
+TARGET_COLORS = {"placed": (100, 205, 100), "preview": (160, 220, 160), "drawing": (240, 120, 190)}
 LINE_COLOR = (90, 90, 90)
 REGION_COLOR = (40, 120, 255)
 REGION_OPACITY = 0.13
@@ -491,6 +492,12 @@ class SceneRenderer:
             if mark:
                 labels.append((mark.label, tuple(segs[0, 0] + np.array([0.0, -0.6, 0.0], np.float32))))
         self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
+        cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
+        if cells is not None and cells.points and view.mode != "edit-pattern":
+            local = self._local(cells.points)
+            labels.append(
+                (cells.label, (float(local[:, 0].min()) - 0.4, float(local[:, 1].max()) + 0.6, 0.1))
+            )
         self._labels("/marks/labels", labels)
 
     def _line(self, mark: Line) -> np.ndarray:
@@ -528,6 +535,7 @@ class SceneRenderer:
             handle = self._handles.get(name)
             if i < len(labels):
                 text, position = labels[i]
+                text = canvas_symbol(text)
                 if handle is None:
                     self._handles[name] = self.scene.add_label(
                         name, text, position=position, font_screen_scale=LABEL_SCALE, anchor="bottom-left"
@@ -606,10 +614,13 @@ class SceneRenderer:
 
     @staticmethod
     def _region_label_at(mark: HalfPlane | Band, rect: tuple[float, ...]) -> tuple[float, float, float]:
+        """Near the region's boundary on the robot's side, where a reader looks."""
         x0, y0, x1, y1 = rect
         if mark.axis == "x":
-            return ((x0 + x1) / 2, y1 - 0.2, 0.1)
-        return (x0 + 0.2, (y0 + y1) / 2, 0.1)
+            x = x1 - 1.6 if isinstance(mark, HalfPlane) and mark.side < 0 else x0 + 0.2
+            return (x, y1 - 0.3, 0.1)
+        y = y1 - 0.3 if isinstance(mark, HalfPlane) and mark.side < 0 else y0 + 0.3
+        return (x0 + 0.2, y, 0.1)
 
     # ------------------------------------------------------------------ camera
     def camera_pose(self) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
@@ -654,3 +665,20 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     if not (math.isfinite(x) and math.isfinite(y)):
         return None  # a browser may send any ray
     return (round(x), round(y))
+
+
+# The canvas shows plain text: the paper's sub- and superscripts as Unicode where Unicode has them.
+_SUBSCRIPTS = {"L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "j": "ⱼ", "n": "ₙ"}
+_SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
+
+
+def canvas_symbol(text: str) -> str:
+    """``H_L^O`` → ``Hₗᴼ``, ``L_I`` → ``Lᵢ``; a letter Unicode cannot lower or raise keeps its mark."""
+
+    def sub(m: re.Match) -> str:
+        return _SUBSCRIPTS.get(m.group(1), m.group(0))
+
+    def sup(m: re.Match) -> str:
+        return _SUPERSCRIPTS.get(m.group(1), m.group(0))
+
+    return re.sub(r"\^([A-Za-z])", sup, re.sub(r"_([A-Za-z0-9])", sub, text))

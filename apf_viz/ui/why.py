@@ -84,7 +84,7 @@ def legend_html(view: SessionView) -> str:
     for mark in view.overlays.marks:
         color = getattr(mark, "color", None) or (30, 30, 30)
         if type(mark).__name__ == "Cells":
-            color = (120, 215, 120) if mark.style == "placed" else (205, 230, 205)
+            color = (100, 205, 100) if mark.style == "placed" else (160, 220, 160)
         rows.append(f"{_swatch(color, 'square')} {symbol_html(mark.label)}")
     rows += [
         f"{_swatch((250, 210, 40), 'square')} halo: has looked · "
