@@ -166,3 +166,8 @@ def test_resolutions_are_typed_flags():
     assert algorithm.resolutions == {R.G1, R.KD} and all(isinstance(r, R) for r in algorithm.resolutions)
     with pytest.raises(ValueError, match="unknown resolution"):
         ApfOpaqueGrid.parse("apf-opaque-grid@G9")
+
+
+def test_docs_algorithm_md_lists_every_rule_id():
+    text = (Path(__file__).resolve().parent.parent / "docs" / "ALGORITHM.md").read_text()
+    assert [r for r in RULE_IDS if f"`{r}`" not in text] == []
