@@ -25,9 +25,12 @@ from apf_viz.algorithms.apf_opaque_grid.phase2 import (
 from apf_viz.algorithms.apf_opaque_grid.predicates import lights_of
 from apf_viz.algorithms.apf_opaque_grid.resolutions import (
     ALL,
+    G1,
+    G2,
+    G3,
     LITERAL,
+    LW,
     RESOLUTIONS,
-    R,
     Resolution,
     Resolutions,
     deviation,
@@ -52,15 +55,15 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     if light == "leader":
         return pattern_formation_leader(view, pattern, res, ev)
     if light == "leader1":
-        if R.G3 in res and deviation(ev, R.G3, "leader" in seen):
+        if G3 in res and deviation(ev, G3, "leader" in seen):
             return Decision("off", None, "leader1: a leader is visible → off (G3)", "A2.leader1.G3-off")
-        if R.LW in res and deviation(ev, R.LW, any(s.dx < 0 and s.light in LEADERS for s in view.robots)):
+        if LW in res and deviation(ev, LW, any(s.dx < 0 and s.light in LEADERS for s in view.robots)):
             return Decision(
                 "off", None, "leader1: a leader1/leader to my left → off (LW)", "A2.leader1.LW-off"
             )
         return phase2_leader1(view, res, ev)
     if light == "decider":
-        if R.G3 in res and deviation(ev, R.G3, bool(seen & LEADERS)):
+        if G3 in res and deviation(ev, G3, bool(seen & LEADERS)):
             return Decision(
                 "off", None, "decider: a leader1/leader is visible → off (G3)", "A2.decider.G3-off"
             )
@@ -68,7 +71,7 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     if light == "call":
         return phase2_call(view, res, ev)
     if light in ("terminal1", "symmetric"):
-        if R.G2 in res and deviation(ev, R.G2, bool(seen & LEADERS)):
+        if G2 in res and deviation(ev, G2, bool(seen & LEADERS)):
             rule_id = "A1.terminal1.G2-off" if light == "terminal1" else "A1.symmetric.G2-off"
             return Decision("off", None, f"{light}: a leader1/leader is visible → off (G2)", rule_id)
         return phase1_terminal1(view, res, ev) if light == "terminal1" else phase1_symmetric(view, res, ev)
@@ -77,7 +80,7 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
         return pattern_formation_off(view, pattern, res, ev)
     if ev.test("two deciders on L_I", two_deciders_on_left_line(view), "Phase 2 has begun to my left"):
         return phase2_off(view, res, ev)
-    if R.G1 in res and deviation(ev, R.G1, bool(seen - {"off", "terminal1"})):
+    if G1 in res and deviation(ev, G1, bool(seen - {"off", "terminal1"})):
         return stay(view, "off: Phase 1 is over (a later light is visible) → wait (G1)", "A1.off.G1-wait")
     return phase1_off(view, res, ev)
 

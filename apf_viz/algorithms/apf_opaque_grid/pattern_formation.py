@@ -19,7 +19,7 @@ from functools import lru_cache
 from operator import itemgetter
 
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
-from apf_viz.algorithms.apf_opaque_grid.resolutions import R, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.resolutions import LA, N2, P3, Resolutions, deviation
 from apf_viz.core.algorithm import Decision, Pattern
 from apf_viz.core.grid import Direction, Point
 from apf_viz.core.portrayal import NO_EVIDENCE, Band, Evidence, Frame, Line
@@ -187,7 +187,7 @@ def pattern_formation_off(
             if i == 0:
                 done_seen = any(s.light == "done" for _, s in placed)
                 ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
-                if done_seen or (R.N2 in res and deviation(ev, R.N2, n == 2)):
+                if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
                     return _to_target(
                         frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
                     )
@@ -212,11 +212,11 @@ def pattern_formation_off(
         )
     # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
     # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
-    p3 = R.P3 in res
+    p3 = P3 in res
     above = [s for s in view.robots if s is not leader and frame.of(s)[1] > -1]
     waiting_for = [s for s in above if (s.light != "done" if p3 else s.light == "off")]
     if p3 and any(s.light not in ("off", "done") for s in above):
-        deviation(ev, R.P3, True)
+        deviation(ev, P3, True)
     blockers = "not done" if p3 else "off"
     if not ev.test(f"a robot above the line is {blockers}", bool(waiting_for), "a robot is still on its way"):
         return Decision(
@@ -255,10 +255,10 @@ def pattern_formation_leader(
     """Algorithm 3, r.light = leader (lines 23–27): wait for the others, then fill t_{n−1}."""
     targets = embedded_targets(pattern)
     n = len(targets)
-    p3 = R.P3 in res
+    p3 = P3 in res
     pending = [s for s in view.robots if (s.light != "done" if p3 else s.light == "off")]
     if p3 and any(s.light not in ("off", "done") for s in view.robots):
-        deviation(ev, R.P3, True)
+        deviation(ev, P3, True)
     if ev.test("a robot still forming", bool(pending), "a robot I see is not done"):
         return stay(view, "Phase 3 (leader): robots are still forming → wait", "A3.leader.wait")
     if ev.test("n = 1", n == 1, "the pattern is one point"):
@@ -270,7 +270,7 @@ def pattern_formation_leader(
         return stay(view, "Phase 3 (leader): no done robot in sight → wait", "A3.leader.no-done")
     s = _up_towards(done)
     # Without LA, the paper's frame: r₀ itself is always (0, −1).
-    if R.LA in res and deviation(ev, R.LA, True):
+    if LA in res and deviation(ev, LA, True):
         frame = _anchored_frame(done, targets[n - 2], s)
     else:
         frame = LeaderFrame((0, s), s)

@@ -19,7 +19,7 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     upper_closed_half_has_other,
     vertical_line,
 )
-from apf_viz.algorithms.apf_opaque_grid.resolutions import R, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.resolutions import E2, Resolutions, deviation
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
@@ -53,7 +53,7 @@ def phase1_off(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> 
     l_i = left_neighbour_line(view, ev)
     terminals = [s for s in l_i if s.light == "terminal1"]
     exactly_two = len(terminals) == 2
-    if exactly_two and R.E2 in res and deviation(ev, R.E2, len(l_i) != 2):
+    if exactly_two and E2 in res and deviation(ev, E2, len(l_i) != 2):
         exactly_two = False  # the paper's line counts only the terminal1 robots of L_I
     ev.test("two terminal1 on L_I", exactly_two, "L_I holds exactly two terminal1 robots")
     if exactly_two:

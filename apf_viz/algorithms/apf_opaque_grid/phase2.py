@@ -24,7 +24,7 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     upper_closed_half_has_other,
     vertical_line,
 )
-from apf_viz.algorithms.apf_opaque_grid.resolutions import R, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.resolutions import G3, KD, L2, NV, SD, Resolutions, deviation
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
@@ -38,7 +38,7 @@ def two_deciders_on_left_line(view: Snapshot) -> bool:
 
 def phase2_decider(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = decider (lines 3–22)."""
-    if R.L2 in res and deviation(ev, R.L2, _lone_decider(view, ev)):
+    if L2 in res and deviation(ev, L2, _lone_decider(view, ev)):
         return Decision(
             "leader1",
             None,
@@ -126,9 +126,9 @@ def phase2_off(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> 
     r_i = right_neighbour_line(view, ev)
     symmetric = is_symmetric_wrt_K(r_i, k2, ev)
     if ev.test("r on K", k2 == 0, "I am on K, the midline of the two deciders"):
-        if R.KD in res and not symmetric:
+        if KD in res and not symmetric:
             up = dominant_side_is_up(r_i, k2)
-            if deviation(ev, R.KD, any((s.dy > 0) == up for s in vertical_line(view, ev))):
+            if deviation(ev, KD, any((s.dy > 0) == up for s in vertical_line(view, ev))):
                 return stay(
                     view,
                     "Phase 2 (off): on K, but a robot of L_V is on the dominant side → defer (KD)",
@@ -160,9 +160,9 @@ def phase2_off(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> 
 
 def phase2_call(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = call (lines 36–38)."""
-    if R.G3 in res:
+    if G3 in res:
         seen = lights_of(view.robots)
-        if deviation(ev, R.G3, bool(seen & {"leader1", "leader"})):
+        if deviation(ev, G3, bool(seen & {"leader1", "leader"})):
             return Decision(
                 "off", None, "Phase 2 (call): a leader1/leader is visible → off (G3)", "A2.call.G3-off"
             )
@@ -186,7 +186,7 @@ def two_leader1_become_deciders(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> D
     partner = column_neighbour_with(view, {"leader1"})
     if partner is None or not left_open_half_empty(view):
         return None
-    deviation(ev, R.L2, True)
+    deviation(ev, L2, True)
     left_open_half_empty(view, ev)
     extreme = not (upper_closed_half_has_other(view, ev) and bottom_closed_half_has_other(view, ev))
     r_i = right_neighbour_line(view, ev)
@@ -205,8 +205,8 @@ def two_leader1_become_deciders(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> D
 
 def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:
     """Algorithm 2, r.light = leader1 (lines 39–58)."""
-    if R.L2 in res:
-        if deviation(ev, R.L2, column_neighbour_with(view, {"terminal1", "symmetric"}) is not None):
+    if L2 in res:
+        if deviation(ev, L2, column_neighbour_with(view, {"terminal1", "symmetric"}) is not None):
             # It may be promoted on a view older than my light (B3): moving now could make the
             # configuration symmetric; it turns off on seeing me (G2), or we settle as two leader1.
             return stay(
@@ -220,7 +220,7 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
     l_i = left_neighbour_line(view, ev)
     r_i = right_neighbour_line(view, ev)
     left_all_off = all(s.light == "off" for s in l_i)
-    if left_all_off and R.NV in res and deviation(ev, R.NV, not l_i):
+    if left_all_off and NV in res and deviation(ev, NV, not l_i):
         left_all_off = False  # the paper's "all of L_I off" holds vacuously for an empty L_I
     ev.test("all of L_I off", left_all_off, "every robot on the line to my left shows off")
     may_act = left_all_off or (
@@ -258,8 +258,8 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
                 "Phase 2 (leader1): terminal, not alone on L_V → move away from r′",
                 "A2.leader1.away",
             )
-        if R.SD in res and deviation(
-            ev, R.SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
+        if SD in res and deviation(
+            ev, SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
         ):
             return Decision(
                 "leader1",

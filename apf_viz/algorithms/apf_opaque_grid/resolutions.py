@@ -28,6 +28,9 @@ class Resolution(StrEnum):
 
 R = Resolution
 Resolutions = frozenset[Resolution]
+# The flags as module constants: an Enum class's attribute access (R.G3) is slow enough in Python 3.11 to
+# show in a run's time, and the rules test flags on every decision (docs/PERFORMANCE.md).
+G1, G2, G3, NV, KD, LW, E2, SD, P3, LA, N2, L2 = Resolution
 
 RESOLUTIONS: dict[Resolution, str] = {
     R.G1: "an off robot that sees any light other than off/terminal1 does not run Phase 1 again (B1)",
