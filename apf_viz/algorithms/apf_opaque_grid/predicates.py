@@ -70,21 +70,20 @@ def vertical_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
 
 def left_neighbour_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
     """L_I(r): the robots on the nearest occupied vertical line strictly left of r (all visible, V2)."""
-    line = _columns(view)[0]
-    if ev.active:
-        if line:
-            ev.region(Line("x", line[0].dx, "L_I"))
-        ev.test("L_I(r)", _lights_text(line), "the robots on the nearest occupied line to my left")
-    return line
+    return _neighbour_line(view, 0, "L_I", "left", ev)
 
 
 def right_neighbour_line(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> list[Seen]:
     """R_I(r): the robots on the nearest occupied vertical line strictly right of r (all visible, V2)."""
-    line = _columns(view)[2]
+    return _neighbour_line(view, 2, "R_I", "right", ev)
+
+
+def _neighbour_line(view: Snapshot, which: int, name: str, side: str, ev: Evidence) -> list[Seen]:
+    line = _columns(view)[which]
     if ev.active:
         if line:
-            ev.region(Line("x", line[0].dx, "R_I"))
-        ev.test("R_I(r)", _lights_text(line), "the robots on the nearest occupied line to my right")
+            ev.region(Line("x", line[0].dx, name))
+        ev.test(f"{name}(r)", _lights_text(line), f"the robots on the nearest occupied line to my {side}")
     return line
 
 
