@@ -1,6 +1,7 @@
 """End to end: the paper's algorithm (resolved) forms every demo pattern and random patterns from random
 solvable starts under every scheduler, checked by the audit (independent of the engine's verdict):
-formed, no collision, ≤ 8 lights, never two robots with light leader, all lights done at the end."""
+formed, no collision, ≤ 8 lights, never two robots with light leader, all lights done at the end; and
+on every decision, explain() on the snapshot it used gives that very decision, with a registered id."""
 
 from __future__ import annotations
 
@@ -12,10 +13,20 @@ import pytest
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, random_solvable_start
+from apf_viz.algorithms.apf_opaque_grid.rules import RULE_IDS
 from apf_viz.core.engine import Engine
+from apf_viz.core.portrayal import explain
 
 SCHEDULERS = ["fsync", "ssync", "async", "stale-first", "round-robin"]
 DEMOS = sorted((Path(__file__).parent.parent / "demo_patterns").glob("*.json"))
+
+
+def explanation_is_the_decision(engine: Engine, robot: int) -> None:
+    """explain() on the snapshot this Compute used gives the decision the engine took, and its rule id."""
+    view = engine.state.decided[robot]
+    explained = explain(engine.algorithm, view, engine.pattern)
+    assert explained.decision == engine.state.pending[robot], (view, explained.decision)
+    assert explained.decision.rule_id in RULE_IDS or "/" in explained.decision.rule_id
 
 
 def check(start, pattern, scheduler, seed, light_semantics="compute"):
@@ -29,7 +40,7 @@ def check(start, pattern, scheduler, seed, light_semantics="compute"):
         max_events=3_000_000,
         light_semantics=light_semantics,
     )
-    audit = audit_run(engine, scheduler, seed)
+    audit = audit_run(engine, scheduler, seed, on_compute=explanation_is_the_decision)
     assert audit.ok, (start, y_up, pattern, scheduler, seed, audit.problems)
     # One leader is elected, unless the start already is the pattern (formed at time 0, no event).
     assert audit.max_leaders == (1 if audit.events else 0) and len(audit.lights_used) <= 8

@@ -4,6 +4,7 @@ outside the engine's own verdict (used by the end-to-end tests and the soak)."""
 from __future__ import annotations
 
 import random
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from apf_viz.core.engine import Engine
@@ -39,12 +40,15 @@ def same_shape(points: list[Point], pattern: list[Point]) -> bool:
     return canon(points) in (canon(pattern), canon([(x, -y) for x, y in pattern]))
 
 
-def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
-    """Run to the end, checking after every step: at most one robot ever has light ``leader``."""
+def audit_run(
+    engine: Engine, scheduler: str, seed: int, on_compute: Callable[[Engine, int], None] | None = None
+) -> Audit:
+    """Run to the end, checking after every step: at most one robot ever has light ``leader``.
+    ``on_compute(engine, robot)`` is called after every Compute (tests check its explanation there)."""
     sched = make_scheduler(scheduler)
     audit = Audit(outcome="running")
     with collector_paused():
-        _audited_steps(engine, sched, seed, audit)
+        _audited_steps(engine, sched, seed, audit, on_compute)
     st = engine.state
     audit.outcome = st.outcome or "running"
     audit.lights_used = set(st.lights_used)
@@ -65,10 +69,20 @@ def audit_run(engine: Engine, scheduler: str, seed: int) -> Audit:
     return audit
 
 
-def _audited_steps(engine: Engine, sched: Scheduler, seed: int, audit: Audit) -> None:
+def _audited_steps(
+    engine: Engine,
+    sched: Scheduler,
+    seed: int,
+    audit: Audit,
+    on_compute: Callable[[Engine, int], None] | None,
+) -> None:
     while not engine.finished:
         events = engine.apply(sched.choose(engine, step_rng(seed, engine.step_index)))
         if events[-1].phase == "compute":  # lights change at Compute only
+            if on_compute is not None:
+                for event in events:
+                    if event.phase == "compute":
+                        on_compute(engine, event.robot)
             lights = engine.state.lights
             audit.max_leaders = max(audit.max_leaders, lights.count("leader"))
             audit.max_leader1 = max(audit.max_leader1, lights.count("leader1"))
