@@ -59,6 +59,32 @@ def _positive(text: str) -> int:
     return value
 
 
+def _port(text: str) -> int:
+    """argparse type: a TCP port, 0 to 65535."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a port number") from None
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"{value} is not a port (0 to 65535)")
+    return value
+
+
+def _refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: bool) -> None:
+    """Theorem 1: a start mirror-symmetric about a robot-free horizontal line cannot form any pattern
+    (unless it already is the pattern). Exit 3, naming the axis."""
+    axis = unsolvable_axis(points)
+    if axis is None or matches_pattern(points, targets):
+        return
+    message = (
+        f"{robots_path}: unsolvable start: mirror-symmetric about {describe_axis(axis)}, a horizontal "
+        "line through no robot (Theorem 1); --force runs it anyway"
+    )
+    if as_json:
+        print(json.dumps({"outcome": "unsolvable", "axis": float(axis), "message": message}))
+    _fail(message, EXIT_UNSOLVABLE)
+
+
 def _cmd_run(args: argparse.Namespace) -> int:
     robots = load_robots(args.robots)
     pattern = load_pattern(args.pattern)
@@ -68,15 +94,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
         check_writable(args.trace)  # before the run, not after minutes of it
     points = [tuple(p) for p in robots.robots]
     targets = [tuple(p) for p in pattern.points]
-    axis = unsolvable_axis(points)
-    if axis is not None and not args.force and not matches_pattern(points, targets):
-        message = (
-            f"{args.robots}: unsolvable start: mirror-symmetric about {describe_axis(axis)}, a horizontal "
-            "line through no robot (Theorem 1); --force runs it anyway"
-        )
-        if args.json:
-            print(json.dumps({"outcome": "unsolvable", "axis": float(axis), "message": message}))
-        _fail(message, EXIT_UNSOLVABLE)
+    if not args.force:
+        _refuse_unsolvable(args.robots, points, targets, args.json)
     scheduler = make_scheduler(args.scheduler)
     engine = Engine(
         points,
@@ -122,6 +141,8 @@ def _cmd_replay(args: argparse.Namespace) -> int:
     replay(engine, events, str(args.trace))
     summary = RunSummary.of(engine)
     _print_summary(summary, args.json)
+    if summary.outcome == "running" and not args.json:
+        print(f"apf-viz: the trace ends after {summary.events} events, before the run does", file=sys.stderr)
     return EXIT_FORMED if summary.outcome == "formed" else EXIT_NOT_FORMED
 
 
@@ -159,6 +180,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
     if args.counterexample:
         check_writable(args.counterexample)
     points = [tuple(p) for p in robots.robots]
+    if not args.force:
+        _refuse_unsolvable(args.robots, points, [tuple(p) for p in pattern.points], args.json)
     flips = all_flips(len(points)) if args.flips == "all" else [tuple(robots.flips(args.seed))]
     result, y_up = check(
         algorithm,
@@ -337,6 +360,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
     )
     chk.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
+    chk.add_argument("--force", action="store_true", help="explore an unsolvable start anyway")
     chk.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
     chk.set_defaults(func=_cmd_check)
 
@@ -353,7 +377,7 @@ def _add_serve_options(p: argparse.ArgumentParser) -> None:
         help="address to bind; anyone who can reach it can drive the run and upload files (README, "
         "'Who can reach the server')",
     )
-    p.add_argument("--port", type=int, default=8080, help="port")
+    p.add_argument("--port", type=_port, default=8080, help="port")
     p.add_argument("--robots", type=Path, help="start file (default: the built-in demo)")
     p.add_argument("--pattern", type=Path, help="pattern file (default: the built-in demo)")
     p.add_argument("--trace", type=Path, help="open this trace, to step through it")

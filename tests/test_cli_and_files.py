@@ -428,3 +428,35 @@ def build_serve_args(robots, pattern, seed) -> argparse.Namespace:
     return build_parser().parse_args(
         ["serve", "--robots", str(robots), "--pattern", str(pattern), "--seed", str(seed)]
     )
+
+
+def test_a_trace_larger_than_a_robots_file_is_replayed(write_json, tmp_path):
+    robots = write_json("r.json", GOOD_ROBOTS)
+    pattern = write_json("p.json", GOOD_PATTERN)
+    trace = tmp_path / "t.jsonl"
+    run = run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--trace", str(trace))
+    assert run.returncode == 0, run.stderr
+    big = tmp_path / "big.jsonl"  # over the 5 MB of a robots file: blank lines are allowed in a trace
+    big.write_text(trace.read_text() + "\n" * 6_000_000)
+    proc = run_cli("replay", "--trace", str(big))
+    assert proc.returncode == 0, proc.stderr
+    cut = tmp_path / "cut.jsonl"
+    cut.write_text("\n".join(trace.read_text().splitlines()[:20]) + "\n")
+    partial = run_cli("replay", "--trace", str(cut))
+    assert partial.returncode == 1 and "the trace ends after 19 events, before the run does" in partial.stderr
+
+
+def test_check_refuses_an_unsolvable_start_as_run_does(write_json):
+    robots = write_json("r.json", {"robots": [[0, 0], [0, 3], [2, 1], [2, 2]]})
+    pattern = write_json("p.json", {"points": [[0, 0], [1, 0], [2, 0], [3, 0]]})
+    proc = run_cli("check", "--robots", str(robots), "--pattern", str(pattern))
+    assert proc.returncode == 3 and "Theorem 1" in proc.stderr and proc.stderr.count("\n") == 1
+
+
+def test_a_file_that_is_not_an_object_is_named_plainly(write_json):
+    robots = write_json("r.json", [[0, 0], [1, 0]])
+    pattern = write_json("p.json", GOOD_PATTERN)
+    proc = run_cli("run", "--robots", str(robots), "--pattern", str(pattern))
+    assert (
+        proc.returncode == 2 and "expected a JSON object" in proc.stderr and "RobotsFile" not in proc.stderr
+    )

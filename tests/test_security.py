@@ -148,3 +148,15 @@ def test_values_a_browser_sends_are_checked():
     session.set_mode("edit-robots")
     message = session.click((10**13, 0))
     assert "outside the grid" in message and (10**13, 0) not in session.editor.robots
+
+
+def test_the_command_line_loads_only_classes_and_factory_functions(write_json):
+    for spec in ("os:abort", "builtins:breakpoint", "os:getcwd"):
+        with pytest.raises(ValueError, match="not an algorithm class or factory function"):
+            load_plugin(spec)  # a builtin is never called
+    with pytest.raises(ValueError, match="needs arguments"):
+        load_plugin("apf_viz.core.frames:random_y_up")
+    robots = write_json("r.json", {"robots": [list(p) for p in START]})
+    pattern = write_json("p.json", {"points": [list(p) for p in PATTERN]})
+    proc = run_cli("run", "--robots", str(robots), "--pattern", str(pattern), "--algorithm", "os:abort")
+    assert proc.returncode == 2 and proc.stderr.count("\n") == 1, (proc.returncode, proc.stderr)

@@ -61,3 +61,18 @@ def test_serve_with_a_bad_file_is_one_line_and_exit_2(tmp_path):
     proc, _ = serve("serve", "--robots", str(bad), "--pattern", "demo_patterns/pair-2.json")
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 2 and err.count("\n") == 1 and "duplicate robot at (0, 0)" in err
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("--port", "99999"), "99999 is not a port"),
+        (("--host", "256.1.1.1"), "cannot listen on 256.1.1.1"),
+        (("--robots", "demo_patterns/starts/sym-call-7.json"), "pass --pattern"),
+    ],
+)
+def test_bad_serve_options_are_one_line_errors(args, message):
+    proc = subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", "serve", *args], capture_output=True, text=True, timeout=60
+    )
+    assert proc.returncode == 2 and message in proc.stderr and proc.stderr.count("\n") == 1, proc.stderr

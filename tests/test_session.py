@@ -207,3 +207,16 @@ def test_a_start_that_is_the_pattern_is_formed_at_once_even_when_symmetric():
     s.set_mode("edit-pattern")
     s.editor.pattern = [(0, 0), (1, 0), (2, 0), (3, 0)]
     assert "unsolvable" in s.set_mode("run")
+
+
+def test_why_says_when_the_robots_a_decision_saw_have_changed_since():
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    for _ in range(2):
+        s.click((5, 1))  # robot 2 looks and computes (slide left), seeing robot 1 at (3, 0)
+    s.selected = 2
+    assert s.view().why.changed == ()
+    for _ in range(3):
+        s.click((3, 0))  # robot 1 looks, computes, moves to (2, 0)
+    s.selected = 2
+    assert s.view().why.changed == ("seen at (3, 0) with light off: gone from there",)

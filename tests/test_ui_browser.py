@@ -334,7 +334,9 @@ def test_switching_the_algorithm_to_the_literal_paper_and_back(browser, app):
     page.get_by_role("combobox", name="Algorithm").click()
     page.get_by_role("option", name="apf-opaque-grid", exact=True).click()
     wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid")
-    page.locator("input[value='apf-opaque-grid@']").fill("apf-opaque-grid@G1,LA")
+    variant = page.locator("xpath=//*[text()='Variant']/following::input[1]")
+    wait_for(lambda: variant.input_value() == "apf-opaque-grid")  # the field follows the algorithm
+    variant.fill("apf-opaque-grid@G1,LA")
     page.get_by_role("button", name="Use variant").click()
     wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid@G1,LA")
     page.close()

@@ -9,6 +9,7 @@ A name that comes from a file or a browser (a trace header, an upload) is resolv
 from __future__ import annotations
 
 import importlib
+import inspect
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 
@@ -60,8 +61,13 @@ def load_plugin(spec: str) -> dict[str, Factory]:
         factory = getattr(importlib.import_module(module), attr)
     except (ImportError, AttributeError) as e:
         raise ValueError(f"cannot load algorithm {spec!r}: {e}") from None
-    if not callable(factory):
-        raise ValueError(f"{spec!r} is not an algorithm class or factory")
+    if not (inspect.isclass(factory) or inspect.isfunction(factory)):  # not os:abort, not a builtin
+        raise ValueError(f"{spec!r} is not an algorithm class or factory function")
+    if inspect.isfunction(factory) and any(
+        p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+        for p in inspect.signature(factory).parameters.values()
+    ):
+        raise ValueError(f"{spec!r} needs arguments: an algorithm factory takes none")
     try:
         algo = factory()
     except Exception as e:  # the plug-in's own constructor failed: say so in one line

@@ -22,7 +22,8 @@ from apf_viz.core.history import Event
 
 TRACE_FORMAT = "apf-viz-trace"
 TRACE_VERSION = 1
-MAX_INPUT_BYTES = 5_000_000
+MAX_INPUT_BYTES = 5_000_000  # a robots or pattern file read from disk
+MAX_TRACE_BYTES = 1_000_000_000  # a trace read from disk: a 100-robot run writes about 300 MB
 
 
 class InputError(ValueError):
@@ -168,16 +169,18 @@ def _one_line(err: ValidationError) -> str:
     first = err.errors()[0]
     loc = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in first["loc"]).lstrip(".")
     msg = first["msg"].removeprefix("Value error, ")
+    if first["type"] == "model_type":  # "Input should be a valid dictionary or instance of RobotsFile"
+        msg = "expected a JSON object (see the README's Files)"
     more = f" (and {err.error_count() - 1} more problems)" if err.error_count() > 1 else ""
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
 
 
-def _read_text(path: Path | str) -> str:
+def _read_text(path: Path | str, limit: int = MAX_INPUT_BYTES) -> str:
     p = Path(path)
     try:
         size = p.stat().st_size
-        if size > MAX_INPUT_BYTES:
-            raise InputError(f"{p}: file is too large ({size} bytes, limit {MAX_INPUT_BYTES})")
+        if size > limit:
+            raise InputError(f"{p}: file is too large ({size:,} bytes, limit {limit:,})")
         return p.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise InputError(f"{p}: no such file") from None
@@ -242,7 +245,7 @@ def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Even
 
 
 def load_trace(path: Path | str) -> tuple[TraceHeader, list[Event]]:
-    return parse_trace(_read_text(path), str(path))
+    return parse_trace(_read_text(path, MAX_TRACE_BYTES), str(path))
 
 
 def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "pattern") -> None:

@@ -16,7 +16,14 @@ from pathlib import Path
 import viser
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
-from apf_viz.core.formats import check_sizes, load_pattern, load_robots, load_trace
+from apf_viz.core.formats import (
+    MAX_TRACE_BYTES,
+    InputError,
+    check_sizes,
+    load_pattern,
+    load_robots,
+    load_trace,
+)
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.ui.panels import Panels
 from apf_viz.ui.scene import SceneRenderer
@@ -162,10 +169,15 @@ def session_from_args(args: argparse.Namespace) -> Session:
         session = demo_session(**options, plugins=plugins)
         path = Path(args.trace)
         load_trace(path)  # validates the file with a one-line error before the UI starts
-        session.load_trace(path.name, path.read_bytes())
+        session.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)  # the command line's own file
         return session
     robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
     pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)
+    if args.pattern is None and len(pattern.points) != len(robots.robots):
+        raise InputError(
+            f"{args.robots}: {len(robots.robots)} robots, but the default pattern (the demo's heart) has "
+            f"{len(pattern.points)} points: pass --pattern"
+        )
     check_sizes(robots, pattern, str(args.pattern or DEMO_PATTERN))
     return Session(
         [tuple(p) for p in robots.robots],
@@ -177,7 +189,20 @@ def session_from_args(args: argparse.Namespace) -> Session:
     )
 
 
+def check_listen(host: str, port: int) -> None:
+    """Refuse, with one line, an address the server could not listen on (a bad host, a port in use),
+    before viser tries in a thread of its own."""
+    try:
+        family, kind, proto, _, address = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0]
+        with socket.socket(family, kind, proto) as probe:
+            probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            probe.bind(address)
+    except (OSError, OverflowError, UnicodeError) as e:
+        raise InputError(f"cannot listen on {host}:{port}: {getattr(e, 'strerror', None) or e}") from None
+
+
 def serve(args: argparse.Namespace) -> int:
+    check_listen(args.host, args.port)
     session = session_from_args(args)
     app = App(session, host=args.host, port=args.port, verbose=False)
     print(f"apf-viz: serving on http://{args.host}:{app.port}  (Ctrl+C to stop)", flush=True)

@@ -19,12 +19,13 @@ from apf_viz.core.formats import (
 )
 from apf_viz.core.run import engine_for_trace, replay
 
-MAX_UPLOAD_BYTES = 2_000_000
+MAX_UPLOAD_BYTES = 2_000_000  # robots and pattern files from a browser
+MAX_TRACE_UPLOAD_BYTES = 50_000_000  # a trace from a browser: about 500,000 events
 
 
-def decode(filename: str, content: bytes) -> str:
-    if len(content) > MAX_UPLOAD_BYTES:
-        raise InputError(f"{filename}: file is too large ({len(content)} bytes, limit {MAX_UPLOAD_BYTES})")
+def decode(filename: str, content: bytes, limit: int = MAX_UPLOAD_BYTES) -> str:
+    if len(content) > limit:
+        raise InputError(f"{filename}: file is too large ({len(content):,} bytes, limit {limit:,})")
     try:
         return content.decode("utf-8")
     except UnicodeDecodeError:
@@ -46,11 +47,16 @@ class LoadedTrace:
 
 
 def trace_upload(
-    filename: str, content: bytes, plugins: Mapping[str, Factory], max_events: int
+    filename: str,
+    content: bytes,
+    plugins: Mapping[str, Factory],
+    max_events: int,
+    limit: int = MAX_TRACE_UPLOAD_BYTES,
 ) -> LoadedTrace:
     """Parse a trace and replay it event by event. Its algorithm must be built in or one of the
-    command line's ``plugins``: a file never loads code."""
-    header, events = parse_trace(decode(filename, content), filename)
+    command line's ``plugins``: a file never loads code. ``limit``: bytes accepted (a browser's upload,
+    unless the command line opened the file)."""
+    header, events = parse_trace(decode(filename, content, limit), filename)
     try:
         algorithm = get_algorithm(header.algorithm, plugins)
     except ValueError as e:

@@ -80,8 +80,8 @@ class Panels:
             self.algorithm.on_update(self._on_algorithm)
             self.variant = gui.add_text(
                 "Variant",
-                initial_value="apf-opaque-grid@",
-                hint="a resolution set, e.g. apf-opaque-grid@G1,G2,LA",
+                initial_value=session.algorithm_name,
+                hint="edit the name and press Use variant, e.g. apf-opaque-grid@G1,G2,LA (docs/ALGORITHM.md)",
             )
             gui.add_button("Use variant").on_click(
                 self._guard(lambda e: self.session.set_algorithm(self.variant.value.strip()))
@@ -246,6 +246,7 @@ class Panels:
         if self.algorithm.value != s.algorithm_name:
             self.algorithm.options = self._algorithm_names(s.algorithm_name)
             self.algorithm.value = s.algorithm_name
+            self.variant.value = s.algorithm_name  # the field follows the run's algorithm
         if self.semantics.value != s.config.light_semantics:
             self.semantics.value = s.config.light_semantics
         if self._legend_of is not view.legend and self._legend_of != view.legend:

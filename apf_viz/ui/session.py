@@ -78,6 +78,7 @@ class WhyView:
     origin: Point  # where the robot stood when it looked (its frame's origin)
     regions: tuple[Mark, ...]
     holds_snapshot: bool  # it has looked again since (its next Compute will decide anew)
+    changed: tuple[str, ...] = ()  # robots it saw that have since moved or changed light
 
 
 @dataclass(frozen=True)
@@ -344,9 +345,9 @@ class Session:
                 self.mode = "edit-robots"
                 self.messages.append(f"{filename}: {problem}")
 
-    def load_trace(self, filename: str, content: bytes) -> None:
+    def load_trace(self, filename: str, content: bytes, limit: int = loader.MAX_TRACE_UPLOAD_BYTES) -> None:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
-        loaded = loader.trace_upload(filename, content, self.run.plugins, self.config.max_events)
+        loaded = loader.trace_upload(filename, content, self.run.plugins, self.config.max_events, limit)
         h = loaded.header
         config = self.config.but(
             robots=tuple(map(tuple, h.robots)),
@@ -478,7 +479,24 @@ class Session:
             dx, dy = move_to_global(explained.decision.move, up).delta  # it has moved since that Look
             x, y = x - dx, y - dy
         regions = tuple(_to_global(m, (x, y), up) for m in explained.regions)
-        return WhyView(r, explained, (x, y), regions, holds)
+        return WhyView(
+            r, explained, (x, y), regions, holds, self._changed_since(view, (x, y), up, pts, st.lights)
+        )
+
+    @staticmethod
+    def _changed_since(view, origin: Point, up: bool, pts: list[Point], lights: list[str]) -> tuple[str, ...]:
+        """The robots a snapshot saw that are no longer where it saw them, or show another light now."""
+        now = dict(zip(pts, lights, strict=True))
+        s = 1 if up else -1
+        out = []
+        for seen in view.robots:
+            p = (origin[0] + seen.dx, origin[1] + s * seen.dy)
+            light = now.get(p)
+            if light is None:
+                out.append(f"seen at ({p[0]}, {p[1]}) with light {seen.light}: gone from there")
+            elif light != seen.light:
+                out.append(f"seen at ({p[0]}, {p[1]}) with light {seen.light}: now {light}")
+        return tuple(out)
 
     def _D(self) -> int:
         """D = max(m, n, M, N, k) of the paper: the enclosing rectangles of start and pattern, and k."""

@@ -49,6 +49,14 @@ def why_markdown(view: SessionView) -> str:
     ]
     if why.holds_snapshot:
         lines.append("_It has looked again since: its next Compute decides anew._")
+    if why.changed:
+        shown = "; ".join(why.changed[:4]) + (
+            f"; and {len(why.changed) - 4} more" if len(why.changed) > 4 else ""
+        )
+        lines.append(
+            "⚠ **Decided on an older view.** Since the Look this decision used, robots it saw changed: "
+            f"{shown}. The predicates below are about that view."
+        )
     if why.explanation.predicates:
         rows = "".join(
             f"<tr><td>{symbol_html(p.symbol)}</td><td>{_value(p.value)}</td>"
