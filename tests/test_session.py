@@ -220,3 +220,55 @@ def test_why_says_when_the_robots_a_decision_saw_have_changed_since():
         s.click((3, 0))  # robot 1 looks, computes, moves to (2, 0)
     s.selected = 2
     assert s.view().why.changed == ("seen at (3, 0) with light off: gone from there",)
+
+
+def test_a_snapshot_is_stale_only_when_another_robot_it_saw_changed():
+    s = demo_session()
+    s.set_scheduler("Manual")
+    r = 1
+    s.click(s.engine.current_points()[r])  # Look
+    s.click(s.engine.current_points()[r])  # Compute: only its own light may change
+    assert "stale" not in s.view().caption
+    other = next(q for q in range(10) if q != r and q in s.engine.state.seen[r])
+    for _ in range(3):  # the other robot looks, computes and moves (or stays)
+        s.click(s.engine.current_points()[other])
+    s.selected = r
+    moved = s.engine.current_points()[other] != s.engine.start[other]
+    relit = s.engine.state.lights[other] != "off"
+    assert ("stale" in s.view().caption) == (moved or relit)
+
+
+def test_last_event_says_who_did_what_and_the_last_actor_is_marked():
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    s.click((5, 1))
+    v = s.view()
+    assert v.last_events[0] == "robot 2 · Look: sees 3 robots" and v.last_actor == 2
+    s.click((5, 1))
+    assert s.view().last_events[0] == "robot 2 · Compute → light off, move left — compact-left.slide"
+    s.click((5, 1))
+    v = s.view()
+    assert v.last_events[:3] == (
+        "robot 2 · Move → (4, 1)",
+        "robot 2 · Compute → light off, move left — compact-left.slide",
+        "robot 2 · Look: sees 3 robots",
+    )
+
+
+def test_next_move_and_next_stage_run_until_something_happens():
+    s = demo_session()
+    message = s.run_until("move")
+    assert s.engine.state.moves == 1 and message.startswith("a robot moved after")
+    stage = s.view().stage
+    message = s.run_until("stage")
+    assert s.view().stage != stage and message.startswith(s.view().stage)
+    s.set_scheduler("Manual")
+    assert "Manual" in s.run_until("move")
+
+
+def test_the_move_of_a_decision_to_stay_is_said_to_stay():
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    for _ in range(3):
+        s.click((0, 0))  # the leftmost robot: nothing to its left, so it stays (and shows done)
+    assert s.view().last_events[0] == "robot 0 · Move: stays at (0, 0)"

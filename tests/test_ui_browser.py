@@ -358,3 +358,22 @@ def test_the_example_algorithms_legend_shows_its_lights(browser):
         page.close()
     finally:
         other.stop()
+
+
+def test_last_event_next_move_and_frame_run(browser, app):
+    page = open_page(browser, app)
+    other = open_page(browser, app)  # a second browser on the same run (a projector, say)
+    page.get_by_role("button", name="Step").click()
+    wait_for(lambda: app.session.engine.step_index == 1)
+    last = page.locator("xpath=//*[text()='Last event']/following::input[1]")
+    wait_for(lambda: "· Look: sees" in last.input_value())
+    page.get_by_role("button", name="Next move").click()
+    page.get_by_text("a robot moved after").wait_for()
+    wait_for(lambda: app.session.engine.state.moves == 1)
+    wait_for(lambda: "· Move → (" in last.input_value())
+    time.sleep(1.0)
+    assert other.get_by_text("a robot moved after").count() == 0  # told only the browser that asked
+    page.get_by_role("button", name="Frame run").click()
+    shot(page, "last-event")
+    page.close()
+    other.close()

@@ -49,7 +49,7 @@ class App:
         self.session = session
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         self.renderer = SceneRenderer(self.server)
-        self.panels = Panels(self.server, session, self.request_render, self.notify_all)
+        self.panels = Panels(self.server, session, self.request_render, self.notify_all, self.frame_client)
         self._dirty = threading.Event()
         self._stop = threading.Event()
         self._framed: tuple[float, float, float, float] | None = None
@@ -71,6 +71,10 @@ class App:
     def notify_all(self, title: str, body: str, error: bool = False) -> None:
         for client in self.server.get_clients().values():
             client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
+
+    def frame_client(self, client) -> None:
+        """Point this browser's camera at the whole run (robots and targets), as it is now."""
+        self.renderer.frame_camera(client.camera)
 
     def stop(self) -> None:
         self._stop.set()

@@ -36,8 +36,10 @@ class Panels:
         session: Session,
         changed: Callable[[], None],
         notify: Callable[[str, str, bool], None],
+        frame: Callable[[object], None] = lambda client: None,
     ) -> None:
         self.server, self.session, self.changed, self.notify = server, session, changed, notify
+        self.frame = frame  # points one browser's camera at the whole run
         self._recorder: GifRecorder | None = None
         self._recording_lock = threading.Lock()
         gui = server.gui
@@ -62,7 +64,11 @@ class Panels:
                 hint="scrub the history; stepping from the past branches",
             )
             self.timeline.on_update(self._on_timeline)
+            jumps = gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run"))
+            jumps.on_click(self._on_jump)
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
+            self.last_event = gui.add_text("Last event", initial_value="", disabled=True)
+            self.log = gui.add_markdown("")
             self.stats = gui.add_markdown("")
             self.banner = gui.add_markdown("")
         with gui.add_folder("Adversary"):
@@ -158,6 +164,20 @@ class Panels:
         self.changed()
 
     # Values from a browser are checked by the session (a page may send any value over its websocket).
+    def _on_jump(self, event) -> None:
+        """Next move / Next stage run the scheduler until something happens (the result goes to the
+        browser that asked); Frame run points that browser's camera at the whole run."""
+        value, client = event.target.value, event.client
+        if value == "Frame run":
+            if client is not None:
+                self.frame(client)
+            return
+        what = "move" if value == "Next move" else "stage"
+        result = self.session.run_until(what)  # type: ignore[arg-type]
+        if client is not None:
+            client.add_notification(value, result, auto_close_seconds=5.0)
+        self.changed()
+
     def _set_speed(self, event) -> None:
         if event.client is not None:
             self._guard(lambda e: self.session.set_speed(self.speed.value))(event)
@@ -235,6 +255,10 @@ class Panels:
         self.timeline.max = max(1, view.history_length)
         self.timeline.value = view.steps
         self.event.value = view.event
+        last = view.last_events[0] if view.last_events else ""
+        if self.last_event.value != last:
+            self.last_event.value = last
+            self.log.content = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])
         self.stats.content = (
             f"Moves **{view.moves}** · cycles **{view.cycles}** · step {view.steps}/{view.history_length}  \n"
             f"Stage: **{view.stage}** · moves/(k·D) = {view.moves_per_kD:.3f}  \n"

@@ -312,6 +312,7 @@ class SceneRenderer:
         self._robot_spheres(view, pts[:0] if dense else pts)
         self._robot_sprites(view, pts if dense else pts[:0])
         self._phase_halos(view, pts)
+        self._rings(view, pts)
         self._targets(view)
         ghosts = self._local(view.ghosts)
         self._batched(
@@ -398,6 +399,16 @@ class SceneRenderer:
         """The grid cell a click ray hits (see :func:`cell_of_ray`), in grid coordinates."""
         cell = cell_of_ray(origin, direction)
         return None if cell is None else (cell[0] + self.origin[0], cell[1] + self.origin[1])
+
+    def _rings(self, view: SessionView, pts: np.ndarray) -> None:
+        """A dark disc under the robot that acted last and a blue one under the selected robot: rings
+        around the sphere, distinct from the square phase halos."""
+        for name, robot, color, size in (
+            ("/ring/last", view.last_actor, (40, 40, 40), 0.98),
+            ("/ring/selected", view.selected, (40, 120, 255), 1.12),
+        ):
+            at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
+            self._points(name, _xyz(at, 0.004 if name.endswith("last") else 0.003), color, size, "circle")
 
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
         extra = self._local(view.targets)

@@ -10,6 +10,7 @@ serialised by the run's lock, so all connected browsers drive the same run safel
 
 from __future__ import annotations
 
+import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import repeat
@@ -108,6 +109,8 @@ class SessionView:
     robot_count: int
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
     move_series: tuple[tuple[int, int], ...] = field(default=())
+    last_events: tuple[str, ...] = ()  # newest first, in words
+    last_actor: int | None = None  # the robot of the last step (one robot: ASYNC or Manual)
 
 
 class Session:
@@ -233,6 +236,34 @@ class Session:
                 self.run.pause()
                 return False
             return self.run.play_step()
+
+    def run_until(self, what: Literal["move", "stage"], limit: int = 1_000_000, seconds: float = 3.0) -> str:
+        """Step until some robot moves, or the stage changes; stops early on an outcome, in Manual, or
+        after ``limit`` steps. Returns what happened, for a notification."""
+        with self.lock:
+            if self.mode != "run" or self.scheduler_name == "manual":
+                return "Next move / Next stage need a scheduler other than Manual"
+            self.run.pause()
+            e = self.engine
+            wanted = "move" if what == "move" else "new stage"
+            moves, stage = e.state.moves, self._view().stage
+            version = e.state.version
+            deadline = time.monotonic() + seconds  # the lock is held: keep every browser responsive
+            for taken in range(1, limit + 1):
+                if not self.run.step():
+                    return f"the run is over ({e.outcome})" if e.finished else "nothing could run"
+                if e.finished:
+                    return f"{e.outcome} after {taken} steps"
+                if what == "move" and e.state.moves > moves:
+                    return f"a robot moved after {taken} steps"
+                if what == "stage" and e.state.version != version:  # stages change with lights or moves
+                    version = e.state.version
+                    now = self._overlays(e.current_points(), e.state.lights).stage
+                    if now != stage:
+                        return f"{now} after {taken} steps"
+                if time.monotonic() > deadline:
+                    return f"still no {wanted} after {taken:,} steps: press again"
+            return f"no {wanted} within {limit:,} steps"
 
     def back(self) -> None:
         self.run.back()
@@ -439,7 +470,9 @@ class Session:
             legend=legend_of(e.algorithm),
             why=self._why(sel, pts) if sel is not None else None,
             outcome=st.outcome,
-            caption=self._caption(sel),
+            caption=self._caption(sel, pts),
+            last_events=self._last_events(),
+            last_actor=self._last_actor(),
             event=st.events,
             steps=st.steps,
             history_length=e.history.length,
@@ -454,6 +487,13 @@ class Session:
             axis=self.editor.axis() if self.mode == "edit-robots" else None,
             move_series=self.run.series.at(e.history, e.step_index),
         )
+
+    def _last_actor(self) -> int | None:
+        e = self.engine
+        if e.step_index == 0 or self.mode != "run":
+            return None
+        events = e.history.steps[e.step_index - 1].events
+        return events[-1].robot if len(events) == 1 else None
 
     def _overlays(self, pts: list[Point], lights: list[str]) -> Overlays:
         """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead."""
@@ -508,7 +548,7 @@ class Session:
         c = self.config
         return max(*extent(c.robots), *extent(c.pattern), len(c.robots))
 
-    def _caption(self, sel: int | None) -> str:
+    def _caption(self, sel: int | None, pts: list[Point]) -> str:
         if sel is None:
             return "Click a robot to see what it sees and why it acts."
         e = self.engine
@@ -518,9 +558,62 @@ class Session:
             f"**Robot {sel}** — light `{st.lights[sel]}`, {phase}; next: {e.next_event(sel)}; "
             f"y-axis {'up' if self.config.y_up[sel] else 'flipped'}",
         ]
-        if st.phase[sel] != Phase.IDLE and st.look_version[sel] != st.version:
-            lines.append("Its snapshot is stale: the configuration changed since its Look (ghosts show it).")
+        snap = st.snapshot[sel]
+        if snap is not None:
+            # Stale only when another robot it saw moved or changed light (its own light does not count;
+            # robots that came into sight since are a new Look's business).
+            changed = self._changed_since(snap, pts[sel], self.config.y_up[sel], pts, st.lights)
+            if changed:
+                lines.append(
+                    f"Its snapshot is stale: {changed[0]}"
+                    + (f" (and {len(changed) - 1} more)" if len(changed) > 1 else "")
+                    + "; ghosts show where it saw them."
+                )
         return "\n\n".join(lines)
+
+    # ------------------------------------------------------------------ what just happened
+    def _last_events(self, n: int = 8) -> tuple[str, ...]:
+        """The last ``n`` events, newest first, in words: who did what."""
+        e = self.engine
+        out: list[str] = []
+        first = max(0, e.step_index - n)
+        for i, step in zip(
+            range(e.step_index - 1, first - 1, -1),
+            reversed(e.history.steps[first : e.step_index]),
+            strict=True,
+        ):
+            for ev in reversed(step.events):
+                stays = ev.phase == "move" and self._computed_stay(ev.robot, i)
+                out.append(describe_event(ev, stays))
+                if len(out) == n:
+                    return tuple(out)
+        return tuple(out)
+
+    def _computed_stay(self, robot: int, before: int, window: int = 2_000) -> bool:
+        """Whether this robot's Compute before step ``before`` decided to stay (a Move then moves nobody)."""
+        steps = self.engine.history.steps
+        for step in reversed(steps[max(0, before - window) : before]):
+            for ev in step.events:
+                if ev.robot == robot and ev.phase == "compute":
+                    return ev.move is None
+        return False
+
+
+def describe_event(ev, stays: bool = False) -> str:
+    """One event in words: "robot 3 · Move → (1, 0)", "robot 1 · Compute → light leader1, stay — A1.off.on-K"
+    (``stays``: the Move of a decision to stay)."""
+    head = f"robot {ev.robot} · "
+    if ev.phase == "look":
+        return head + f"Look: sees {len(ev.sees or ())} robots"
+    if ev.phase == "compute":
+        move = f", move {ev.move.value}" if ev.move is not None else ", stay"
+        rule = f" — {ev.rule_id or ev.rule}" if (ev.rule_id or ev.rule) else ""
+        return head + f"Compute → light {ev.light}{move}{rule}"
+    if ev.collision:
+        return head + f"Move → ({ev.to[0]}, {ev.to[1]}): COLLISION"
+    if stays:
+        return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]})"
+    return head + f"Move → ({ev.to[0]}, {ev.to[1]})"
 
 
 def _to_global(mark: Mark, origin: Point, y_up: bool) -> Mark:

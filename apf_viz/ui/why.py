@@ -102,6 +102,7 @@ def legend_html(view: SessionView) -> str:
         f"{_swatch((250, 200, 0), 'square')} rays: what the selected robot sees · "
         f"{_swatch((120, 120, 255))} ghosts: where its snapshot saw them",
         f"{_swatch((40, 120, 255), 'square')} Why: the regions its last rule tested",
+        f"{_swatch((40, 40, 40))} the robot that acted last · {_swatch((40, 120, 255))} the selected robot",
         f"{_swatch((255, 0, 0), 'square')} Edit robots: the symmetry axis of an unsolvable start",
     ]
     body = "".join(f'<div style="margin:2px 0">{row}</div>' for row in rows)
