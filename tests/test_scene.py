@@ -135,3 +135,25 @@ def test_a_run_at_the_edge_of_the_grid_is_drawn_exactly_around_a_nearby_origin(r
     x, y = renderer.to_scene(start[1])
     assert renderer.cell_of_ray((x, y, 50.0), (0.0, 0.0, -1.0)) == start[1]
     assert renderer.cell_of_ray((x, y, 50.0), (float("nan"), 0.0, -1.0)) is None
+
+
+def test_numbers_beside_robots_and_a_red_mark_where_a_collision_happened(renderer):
+    from pathlib import Path
+
+    from apf_viz.ui.app import demo_session
+
+    s = demo_session()
+    renderer.render(s.view())
+    texts = sorted(h.text for n, h in renderer._handles.items() if n.startswith("/numbers/") and h.visible)
+    assert texts == sorted(str(i) for i in range(10))
+    s.set_numbers(False)
+    renderer.render(s.view())
+    assert not any(h.visible for n, h in renderer._handles.items() if n.startswith("/numbers/"))
+    trace = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    s.load_trace(trace.name, trace.read_bytes())
+    while s.engine.redo() is not None:
+        pass
+    v = s.view()
+    renderer.render(v)
+    marked = np.asarray(renderer._handles["/collision"].points)[:, :2]
+    assert sorted(map(tuple, marked.tolist())) == sorted(renderer.to_scene(c) for c in v.collision[1])

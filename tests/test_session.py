@@ -272,3 +272,30 @@ def test_the_move_of_a_decision_to_stay_is_said_to_stay():
     for _ in range(3):
         s.click((0, 0))  # the leftmost robot: nothing to its left, so it stays (and shows done)
     assert s.view().last_events[0] == "robot 0 · Move: stays at (0, 0)"
+
+
+def test_a_collision_is_located_in_words_and_cells():
+    from pathlib import Path
+
+    trace = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    s = demo_session()
+    s.load_trace(trace.name, trace.read_bytes())
+    while s.engine.redo() is not None:  # follow the trace to its end
+        pass
+    v = s.view()
+    assert v.outcome == "collision" and v.collision is not None
+    words, cells = v.collision
+    last = [ev for ev in s.engine.history.steps[s.engine.step_index - 1].events if ev.collision]
+    r = last[0].robot
+    assert words.startswith(f"robot {r} moved onto robot ") and f"at ({last[0].to[0]}, {last[0].to[1]})" in words
+    assert "on a snapshot taken at step" in words
+    assert last[0].to in cells and v.robots[r].position in cells
+
+
+def test_robot_numbers_are_on_for_few_robots_and_can_be_switched():
+    s = demo_session()
+    assert s.view().numbers
+    s.set_numbers(False)
+    assert not s.view().numbers
+    many = Session([(x, x % 7) for x in range(60)], [(x, 0) for x in range(60)])
+    assert not many.view().numbers

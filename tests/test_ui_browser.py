@@ -377,3 +377,16 @@ def test_last_event_next_move_and_frame_run(browser, app):
     shot(page, "last-event")
     page.close()
     other.close()
+
+
+def test_a_collision_is_shown_with_the_robots_and_the_cell(browser, app):
+    trace = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    app.session.load_trace(trace.name, trace.read_bytes())
+    while app.session.engine.redo() is not None:
+        pass
+    app.request_render()
+    page = open_page(browser, app)
+    page.get_by_role("heading", name="💥 COLLISION").wait_for()
+    page.get_by_text("on a snapshot taken at step").wait_for()
+    shot(page, "collision")
+    page.close()

@@ -71,6 +71,10 @@ class Panels:
             self.log = gui.add_markdown("")
             self.stats = gui.add_markdown("")
             self.banner = gui.add_markdown("")
+            self.numbers = gui.add_checkbox(
+                "Numbers", initial_value=True, hint="each robot's number beside it"
+            )
+            self.numbers.on_update(self._on_numbers)
         with gui.add_folder("Adversary"):
             self.scheduler = gui.add_dropdown(
                 "Scheduler", tuple(SCHEDULER_LABELS), initial_value=self._scheduler_label()
@@ -164,6 +168,11 @@ class Panels:
         self.changed()
 
     # Values from a browser are checked by the session (a page may send any value over its websocket).
+    def _on_numbers(self, event) -> None:
+        if event.client is not None:
+            self.session.set_numbers(bool(self.numbers.value))
+            self.changed()
+
     def _on_jump(self, event) -> None:
         """Next move / Next stage run the scheduler until something happens (the result goes to the
         browser that asked); Frame run points that browser's camera at the whole run."""
@@ -265,6 +274,8 @@ class Panels:
             f"Lights in use: {', '.join(view.lights_in_use)}"
         )
         self.banner.content = self._banner(view)
+        if self.numbers.value != view.numbers:
+            self.numbers.value = view.numbers
         self.caption.content = view.caption
         self.why.content = why_markdown(view)
         if self.algorithm.value != s.algorithm_name:
@@ -335,7 +346,8 @@ class Panels:
         if view.outcome is None:
             return ""
         icon = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}.get(view.outcome, "")
-        return f"## {icon} {view.outcome.upper()}"
+        detail = f"\n\n{view.collision[0]} (red on the grid)" if view.collision else ""
+        return f"## {icon} {view.outcome.upper()}{detail}"
 
     @staticmethod
     def _counts(view: SessionView) -> str:

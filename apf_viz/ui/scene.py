@@ -313,6 +313,10 @@ class SceneRenderer:
         self._robot_sprites(view, pts if dense else pts[:0])
         self._phase_halos(view, pts)
         self._rings(view, pts)
+        numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
+        self._labels("/numbers", numbers if view.numbers else [])
+        crash = self._local(view.collision[1]) if view.collision else pts[:0]
+        self._points("/collision", _xyz(crash, 0.006), (230, 0, 0), 1.25, "circle")
         self._targets(view)
         ghosts = self._local(view.ghosts)
         self._batched(

@@ -56,6 +56,7 @@ SCHEDULER_LABELS = {
 
 
 _PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
+NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
 _COMPUTED = int(Phase.COMPUTED)
 
 
@@ -111,6 +112,8 @@ class SessionView:
     move_series: tuple[tuple[int, int], ...] = field(default=())
     last_events: tuple[str, ...] = ()  # newest first, in words
     last_actor: int | None = None  # the robot of the last step (one robot: ASYNC or Manual)
+    numbers: bool = False  # draw each robot's number beside it
+    collision: tuple[str, tuple[Point, ...]] | None = None  # what collided, in words, and the cells
 
 
 class Session:
@@ -147,6 +150,7 @@ class Session:
         self.editor = Editor(config.robots, config.y_up, config.pattern)
         self.mode: Mode = "run"
         self.selected: int | None = None
+        self.numbers: bool | None = None  # robot numbers on the canvas; None: on up to NUMBERS_UP_TO robots
         self.messages: list[str] = []  # notifications for the UI to show, drained by the app
 
     # ------------------------------------------------------------------ the run, read-only
@@ -473,6 +477,8 @@ class Session:
             caption=self._caption(sel, pts),
             last_events=self._last_events(),
             last_actor=self._last_actor(),
+            numbers=self.numbers if self.numbers is not None else len(robots) <= NUMBERS_UP_TO,
+            collision=self._collision(pts) if st.outcome == "collision" else None,
             event=st.events,
             steps=st.steps,
             history_length=e.history.length,
@@ -487,6 +493,29 @@ class Session:
             axis=self.editor.axis() if self.mode == "edit-robots" else None,
             move_series=self.run.series.at(e.history, e.step_index),
         )
+
+    def set_numbers(self, on: bool) -> None:
+        with self.lock:
+            self.numbers = bool(on)
+
+    def _collision(self, pts: list[Point]) -> tuple[str, tuple[Point, ...]] | None:
+        """The colliding moves of the last step, in words, and the cells involved."""
+        e = self.engine
+        if e.step_index == 0:
+            return None
+        st = e.state
+        movers = [ev for ev in e.history.steps[e.step_index - 1].events if ev.collision]
+        where = {p: i for i, p in enumerate(pts)}
+        words, cells = [], []
+        for ev in movers:
+            other = where.get(ev.to)
+            onto = f"onto robot {other}" if other is not None and other != ev.robot else "into another mover"
+            words.append(
+                f"robot {ev.robot} moved {onto} at ({ev.to[0]}, {ev.to[1]}) on a snapshot taken at step "
+                f"{int(st.look_step[ev.robot])}"
+            )
+            cells += [ev.to, pts[ev.robot]]
+        return ("; ".join(words), tuple(dict.fromkeys(cells))) if words else None
 
     def _last_actor(self) -> int | None:
         e = self.engine
