@@ -287,7 +287,8 @@ def test_a_collision_is_located_in_words_and_cells():
     words, cells = v.collision
     last = [ev for ev in s.engine.history.steps[s.engine.step_index - 1].events if ev.collision]
     r = last[0].robot
-    assert words.startswith(f"robot {r} moved onto robot ") and f"at ({last[0].to[0]}, {last[0].to[1]})" in words
+    x, y = last[0].to
+    assert words.startswith(f"robot {r} moved onto robot ") and f"at ({x}, {y})" in words
     assert "on a snapshot taken at step" in words
     assert last[0].to in cells and v.robots[r].position in cells
 
