@@ -604,28 +604,22 @@ class Session:
     def _last_events(self, n: int = 8) -> tuple[str, ...]:
         """The last ``n`` events, newest first, in words: who did what."""
         e = self.engine
+        st = e.state
         out: list[str] = []
         first = max(0, e.step_index - n)
-        for i, step in zip(
-            range(e.step_index - 1, first - 1, -1),
-            reversed(e.history.steps[first : e.step_index]),
-            strict=True,
-        ):
+        window = e.history.steps[first : e.step_index]
+        latest_seen: set[int] = set()
+        for step in reversed(window):
             for ev in reversed(step.events):
-                stays = ev.phase == "move" and self._computed_stay(ev.robot, i)
+                stays = False
+                if ev.phase == "move" and ev.robot not in latest_seen and st.decided[ev.robot] is not None:
+                    # Its latest event: the decision it moved on is the one on its latest decided snapshot.
+                    stays = e.decide(st.decided[ev.robot]).move is None
+                latest_seen.add(ev.robot)
                 out.append(describe_event(ev, stays))
                 if len(out) == n:
                     return tuple(out)
         return tuple(out)
-
-    def _computed_stay(self, robot: int, before: int, window: int = 2_000) -> bool:
-        """Whether this robot's Compute before step ``before`` decided to stay (a Move then moves nobody)."""
-        steps = self.engine.history.steps
-        for step in reversed(steps[max(0, before - window) : before]):
-            for ev in step.events:
-                if ev.robot == robot and ev.phase == "compute":
-                    return ev.move is None
-        return False
 
 
 def describe_event(ev, stays: bool = False) -> str:
