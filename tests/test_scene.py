@@ -157,3 +157,24 @@ def test_numbers_beside_robots_and_a_red_mark_where_a_collision_happened(rendere
     renderer.render(v)
     marked = np.asarray(renderer._handles["/collision"].points)[:, :2]
     assert sorted(map(tuple, marked.tolist())) == sorted(renderer.to_scene(c) for c in v.collision[1])
+
+
+def test_the_cameras_are_framed_again_when_a_new_run_starts():
+    """Also when the new run is smaller than the old (framing used to follow growth only)."""
+    import time
+
+    from apf_viz.ui.app import App, demo_session
+
+    app = App(demo_session(), port=free_port(), verbose=False)
+    try:
+        before = app.renderer.framed_pose
+        small = [(x, y) for x in range(5) for y in range(2)]
+        small[-1] = (5, 1)  # not mirror-symmetric about a robot-free row (Theorem 1)
+        app.session.load_robots("small.json", ('{"robots": ' + str([list(p) for p in small]) + "}").encode())
+        app.request_render()
+        deadline = time.time() + 30
+        while app.renderer.framed_pose == before or app.renderer.framed_pose != app.renderer.camera_pose():
+            assert time.time() < deadline, "the cameras were not framed on the new run"
+            time.sleep(0.1)
+    finally:
+        app.stop()

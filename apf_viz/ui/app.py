@@ -53,6 +53,7 @@ class App:
         self._dirty = threading.Event()
         self._stop = threading.Event()
         self._framed: tuple[float, float, float, float] | None = None
+        self._framed_engine = session.engine  # the run the cameras were last framed on
         self.frames = 0
         self.server.scene.on_click()(self._on_click)
         self._render()
@@ -142,8 +143,13 @@ class App:
         return out
 
     def _needs_reframe(self) -> bool:
-        """Keep the run framed as it grows: re-frame when something leaves the framed box."""
+        """Keep the run framed: re-frame when a new run starts (Reset, a load, a switch of algorithm: a
+        new engine) and when something leaves the framed box as the run grows."""
         b = self.renderer.bounds
+        engine = self.session.engine
+        if engine is not self._framed_engine:
+            self._framed_engine = engine
+            return True
         if self._framed is None:
             self._framed = b
             return False
