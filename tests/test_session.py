@@ -300,3 +300,40 @@ def test_robot_numbers_are_on_for_few_robots_and_can_be_switched():
     assert not s.view().numbers
     many = Session([(x, x % 7) for x in range(60)], [(x, 0) for x in range(60)])
     assert not many.view().numbers
+
+
+def test_a_loaded_trace_is_followed_by_step_until_its_end_then_branch_here_leaves_it():
+    from pathlib import Path
+
+    from apf_viz.core.formats import load_trace
+
+    path = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    _, recorded = load_trace(path)
+    s = demo_session()
+    s.load_trace(path.name, path.read_bytes())
+    assert s.view().trace_position == (0, len(recorded))
+    while s.step():  # Step follows the trace, whatever the scheduler would choose
+        pass
+    v = s.view()
+    assert v.outcome == "collision" and v.trace_position == (len(recorded), len(recorded))
+    assert [e._replace(rule_id=None) for e in s.engine.history.events()] == recorded
+    s.seek(10)
+    assert s.step() and s.engine.history.length == len(s.engine.history.steps)  # still the trace
+    assert s.view().trace_position is not None
+    s.branch_here()
+    assert s.view().trace_position is None
+    s.set_scheduler("Manual")
+    s.click(s.engine.current_points()[0])  # a person's choice from here on
+    assert s.engine.step_index == 12
+
+
+def test_a_manual_click_leaves_a_followed_trace():
+    from pathlib import Path
+
+    path = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    s = demo_session()
+    s.load_trace(path.name, path.read_bytes())
+    s.set_scheduler("Manual")
+    assert s.step()  # Step still follows the trace in Manual
+    s.click(s.engine.current_points()[3])
+    assert s.view().trace_position is None

@@ -390,3 +390,20 @@ def test_a_collision_is_shown_with_the_robots_and_the_cell(browser, app):
     page.get_by_text("on a snapshot taken at step").wait_for()
     shot(page, "collision")
     page.close()
+
+
+def test_step_follows_a_loaded_trace_and_branch_here_leaves_it(browser, app):
+    trace = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    app.session.load_trace(trace.name, trace.read_bytes())
+    recorded = app.session.engine.history.events()
+    app.request_render()
+    page = open_page(browser, app)
+    for _ in range(3):
+        page.get_by_role("button", name="Step").click()
+    wait_for(lambda: app.session.engine.step_index == 3)
+    assert app.session.engine.history.events(3) == recorded[: len(app.session.engine.history.events(3))]
+    page.get_by_text("Following the trace: event").wait_for()
+    page.get_by_role("button", name="Branch here").click()
+    wait_for(lambda: app.session.view().trace_position is None)
+    page.get_by_role("button", name="Branch here").wait_for(state="hidden")
+    page.close()

@@ -66,6 +66,11 @@ class Panels:
             self.timeline.on_update(self._on_timeline)
             jumps = gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run"))
             jumps.on_click(self._on_jump)
+            self.trace = gui.add_markdown("")
+            self.branch = gui.add_button(
+                "Branch here", visible=False, hint="leave the trace: the scheduler runs"
+            )
+            self.branch.on_click(self._guard(lambda e: self.session.branch_here()))
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
             self.last_event = gui.add_text("Last event", initial_value="", disabled=True)
             self.log = gui.add_markdown("")
@@ -274,6 +279,14 @@ class Panels:
             f"Lights in use: {', '.join(view.lights_in_use)}"
         )
         self.banner.content = self._banner(view)
+        following = view.trace_position is not None
+        if self.branch.visible != following:
+            self.branch.visible = following
+        self.trace.content = (
+            f"Following the trace: event **{view.trace_position[0]}** of {view.trace_position[1]}"
+            if following
+            else ""
+        )
         if self.numbers.value != view.numbers:
             self.numbers.value = view.numbers
         self.caption.content = view.caption

@@ -52,6 +52,20 @@ class RunController:
         self.config = config
         self._series = MoveSeries(self.engine.start)
         self._playing = False
+        # A replayed trace is followed step by step until the person branches (Branch here).
+        self.following = engine is not None and engine.history.length > 0
+        self.trace_events = len(engine.history.events()) if self.following else 0
+
+    @property
+    def trace_position(self) -> tuple[int, int] | None:
+        """(events so far, events in the trace) while a trace is followed, else None."""
+        return (self.engine.state.events, self.trace_events) if self.following else None
+
+    def branch_here(self) -> None:
+        """Leave the trace: from here the scheduler (or Manual) chooses; the recorded future is dropped
+        by the first step that differs from it."""
+        with self.lock:
+            self.following = False
 
     def restart(self, config: RunConfig) -> None:
         """A new run from this configuration (a new start, pattern, algorithm or light semantics)."""
@@ -96,6 +110,8 @@ class RunController:
     def step(self) -> bool:
         """One step chosen by the scheduler. False if the run is over (or the scheduler is Manual)."""
         with self.lock:
+            if self.following:  # the trace decides: its next recorded step, until its end
+                return not self.engine.finished and self.engine.redo() is not None
             if self.engine.finished or self.config.scheduler == "manual":
                 return False
             record = make_scheduler(self.config.scheduler).choose(
@@ -109,6 +125,7 @@ class RunController:
         with self.lock:
             phase = self.engine.next_event(robot)
             self.engine.step([robot])
+            self.following = False  # a person's choice leaves the trace
             return phase
 
     def back(self) -> None:

@@ -113,6 +113,7 @@ class SessionView:
     last_events: tuple[str, ...] = ()  # newest first, in words
     last_actor: int | None = None  # the robot of the last step (one robot: ASYNC or Manual)
     numbers: bool = False  # draw each robot's number beside it
+    trace_position: tuple[int, int] | None = None  # (event, events in the trace) while following one
     collision: tuple[str, tuple[Point, ...]] | None = None  # what collided, in words, and the cells
 
 
@@ -225,7 +226,7 @@ class Session:
         with self.lock:
             if self.engine.finished or self.mode != "run":
                 return False
-            if self.scheduler_name == "manual":
+            if self.scheduler_name == "manual" and not self.run.following:
                 if self.selected is None:
                     self.messages.append("Manual: click a robot to run its next phase")
                     return False
@@ -245,7 +246,7 @@ class Session:
         """Step until some robot moves, or the stage changes; stops early on an outcome, in Manual, or
         after ``limit`` steps. Returns what happened, for a notification."""
         with self.lock:
-            if self.mode != "run" or self.scheduler_name == "manual":
+            if self.mode != "run" or (self.scheduler_name == "manual" and not self.run.following):
                 return "Next move / Next stage need a scheduler other than Manual"
             self.run.pause()
             e = self.engine
@@ -476,6 +477,7 @@ class Session:
             outcome=st.outcome,
             caption=self._caption(sel, pts),
             last_events=self._last_events(),
+            trace_position=self.run.trace_position,
             last_actor=self._last_actor(),
             numbers=self.numbers if self.numbers is not None else len(robots) <= NUMBERS_UP_TO,
             collision=self._collision(pts) if st.outcome == "collision" else None,
@@ -493,6 +495,10 @@ class Session:
             axis=self.editor.axis() if self.mode == "edit-robots" else None,
             move_series=self.run.series.at(e.history, e.step_index),
         )
+
+    def branch_here(self) -> None:
+        """Stop following a loaded trace: from this event on, the chosen scheduler runs."""
+        self.run.branch_here()
 
     def set_numbers(self, on: bool) -> None:
         with self.lock:
