@@ -150,3 +150,21 @@ def test_reset_and_loads_rebuild_the_run_from_its_configuration():
     assert s.config == config.but(pattern=tuple((x, 0) for x in range(10)))
     cells = [m for m in s.view().overlays.marks if isinstance(m, Cells)]
     assert cells and cells[0].style == "preview"  # no leader yet: the pattern is a preview
+
+
+def test_the_legend_follows_the_overlays_as_they_appear():
+    from apf_viz.ui.panels import Panels
+
+    server = viser.ViserServer(port=free_port(), verbose=False)
+    try:
+        s = Session([(0, 0), (0, 2), (1, 0), (1, 2), (2, 5)], [(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)])
+        s.set_scheduler("fsync")
+        panels = Panels(server, s, lambda: None, lambda *a: None)
+        panels.refresh(s.view())
+        assert "> K</div>" not in panels.legend.content
+        while not any(isinstance(m, Line) and m.label == "K" for m in s.view().overlays.marks):
+            assert s.step()
+        panels.refresh(s.view())
+        assert "> K</div>" in panels.legend.content  # the swatch of K, in K's colour
+    finally:
+        server.stop()

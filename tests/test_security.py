@@ -142,8 +142,8 @@ def test_values_a_browser_sends_are_checked():
     with pytest.raises(InputError):
         session.set_speed(math.nan)
     with pytest.raises(InputError):
-        session.seek_from_browser(math.nan)
-    session.seek_from_browser(10**30)  # clamped to the history
+        session.seek(math.nan)
+    session.seek(10**30)  # clamped to the history
     assert session.engine.step_index == session.engine.history.length
     session.set_mode("edit-robots")
     message = session.click((10**13, 0))

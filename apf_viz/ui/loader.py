@@ -44,6 +44,7 @@ def pattern_upload(filename: str, content: bytes) -> PatternFile:
 class LoadedTrace:
     header: TraceHeader
     engine: Engine  # replayed to the trace's end, every event checked
+    events: int  # how many events the trace holds
 
 
 def trace_upload(
@@ -63,4 +64,4 @@ def trace_upload(
         raise InputError(f"{filename}: {e}") from None
     engine = engine_for_trace(header, algorithm, max(max_events, len(events) + 1))
     replay(engine, events, filename)
-    return LoadedTrace(header, engine)
+    return LoadedTrace(header, engine, len(events))

@@ -143,7 +143,6 @@ class Panels:
             )
         with gui.add_folder("Lights"):
             self.legend = gui.add_html("")
-        self._legend_of: object = None
 
     # ------------------------------------------------------------------ callbacks
     def _guard(self, fn: Callable) -> Callable:
@@ -198,7 +197,7 @@ class Panels:
 
     def _on_timeline(self, event) -> None:
         if event.client is not None:
-            self._guard(lambda e: self.session.seek_from_browser(self.timeline.value))(event)
+            self._guard(lambda e: self.session.seek(self.timeline.value))(event)
 
     def _on_scheduler(self, event) -> None:
         if event.client is not None:
@@ -297,9 +296,9 @@ class Panels:
             self.variant.value = s.algorithm_name  # the field follows the run's algorithm
         if self.semantics.value != s.config.light_semantics:
             self.semantics.value = s.config.light_semantics
-        if self._legend_of is not view.legend and self._legend_of != view.legend:
-            self.legend.content = legend_html(view)
-        self._legend_of = view.legend
+        legend = legend_html(view)  # its overlay rows change with the run (K appears, a frame is fixed)
+        if self.legend.content != legend:
+            self.legend.content = legend
         self.counts.content = self._counts(view)
         if self.mode.value != MODE_LABELS[view.mode]:
             self.mode.value = MODE_LABELS[view.mode]

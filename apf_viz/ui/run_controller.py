@@ -46,7 +46,7 @@ class RunController:
         return self._series
 
     # ------------------------------------------------------------------ building
-    def _rebuild(self, config: RunConfig, engine: Engine | None = None) -> None:
+    def _rebuild(self, config: RunConfig, engine: Engine | None = None, trace_events: int = 0) -> None:
         make_scheduler(config.scheduler)  # validates the name
         self.engine = engine if engine is not None else config.engine(self.plugins)
         self.config = config
@@ -54,7 +54,7 @@ class RunController:
         self._playing = False
         # A replayed trace is followed step by step until the person branches (Branch here).
         self.following = engine is not None and engine.history.length > 0
-        self.trace_events = len(engine.history.events()) if self.following else 0
+        self.trace_events = trace_events if self.following else 0
 
     @property
     def trace_position(self) -> tuple[int, int] | None:
@@ -72,11 +72,12 @@ class RunController:
         with self.lock:
             self._rebuild(config)
 
-    def adopt(self, config: RunConfig, engine: Engine) -> None:
-        """Take over an engine built elsewhere (a replayed trace), at its start."""
+    def adopt(self, config: RunConfig, engine: Engine, trace_events: int) -> None:
+        """Take over an engine built elsewhere (a replayed trace of ``trace_events`` events), at its
+        start; Step then follows the trace."""
         with self.lock:
             engine.seek(0)
-            self._rebuild(config, engine)
+            self._rebuild(config, engine, trace_events)
 
     def reset(self) -> None:
         """Back to the start of the same run."""

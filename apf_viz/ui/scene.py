@@ -58,8 +58,19 @@ def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
 
 
 TARGET_COLORS = {"placed": (100, 205, 100), "preview": (160, 220, 160), "drawing": (240, 120, 190)}
-LINE_COLOR = (90, 90, 90)
-REGION_COLOR = (40, 120, 255)
+# The engine's marks, one colour each; the legend (ui/why.py) reads the same table.
+MARK_COLORS: dict[str, tuple[int, int, int]] = {
+    "ray": (250, 200, 0),
+    "ghost": (120, 120, 255),
+    "pending": (230, 40, 40),
+    "axis": (255, 0, 0),
+    "collision": (230, 0, 0),
+    "last": (40, 40, 40),
+    "selected": (40, 120, 255),
+    "region": (40, 120, 255),
+    "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
+    "frame": (30, 30, 30),
+}
 REGION_OPACITY = 0.13
 LABEL_SCALE = 1.1
 
@@ -316,27 +327,26 @@ class SceneRenderer:
         numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
         self._labels("/numbers", numbers if view.numbers else [])
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
-        self._points("/collision", _xyz(crash, 0.006), (230, 0, 0), 1.25, "circle")
+        self._points("/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.25, "circle")
         self._targets(view)
         ghosts = self._local(view.ghosts)
         self._batched(
             "/ghosts",
             self._sphere,
             _xyz(ghosts, Z),
-            np.tile(np.array((120, 120, 255), dtype=np.uint8), (len(ghosts), 1)),
+            np.tile(np.array(MARK_COLORS["ghost"], dtype=np.uint8), (len(ghosts), 1)),
             opacity=0.35,
             scale=ROBOT_RADIUS * 0.8,
         )
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
-        self._segments("/rays", self._rays(view), (250, 200, 0), 2.0)
+        self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
         pending = self._pending(view)
-        self._segments("/pending", pending[:0] if dense else pending, (230, 40, 40), 3.0)
+        self._segments("/pending", pending[:0] if dense else pending, MARK_COLORS["pending"], 3.0)
         destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
-        self._points("/pending_cells", destinations, (230, 40, 40), 0.3, "circle")
-        oy = self.origin[1]
-        axis = view.axis - oy if editing_robots and view.axis is not None else None
-        self._segments("/axis", self._horizontal(axis), (255, 0, 0), 4.0)
+        self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
+        axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
+        self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
         self._marks(view)
         self._why_regions(view)
 
@@ -408,8 +418,8 @@ class SceneRenderer:
         """A dark disc under the robot that acted last and a blue one under the selected robot: rings
         around the sphere, distinct from the square phase halos."""
         for name, robot, color, size in (
-            ("/ring/last", view.last_actor, (40, 40, 40), 0.98),
-            ("/ring/selected", view.selected, (40, 120, 255), 1.12),
+            ("/ring/last", view.last_actor, MARK_COLORS["last"], 0.98),
+            ("/ring/selected", view.selected, MARK_COLORS["selected"], 1.12),
         ):
             at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
             self._points(name, _xyz(at, 0.004 if name.endswith("last") else 0.003), color, size, "circle")
@@ -470,12 +480,6 @@ class SceneRenderer:
         ends = self._local(np.array(pairs, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
         return np.concatenate([ends, np.full((len(ends), 2, 1), Z + 0.35, dtype=np.float32)], axis=2)
 
-    def _horizontal(self, y: float | None) -> np.ndarray:
-        if y is None:
-            return np.zeros((0, 2, 3))
-        x0, _, x1, _ = self.bounds
-        return np.array([[(x0 - 2, y, 0.05), (x1 + 2, y, 0.05)]], dtype=np.float32)
-
     # ------------------------------------------------------------------ the algorithm's marks
     def _targets(self, view: SessionView) -> None:
         """The first set of cells the algorithm gives (where the pattern forms), or the pattern drawn."""
@@ -493,7 +497,7 @@ class SceneRenderer:
         for i in range(max(len(lines), self._slots.get("line", 0))):
             mark = lines[i] if i < len(lines) else None
             segs = self._line(mark) if mark else np.zeros((0, 2, 3), np.float32)
-            color = (mark.color or LINE_COLOR) if mark else LINE_COLOR
+            color = (mark.color if mark else None) or MARK_COLORS["line"]
             self._segments(f"/marks/line{i}", segs, color, 3.0)
             if mark:
                 labels.append((mark.label, tuple(segs[0, 1])))
@@ -502,7 +506,7 @@ class SceneRenderer:
             mark = frames[i] if i < len(frames) else None
             segs = self._frame(mark) if mark else np.zeros((0, 2, 3), np.float32)
             self._segments(
-                f"/marks/frame{i}", segs, (mark.color or (30, 30, 30)) if mark else (30, 30, 30), 3.0
+                f"/marks/frame{i}", segs, (mark.color if mark else None) or MARK_COLORS["frame"], 3.0
             )
             if mark:
                 labels.append((mark.label, tuple(segs[0, 0] + np.array([0.0, -0.6, 0.0], np.float32))))
@@ -606,7 +610,7 @@ class SceneRenderer:
                     f"/why/area{i}",
                     vertices,
                     np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
-                    color=REGION_COLOR,
+                    color=MARK_COLORS["region"],
                     opacity=REGION_OPACITY,
                     side="double",
                     cast_shadow=False,
@@ -614,7 +618,7 @@ class SceneRenderer:
                 )
                 labels.append((mark.label, self._region_label_at(mark, rect)))
         segs = np.array(segments, dtype=np.float32).reshape(-1, 2, 3)
-        self._segments("/why/lines", segs, REGION_COLOR, 2.0)
+        self._segments("/why/lines", segs, MARK_COLORS["region"], 2.0)
         self._labels("/why/labels", labels)
 
     def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:

@@ -21,7 +21,7 @@ import numpy as np
 from apf_viz.algorithms import Factory
 from apf_viz.core.engine import NEXT_EVENT, Phase
 from apf_viz.core.formats import InputError, pattern_json, robots_json, trace_text
-from apf_viz.core.frames import move_to_global, random_y_up, to_local
+from apf_viz.core.frames import move_to_global, random_y_up
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.portrayal import (
     Band,
@@ -35,6 +35,7 @@ from apf_viz.core.portrayal import (
     Mark,
     Overlays,
     explain,
+    in_frame,
     legend_of,
     overlays_of,
 )
@@ -251,7 +252,7 @@ class Session:
             self.run.pause()
             e = self.engine
             wanted = "move" if what == "move" else "new stage"
-            moves, stage = e.state.moves, self._view().stage
+            moves, stage = e.state.moves, self._overlays(e.current_points(), e.state.lights).stage
             version = e.state.version
             deadline = time.monotonic() + seconds  # the lock is held: keep every browser responsive
             for taken in range(1, limit + 1):
@@ -273,11 +274,8 @@ class Session:
     def back(self) -> None:
         self.run.back()
 
-    def seek(self, step: int) -> None:
-        self.run.seek(step)
-
-    def seek_from_browser(self, step: float) -> None:
-        """The Timeline slider: stop playing and go to that step (any number is clamped; NaN refused)."""
+    def seek(self, step: float) -> None:
+        """Stop playing and go to that step of the history (any number is clamped; NaN refused)."""
         self.run.seek(step)
 
     def set_scheduler(self, label_or_name: str) -> None:
@@ -394,7 +392,7 @@ class Session:
             scheduler=h.scheduler if h.scheduler in SCHEDULER_LABELS.values() else self.scheduler_name,
         )
         with self.lock:
-            self.run.adopt(config, loaded.engine)
+            self.run.adopt(config, loaded.engine, loaded.events)
             self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self.selected = None
@@ -461,8 +459,7 @@ class Session:
             rays = [(pts[sel], pts[j]) for j in e.visible(sel).tolist()]
             snap = st.snapshot[sel]
             if snap is not None:
-                x, y = pts[sel]
-                ghosts = [(x + s.dx, y + to_local((0, s.dy), y_up[sel])[1]) for s in snap.robots]
+                ghosts = list(in_frame(snap.offsets(), pts[sel], y_up[sel]))
         overlays = self._overlays(pts, st.lights)
         targets = next((m.points for m in overlays.marks if isinstance(m, Cells)), ())
         return SessionView(
@@ -562,10 +559,8 @@ class Session:
     def _changed_since(view, origin: Point, up: bool, pts: list[Point], lights: list[str]) -> tuple[str, ...]:
         """The robots a snapshot saw that are no longer where it saw them, or show another light now."""
         now = dict(zip(pts, lights, strict=True))
-        s = 1 if up else -1
         out = []
-        for seen in view.robots:
-            p = (origin[0] + seen.dx, origin[1] + s * seen.dy)
+        for seen, p in zip(view.robots, in_frame(view.offsets(), origin, up), strict=True):
             light = now.get(p)
             if light is None:
                 out.append(f"seen at ({p[0]}, {p[1]}) with light {seen.light}: gone from there")
@@ -662,4 +657,4 @@ def _to_global(mark: Mark, origin: Point, y_up: bool) -> Mark:
         return HalfPlane("y", oy + s * mark.at, mark.side * s, mark.closed, mark.label)  # type: ignore[arg-type]
     if isinstance(mark, Frame):
         return Frame((ox + mark.origin[0], oy + s * mark.origin[1]), mark.y_sign * s, mark.label)
-    return Cells(tuple((ox + x, oy + s * y) for x, y in mark.points), mark.label, mark.style)
+    return Cells(in_frame(mark.points, origin, y_up), mark.label, mark.style)

@@ -6,6 +6,8 @@ from __future__ import annotations
 import html
 import re
 
+from apf_viz.core.portrayal import Cells, Frame
+from apf_viz.ui.scene import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
 from apf_viz.ui.session import SessionView
 
 # H_L^O → H<sub>L</sub><sup>O</sup>; L_I → L<sub>I</sub>; the paper's symbols as a reader knows them.
@@ -89,21 +91,26 @@ def legend_html(view: SessionView) -> str:
         + (f" — {symbol_html(style.meaning)}" if style.meaning else "")
         for light, style in view.legend.items()
     ]
-    for mark in view.overlays.marks:
-        color = getattr(mark, "color", None) or (30, 30, 30)
-        if type(mark).__name__ == "Cells":
-            color = (100, 205, 100) if mark.style == "placed" else (160, 220, 160)
+    for mark in view.overlays.marks:  # in the colours the scene draws them
+        if isinstance(mark, Cells):
+            color = TARGET_COLORS[mark.style]
+        else:
+            color = (
+                getattr(mark, "color", None) or MARK_COLORS["frame" if isinstance(mark, Frame) else "line"]
+            )
         rows.append(f"{_swatch(color, 'square')} {symbol_html(mark.label)}")
+    c = MARK_COLORS
     rows += [
-        f"{_swatch((250, 210, 40), 'square')} halo: has looked · "
-        f"{_swatch((250, 120, 30), 'square')} has computed",
+        f"{_swatch(PHASE_COLORS['looked'], 'square')} halo: has looked · "
+        f"{_swatch(PHASE_COLORS['computed'], 'square')} has computed",
         "nose (many robots: grey diamond): the robot's own +y, down if flipped by the adversary",
-        f"{_swatch((230, 40, 40), 'square')} a computed move (many robots: a dot where it goes)",
-        f"{_swatch((250, 200, 0), 'square')} rays: what the selected robot sees · "
-        f"{_swatch((120, 120, 255))} ghosts: where its snapshot saw them",
-        f"{_swatch((40, 120, 255), 'square')} Why: the regions its last rule tested",
-        f"{_swatch((40, 40, 40))} the robot that acted last · {_swatch((40, 120, 255))} the selected robot",
-        f"{_swatch((255, 0, 0), 'square')} Edit robots: the symmetry axis of an unsolvable start",
+        f"{_swatch(c['pending'], 'square')} a computed move (many robots: a dot where it goes)",
+        f"{_swatch(c['ray'], 'square')} rays: what the selected robot sees · "
+        f"{_swatch(c['ghost'])} ghosts: where its snapshot saw them",
+        f"{_swatch(c['region'], 'square')} Why: the regions its last rule tested",
+        f"{_swatch(c['last'])} the robot that acted last · {_swatch(c['selected'])} the selected robot",
+        f"{_swatch(c['collision'])} where a collision happened",
+        f"{_swatch(c['axis'], 'square')} Edit robots: the symmetry axis of an unsolvable start",
     ]
     body = "".join(f'<div style="margin:2px 0">{row}</div>' for row in rows)
     return f'<div style="font-size:0.85em">{body}</div>'
