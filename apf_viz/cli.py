@@ -48,26 +48,23 @@ def _fail(message: str, code: int = EXIT_BAD_INPUT) -> NoReturn:
     raise SystemExit(code)
 
 
-def _positive(text: str) -> int:
-    """argparse type: an integer of at least 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is not a positive integer")
-    return value
+def _int_within(low: int, high: float, what: str):
+    """An argparse type: an integer from ``low`` to ``high``, else "… is not ``what``"."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{value} is not {what}")
+        return value
+
+    return parse
 
 
-def _port(text: str) -> int:
-    """argparse type: a TCP port, 0 to 65535."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a port number") from None
-    if not 0 <= value <= 65535:
-        raise argparse.ArgumentTypeError(f"{value} is not a port (0 to 65535)")
-    return value
+_positive = _int_within(1, float("inf"), "a positive integer")
+_port = _int_within(0, 65535, "a port (0 to 65535)")
 
 
 def _refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: bool) -> None:
@@ -85,17 +82,24 @@ def _refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: 
     _fail(message, EXIT_UNSOLVABLE)
 
 
-def _cmd_run(args: argparse.Namespace) -> int:
+def _problem(args: argparse.Namespace, output: Path | None):
+    """What ``run`` and ``check`` start from: the robots file, its points, the pattern's points and the
+    algorithm, every input checked (and the output path, before any work) with one-line errors."""
     robots = load_robots(args.robots)
     pattern = load_pattern(args.pattern)
     check_sizes(robots, pattern, str(args.pattern))
     algorithm, _ = algorithm_from_command_line(args.algorithm)
-    if args.trace:
-        check_writable(args.trace)  # before the run, not after minutes of it
+    if output:
+        check_writable(output)  # before the work, not after minutes of it
     points = [tuple(p) for p in robots.robots]
     targets = [tuple(p) for p in pattern.points]
     if not args.force:
         _refuse_unsolvable(args.robots, points, targets, args.json)
+    return robots, points, targets, algorithm
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    robots, points, targets, algorithm = _problem(args, args.trace)
     scheduler = make_scheduler(args.scheduler)
     engine = Engine(
         points,
@@ -173,20 +177,12 @@ def _cmd_random_pattern(args: argparse.Namespace) -> int:
 def _cmd_check(args: argparse.Namespace) -> int:
     from apf_viz.explore.check import all_flips, check, write_counterexample
 
-    robots = load_robots(args.robots)
-    pattern = load_pattern(args.pattern)
-    check_sizes(robots, pattern, str(args.pattern))
-    algorithm, _ = algorithm_from_command_line(args.algorithm)
-    if args.counterexample:
-        check_writable(args.counterexample)
-    points = [tuple(p) for p in robots.robots]
-    if not args.force:
-        _refuse_unsolvable(args.robots, points, [tuple(p) for p in pattern.points], args.json)
+    robots, points, targets, algorithm = _problem(args, args.counterexample)
     flips = all_flips(len(points)) if args.flips == "all" else [tuple(robots.flips(args.seed))]
     result, y_up = check(
         algorithm,
         points,
-        [tuple(p) for p in pattern.points],
+        targets,
         flips,
         args.scheduler,
         args.max_states,
@@ -199,7 +195,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
             args.counterexample,
             algorithm,
             points,
-            [tuple(p) for p in pattern.points],
+            targets,
             y_up,
             args.scheduler,
             result,

@@ -99,10 +99,9 @@ class TraceHeader(BaseModel):
         _check_points(self.pattern, "pattern point")
         if self.y_up is not None and len(self.y_up) != len(self.robots):
             raise ValueError(f"y_up has {len(self.y_up)} entries for {len(self.robots)} robots")
-        if len(self.pattern) != len(self.robots):
-            raise ValueError(
-                f"the pattern has {len(self.pattern)} points but there are {len(self.robots)} robots"
-            )
+        problem = size_problem(len(self.pattern), len(self.robots))
+        if problem:
+            raise ValueError(problem)
         return self
 
 
@@ -248,13 +247,17 @@ def load_trace(path: Path | str) -> tuple[TraceHeader, list[Event]]:
     return parse_trace(_read_text(path, MAX_TRACE_BYTES), str(path))
 
 
+def size_problem(pattern_points: int, robots: int) -> str | None:
+    """The pattern must have one point per robot (paper: n = k): what is wrong, or None."""
+    if pattern_points == robots:
+        return None
+    return f"the pattern has {pattern_points} points but there are {robots} robots"
+
+
 def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "pattern") -> None:
-    """The pattern must have one point per robot (paper: n = k)."""
-    if len(pattern.points) != len(robots.robots):
-        raise InputError(
-            f"{pattern_name}: the pattern has {len(pattern.points)} points but there are "
-            f"{len(robots.robots)} robots"
-        )
+    problem = size_problem(len(pattern.points), len(robots.robots))
+    if problem:
+        raise InputError(f"{pattern_name}: {problem}")
 
 
 # ---------------------------------------------------------------------------------------------- writing

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from apf_viz.core.formats import size_problem
 from apf_viz.core.grid import Point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
@@ -51,8 +52,9 @@ class Editor:
         """Why the drafts cannot start a run, or None."""
         if not self.robots:
             return "place at least one robot"
-        if len(self.pattern) != len(self.robots):
-            return f"the pattern has {len(self.pattern)} points but there are {len(self.robots)} robots"
+        sizes = size_problem(len(self.pattern), len(self.robots))
+        if sizes:
+            return sizes
         axis = unsolvable_axis(self.robots)
         if axis is not None and not matches_pattern(self.robots, self.pattern):
             return (

@@ -20,7 +20,7 @@ import numpy as np
 
 from apf_viz.algorithms import Factory
 from apf_viz.core.engine import NEXT_EVENT, Phase
-from apf_viz.core.formats import InputError, pattern_json, robots_json, trace_text
+from apf_viz.core.formats import InputError, pattern_json, robots_json, size_problem, trace_text
 from apf_viz.core.frames import move_to_global, random_y_up
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.portrayal import (
@@ -134,8 +134,9 @@ class Session:
         max_events: int = 5_000_000,
         plugins: Mapping[str, Factory] | None = None,
     ) -> None:
-        if len(robots) != len(pattern):
-            raise InputError(f"the pattern has {len(pattern)} points but there are {len(robots)} robots")
+        problem = size_problem(len(pattern), len(robots))
+        if problem:
+            raise InputError(problem)
         flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
         config = RunConfig(
             tuple(map(tuple, robots)),
