@@ -54,20 +54,14 @@ class GifRecorder:
     """Frames of one client's view. When recording ends, ``done`` gets the GIF (None if no frame was
     taken) and why it ended early ("" when stopped or out of time).
 
-    ``taken`` holds when each frame was asked for and ``ended`` when the recording stopped, both on
-    ``clock``: frames are asked for at least ``1 / RECORD_FPS`` apart, so no frame shows shorter."""
+    ``taken`` holds when each frame was asked for and ``ended`` when the recording stopped (both
+    ``time.perf_counter``); frames are asked for at least ``1 / RECORD_FPS`` apart, so none shows shorter."""
 
-    def __init__(
-        self,
-        client,
-        done: Callable[[bytes | None, str], None],
-        clock: Callable[[], float] = time.perf_counter,
-    ) -> None:
+    def __init__(self, client, done: Callable[[bytes | None, str], None]) -> None:
         self.client = client
         self.frames: list[np.ndarray] = []
         self.taken: list[float] = []
         self.ended: float | None = None
-        self._clock = clock
         self._done = done
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="apf-viz-gif", daemon=True)
@@ -81,7 +75,7 @@ class GifRecorder:
         reason = ""
         size = canvas_size(self.client)  # fixed for the recording: a GIF's frames share one size
         factor = -(-size[1] // GIF_WIDTH)
-        clock = self._clock
+        clock = time.perf_counter
         started = clock()
         while not self._stop.is_set() and clock() - started < MAX_SECONDS:
             asked = clock()
