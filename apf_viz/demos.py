@@ -6,7 +6,11 @@ one source of both."""
 
 from __future__ import annotations
 
+import json
+from functools import cache
 from pathlib import Path
+
+from pydantic import BaseModel, ConfigDict, model_validator
 
 _PACKAGE = Path(__file__).resolve().parent
 
@@ -17,10 +21,58 @@ def demo_dir() -> Path:
     return shipped if shipped.is_dir() else _PACKAGE.parent / "demo_patterns"
 
 
-def demo_files(sub: str = "") -> dict[str, Path]:
-    """The demo files of ``demo_patterns/`` (or of its sub-folder ``sub``), by name without ``.json``."""
+def demo_files(sub: str = "", suffix: str = ".json") -> dict[str, Path]:
+    """The demo files of ``demo_patterns/`` (or of its sub-folder ``sub``), by name without the suffix.
+    The scenario list itself is not a pattern."""
     folder = demo_dir() / sub if sub else demo_dir()
-    return {p.stem: p for p in sorted(folder.glob("*.json"))}
+    return {p.stem: p for p in sorted(folder.glob(f"*{suffix}")) if p.name != "scenarios.json"}
+
+
+class Scenario(BaseModel):
+    """A ready lesson: a start with a pattern of its size, or a recorded trace, and what it shows.
+
+    Files are named, never given as paths: a name resolves only through :func:`demo_files`."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    name: str
+    shows: str
+    robots: str | None = None  # demo_patterns/starts/<robots>.json
+    pattern: str | None = None  # demo_patterns/<pattern>.json
+    trace: str | None = None  # demo_patterns/traces/<trace>.jsonl
+
+    @model_validator(mode="after")
+    def _one_source(self) -> Scenario:
+        if (self.trace is None) == (self.robots is None or self.pattern is None):
+            raise ValueError(f"scenario {self.name!r}: give robots and pattern, or a trace")
+        return self
+
+    def files(self) -> dict[str, Path]:
+        """The scenario's files by role: robots and pattern, or trace."""
+        if self.trace is not None:
+            return {"trace": demo_files("traces", ".jsonl")[self.trace]}
+        assert self.robots is not None and self.pattern is not None
+        return {"robots": demo_files("starts")[self.robots], "pattern": demo_files()[self.pattern]}
+
+
+class _Scenarios(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    scenarios: list[Scenario]
+
+
+@cache
+def scenarios() -> dict[str, Scenario]:
+    """The ready scenarios of ``demo_patterns/scenarios.json``, by name, in the file's order."""
+    parsed = _Scenarios.model_validate_json((demo_dir() / "scenarios.json").read_text())
+    return {s.name: s for s in parsed.scenarios}
+
+
+def pattern_of_size(k: int) -> tuple[str, list[tuple[int, int]]] | None:
+    """The first demo pattern (by name) with ``k`` points, if there is one."""
+    for name, path in demo_files().items():
+        points = json.loads(path.read_text()).get("points", [])
+        if len(points) == k:
+            return name, [tuple(p) for p in points]
+    return None
 
 
 DEMO_DIR = demo_dir()

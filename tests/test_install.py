@@ -47,7 +47,8 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
             "-c",
             "import json, apf_viz, apf_viz.demos as d; "
             "print(json.dumps([apf_viz.__file__, str(d.DEMO_START), sorted(d.demo_files()), "
-            "sorted(d.demo_files('starts'))]))",
+            "sorted(d.demo_files('starts')), [{r: p.is_file() for r, p in s.files().items()} "
+            "for s in d.scenarios().values()]]))",
         ],
         cwd=elsewhere,
         env=env,
@@ -55,10 +56,13 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
         text=True,
     )
     assert probe.returncode == 0, probe.stderr
-    module, start, patterns, starts = json.loads(probe.stdout)
+    module, start, patterns, starts, scenario_files = json.loads(probe.stdout)
     assert Path(module).is_relative_to(env_dir)  # the installed copy, not this checkout
     assert Path(start).is_relative_to(env_dir) and Path(start).is_file()
-    assert patterns == sorted(p.stem for p in (ROOT / "demo_patterns").glob("*.json"))
+    assert patterns == sorted(
+        p.stem for p in (ROOT / "demo_patterns").glob("*.json") if p.stem != "scenarios"
+    )
+    assert scenario_files and all(all(found.values()) for found in scenario_files)  # traces shipped too
     assert starts == sorted(p.stem for p in (ROOT / "demo_patterns" / "starts").glob("*.json"))
     port = free_port()
     server = subprocess.Popen(

@@ -56,8 +56,12 @@ def test_a_second_algorithm_renders_with_its_own_colours_and_overlay_and_no_K(re
     assert v.legend == own
     assert [m.label for m in v.overlays.marks] == ["the wall: the leftmost column"]
     renderer.render(v)
-    colors = np.asarray(renderer._handles["/robots"].batched_colors).tolist()
-    assert colors == [list(own[r.light].color) for r in v.robots]
+    drawn = {}  # each drawn robot's place and colour, from the point cloud of its light
+    for light in {r.light for r in v.robots}:
+        handle = renderer._handles[f"/robots/{light}"]
+        colour = np.asarray(handle.colors).reshape(-1, 3)[0].tolist()
+        drawn |= {tuple(map(int, p[:2])): colour for p in np.asarray(handle.points)}
+    assert drawn == {r.position: list(own[r.light].color) for r in v.robots}
     wall = np.asarray(renderer._handles["/marks/line0"].points)
     assert np.allclose(wall[0, :, 0], 0.0)  # a vertical line at x = 0, the leftmost column
     labels = [h.text for n, h in renderer._handles.items() if n.startswith("/marks/labels/") and h.visible]

@@ -27,21 +27,41 @@ def session_of(k: int) -> Session:
     return Session(random_solvable_start(k, rng), random_pattern(k, rng), seed=1)
 
 
-def test_few_robots_are_spheres_with_a_nose_turned_by_the_flip(renderer):
+def _colour(renderer, name: str) -> list[int]:
+    return np.asarray(renderer._handles[name].colors).reshape(-1, 3)[0].tolist()
+
+
+def test_robots_are_flat_discs_in_their_legend_colour_with_a_nose_on_their_own_plus_y(renderer):
     s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], y_up=[True, False, True])
+    view = s.view()
+    renderer.render(view)
+    robots = renderer._handles["/robots/off"]
+    assert robots.point_shading == "flat" and robots.point_shape == "circle"  # unlit: the swatch's colour
+    assert _colour(renderer, "/robots/off") == list(view.legend["off"].color)
+    noses = np.asarray(renderer._handles["/robots/y_axes"].points)
+    assert noses[0, 1] > 0 and noses[1, 1] < 1  # robot 1 at y = 1 is flipped: its nose points down
+
+
+def test_phase_last_actor_and_selection_are_rings_under_the_robot(renderer):
+    s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], scheduler="manual")
+    s.click((2, 1))  # robot 1 looks: it is selected, acted last and has looked
     renderer.render(s.view())
-    robots = renderer._handles["/robots"]
-    assert not any(name.startswith("/robots/") for name in renderer._handles)
-    wxyzs = np.asarray(robots.batched_wxyzs)
-    assert wxyzs[0].tolist() == [1, 0, 0, 0] and wxyzs[1].tolist() == [0, 1, 0, 0]
+    robot = 2 * 0.3  # the robot's disc
+    for name in ("/phase/looked", "/ring/last", "/ring/selected"):
+        handle = renderer._handles[name]
+        assert handle.point_shape == "circle" and handle.visible
+        assert np.asarray(handle.points)[:, :2].tolist() == [[2.0, 1.0]]
+    sizes = [renderer._handles[n].point_size for n in ("/phase/looked", "/ring/last", "/ring/selected")]
+    assert robot * 0.5 < sizes[0] < sizes[1] < sizes[2]  # each a ring around the smaller one
 
 
 def test_many_robots_are_one_point_cloud_per_light(renderer):
     s = session_of(DENSE + 50)
     renderer.render(s.view())
-    assert "/robots" not in renderer._handles
     clouds = {
-        n: h for n, h in renderer._handles.items() if n.startswith("/robots/") and n != "/robots/y_axes"
+        n: h
+        for n, h in renderer._handles.items()
+        if n.startswith("/robots/") and n not in ("/robots/y_axes", "/robots/outline")
     }
     assert set(clouds) == {"/robots/off"}
     assert len(clouds["/robots/off"].points) == DENSE + 50
@@ -127,7 +147,7 @@ def test_a_run_at_the_edge_of_the_grid_is_drawn_exactly_around_a_nearby_origin(r
     renderer.render(s.view())
     ox, oy = renderer.origin
     assert abs(ox - far) < 10 and abs(oy + far) < 10
-    drawn = np.asarray(renderer._handles["/robots"].batched_positions)[:, :2]
+    drawn = np.asarray(renderer._handles["/robots/off"].points)[:, :2]
     assert drawn.tolist() == [[x - ox, y - oy] for x, y in start]  # exact, not rounded
     rays = np.asarray(renderer._handles["/rays"].points)[:, :, :2]
     assert {tuple(map(float, p)) for p in rays.reshape(-1, 2)} <= {(x - ox, y - oy) for x, y in start}

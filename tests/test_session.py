@@ -73,8 +73,50 @@ def test_ghosts_show_a_stale_snapshot():
     assert s.engine.current_points()[0] == (-1, 0)
     s.selected = 2
     v = s.view()
-    assert (0, 0) in v.ghosts  # where robot 2 saw robot 0, which has moved since
-    assert "stale" in v.caption
+    assert v.ghosts == (((0, 0), "off"),)  # where robot 2 saw robot 0, in the light it saw
+    assert (
+        "Stale" in v.caption
+        and "robot 0: seen at (0, 0), now at (-1, 0); seen with light off, now terminal1" in v.caption
+    )
+    assert ((1, 0), (0, 0)) in v.rays and ((1, 0), (-1, 0)) not in v.rays  # rays go to what it saw
+
+
+def test_the_caption_lists_every_difference_with_robot_names_and_idle_rays_show_the_present():
+    s = session(scheduler="manual")
+    s.click(START[3])  # robot 3 at (1, 3) looks: it sees robots 0, 1 and 2
+    assert s.engine.state.seen[3] == (0, 1, 2)
+    for _ in range(3):
+        s.click(START[0])  # robot 0 moves left
+    for _ in range(2):
+        s.click(START[1])  # robot 1 looks and computes (its light may change)
+    s.selected = 3
+    v = s.view()
+    seen = {b for _, b in v.rays}
+    assert seen == {START[0], START[1], START[2]}  # the snapshot's places, though robot 0 is elsewhere
+    changed = [line for line in v.caption.splitlines() if line.startswith("· robot")]
+    lights = s.engine.state.lights
+    expected = 1 + (lights[1] != "off")
+    assert len(changed) == expected and changed[0].startswith("· robot 0: seen at (0, 0), now at (-1, 0)")
+    s.selected = 0  # robot 0 is idle again: its rays are what it would see now
+    v = s.view()
+    assert {b for _, b in v.rays} == {
+        tuple(p) for p in (s.engine.current_points()[j] for j in s.engine.visible(0).tolist())
+    }
+    assert "would see if it looked now" in v.caption and v.ghosts == ()
+
+
+def test_a_robot_seen_after_several_moves_is_placed_where_it_stood_at_the_look():
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    for _ in range(3):
+        s.click((3, 0))  # robot 1 slides to (2, 0) before robot 2 looks
+    s.click((5, 1))  # robot 2 looks: it sees robot 1 at (2, 0)
+    for _ in range(3):
+        s.click((2, 0))  # robot 1 slides again, to (1, 0)
+    s.selected = 2
+    v = s.view()
+    assert ((2, 0), "off") in v.ghosts
+    assert "robot 1: seen at (2, 0), now at (1, 0)" in v.caption
 
 
 def test_edit_pattern_toggles_cells_and_validates_the_size():
@@ -138,9 +180,9 @@ def test_uploads_bad_files_leave_the_run_untouched():
 
 def test_upload_a_pattern_of_the_wrong_size_keeps_it_as_a_draft():
     s = session()
-    s.load_pattern("p.json", json.dumps({"points": [[0, 0], [1, 1]]}).encode())
+    note = s.load_pattern("p.json", json.dumps({"points": [[0, 0], [1, 1]]}).encode())
     assert s.mode == "edit-pattern" and s.view().draft_count == 2
-    assert s.messages and "2 points for 4 robots" in s.messages[-1]
+    assert "2 points for 4 robots" in note
 
 
 def test_download_and_reupload_round_trip():
@@ -228,14 +270,14 @@ def test_a_snapshot_is_stale_only_when_another_robot_it_saw_changed():
     r = 1
     s.click(s.engine.current_points()[r])  # Look
     s.click(s.engine.current_points()[r])  # Compute: only its own light may change
-    assert "stale" not in s.view().caption
+    assert "Stale" not in s.view().caption and "the snapshot is current" in s.view().caption
     other = next(q for q in range(10) if q != r and q in s.engine.state.seen[r])
     for _ in range(3):  # the other robot looks, computes and moves (or stays)
         s.click(s.engine.current_points()[other])
     s.selected = r
     moved = s.engine.current_points()[other] != s.engine.start[other]
     relit = s.engine.state.lights[other] != "off"
-    assert ("stale" in s.view().caption) == (moved or relit)
+    assert ("Stale" in s.view().caption) == (moved or relit)
 
 
 def test_last_event_says_who_did_what_and_the_last_actor_is_marked():
@@ -341,3 +383,123 @@ def test_a_manual_click_leaves_a_followed_trace():
     assert s.step()  # Step still follows the trace in Manual
     s.click(s.engine.current_points()[3])
     assert s.view().trace_position is None
+
+
+def test_a_start_of_another_size_gets_a_demo_pattern_of_its_size_and_says_so():
+    s = demo_session()  # 10 robots, the heart
+    start = json.dumps({"robots": [[0, 0], [0, 2], [1, 0], [1, 2], [3, 0], [3, 1], [3, 2]]}).encode()
+    note = s.load_robots("seven.json", start)
+    assert s.mode == "run" and s.engine.k == 7 and len(s.config.pattern) == 7
+    assert "the demo pattern cup-7" in note and "pattern had 10 points" in note
+    eleven = json.dumps({"robots": [[i, i * i % 7] for i in range(11)]}).encode()  # no demo has 11 points
+    note = s.load_robots("eleven.json", eleven)
+    assert s.mode == "edit-robots" and "11 robots" in note  # kept as a draft; the size is the problem
+
+
+def test_edit_robots_shows_the_drafted_pattern_not_the_runs():
+    s = session()
+    s.set_mode("edit-pattern")
+    s.click((5, 5))  # the drafted pattern now has a fifth point
+    s.set_mode("edit-robots")
+    cells = s.view().overlays.marks[0]
+    assert isinstance(cells, Cells) and (5, 5) in cells.points and cells.style == "preview"
+    assert set(s.view().targets) == set(PATTERN) | {(5, 5)}
+
+
+def test_every_demo_scenario_loads_and_says_what_it_shows():
+    from apf_viz.demos import scenarios
+
+    for name, scenario in scenarios().items():
+        s = demo_session()
+        shows = s.load_scenario(name)
+        assert shows.startswith(scenario.shows)
+        v = s.view()
+        if scenario.trace:
+            assert v.trace_position == (0, s.run.trace_events) and v.trace_note
+        elif "Unsolvable" in name:
+            assert v.mode == "edit-robots" and v.axis is not None and "unsolvable" in shows
+        else:
+            assert v.mode == "run" and len(s.config.pattern) == s.engine.k
+    with pytest.raises(InputError, match="no demo called"):
+        demo_session().load_scenario("../../etc/passwd")
+
+
+def test_the_literal_collision_scenario_ends_located_after_41_events():
+    s = demo_session()
+    s.load_scenario("The literal paper collides")
+    assert s.run.trace_events == 41
+    while s.step():
+        pass
+    v = s.view()
+    assert v.outcome == "collision" and v.event == 41
+    assert v.collision[0].startswith("robot 3 moved onto robot 1 at (0, 1)")
+    assert "verdict: collision" in v.trace_note
+
+
+def test_a_deadlock_rings_every_robot_that_will_never_act():
+    s = demo_session()
+    s.load_scenario("The literal paper deadlocks")
+    assert s.view().never_act == ()
+    while s.step():
+        pass
+    v = s.view()
+    assert v.outcome == "stuck" and v.never_act == tuple(range(s.engine.k))
+
+
+def test_a_livelock_from_check_marks_its_loop_on_the_timeline():
+    from apf_viz.ui.session import loop_marks
+
+    # The explorer's schedule: 5 steps of stem, then a loop of 4 steps written twice: 13 steps.
+    assert loop_marks({"loop_starts_at_step": 5}, 13, "async") == (
+        (5, "loop starts"),
+        (9, "loop repeats"),
+        (13, "…for ever"),
+    )
+    assert loop_marks({"loop_starts_at_step": 1}, 9, "ssync") == (
+        (3, "loop starts"),
+        (6, "loop repeats"),
+        (9, "…for ever"),
+    )
+    assert loop_marks({}, 13, "async") == () and loop_marks({"loop_starts_at_step": "x"}, 13, "async") == ()
+
+
+def test_a_branch_sets_the_recorded_future_aside_and_return_goes_back_to_it():
+    s = session(scheduler="manual")
+    for r in (0, 0, 0, 1, 1):
+        s.click(s.engine.current_points()[r])
+    recorded = s.engine.history.events()
+    s.back()
+    s.back()  # at step 3: robot 1's Look and Compute are the recorded future
+    s.click(s.engine.current_points()[2])  # a different choice: a branch
+    v = s.view()
+    assert v.set_aside == (3, 2) and s.engine.history.length == 4
+    branch = s.engine.history.events()
+    s.return_to_set_aside()
+    v = s.view()
+    assert v.steps == 3 and v.trace_position is not None and v.following_what == "the set-aside branch"
+    while s.step():  # Step follows the set-aside steps to their end
+        pass
+    assert s.engine.history.events() == recorded
+    assert s.view().set_aside == (3, 1)  # the branch just left is set aside in turn
+    s.return_to_set_aside()
+    while s.step():
+        pass
+    assert s.engine.history.events() == branch
+    with pytest.raises(InputError, match="no branch"):
+        Session(START, PATTERN).return_to_set_aside()
+
+
+def test_click_select_inspects_without_advancing_in_manual():
+    s = session(scheduler="manual")
+    s.set_click_advances(False)
+    assert s.click(START[1]) == "selected robot 1" and s.engine.step_index == 0
+    s.set_click_advances(True)
+    assert s.click(START[1]).startswith("robot 1: look") and s.engine.step_index == 1
+
+
+def test_notices_are_returned_to_the_caller_not_broadcast():
+    s = session(scheduler="manual")
+    assert not s.step() and s.why_not_step().startswith("Manual: click a robot")
+    with pytest.raises(InputError, match="outside the grid"):
+        s.click((10**13, 0))
+    assert not hasattr(s, "messages")

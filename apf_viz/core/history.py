@@ -121,6 +121,7 @@ class History:
         self._packed: list[_Packed] = []
         self.steps = Steps(self._packed)
         self.generation = 0  # bumped when a branch drops recorded steps (caches of prefixes use it)
+        self.dropped: tuple[int, list[StepRecord]] | None = None  # the last branch's dropped steps
         self._checkpoint_steps: list[int] = [0]
         self._checkpoints: dict[int, EngineState] = {0: initial}
 
@@ -139,6 +140,7 @@ class History:
         if position < len(packed):
             if packed[position] == step:
                 return
+            self.dropped = (position, [StepRecord(p[0], p[1]) for p in packed[position:]])
             del packed[position:]
             self.generation += 1
             self._drop_checkpoints_after(position)

@@ -25,7 +25,7 @@ from apf_viz.core.formats import (
     load_trace,
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
-from apf_viz.ui.panels import Panels
+from apf_viz.ui.panels import Panels, tell
 from apf_viz.ui.scene import SceneRenderer
 from apf_viz.ui.session import Session
 
@@ -49,7 +49,7 @@ class App:
         self.session = session
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         self.renderer = SceneRenderer(self.server)
-        self.panels = Panels(self.server, session, self.request_render, self.notify_all, self.frame_client)
+        self.panels = Panels(self.server, session, self.request_render, self.frame_client)
         self._dirty = threading.Event()
         self._stop = threading.Event()
         self._framed: tuple[float, float, float, float] | None = None
@@ -69,10 +69,6 @@ class App:
     def request_render(self) -> None:
         self._dirty.set()
 
-    def notify_all(self, title: str, body: str, error: bool = False) -> None:
-        for client in self.server.get_clients().values():
-            client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
-
     def frame_client(self, client) -> None:
         """Point this browser's camera at the whole run (robots and targets), as it is now."""
         self.renderer.frame_camera(client.camera)
@@ -88,8 +84,8 @@ class App:
         if cell is not None:
             try:
                 self.session.click(cell)
-            except Exception as err:  # a click must never kill the server
-                self.notify_all("Click failed", str(err), True)
+            except Exception as err:  # a click must never kill the server; only its browser is told
+                tell(event.client, "Click refused", str(err), error=True)
         self.request_render()
 
     # ------------------------------------------------------------------ loop
@@ -125,8 +121,6 @@ class App:
 
     def _render(self) -> None:
         view = self.session.view()
-        for message in self._drain():
-            self.notify_all("apf-viz", message, True)
         with self.server.atomic():
             self.renderer.render(view)
             self.panels.refresh(view)
@@ -136,11 +130,6 @@ class App:
             for client in self.server.get_clients().values():
                 self.renderer.frame_camera(client.camera)
             self._framed = self.renderer.bounds
-
-    def _drain(self) -> list[str]:
-        with self.session.lock:
-            out, self.session.messages = self.session.messages, []
-        return out
 
     def _needs_reframe(self) -> bool:
         """Keep the run framed: re-frame when a new run starts (Reset, a load, a switch of algorithm: a

@@ -14,31 +14,37 @@ from collections.abc import Callable
 import numpy as np
 import viser
 import viser.uplot
+from viser._messages import GuiSliderMark
 
 from apf_viz.algorithms import ALGORITHMS
 from apf_viz.core.formats import InputError
-from apf_viz.demos import demo_files
+from apf_viz.demos import demo_files, scenarios
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
-from apf_viz.ui.why import legend_html, why_markdown
+from apf_viz.ui.why import legend_html, symbol_html, why_markdown
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
 
 
+def tell(client, title: str, body: str, error: bool = False) -> None:
+    """A notification for one browser (None: a programmatic change, told to nobody)."""
+    if client is not None:
+        client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
+
+
 class Panels:
-    """Builds the GUI once; :meth:`refresh` shows a new view; ``notify`` reaches every browser."""
+    """Builds the GUI once; :meth:`refresh` shows a new view."""
 
     def __init__(
         self,
         server: viser.ViserServer,
         session: Session,
         changed: Callable[[], None],
-        notify: Callable[[str, str, bool], None],
         frame: Callable[[object], None] = lambda client: None,
     ) -> None:
-        self.server, self.session, self.changed, self.notify = server, session, changed, notify
+        self.server, self.session, self.changed = server, session, changed
         self.frame = frame  # points one browser's camera at the whole run
         self._recorder: GifRecorder | None = None
         self._recording_lock = threading.Lock()
@@ -47,7 +53,14 @@ class Panels:
         # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
         # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
         gui.main_panel.dock_right()
+        # The legend first, so that it is on screen whenever the run is; folders a lecture rarely needs
+        # start collapsed, so that Last event and Why fit on a 1024×768 projector.
+        with gui.add_folder("Legend"):
+            self.legend = gui.add_html("")
         with gui.add_folder("Run"):
+            self.demo = gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—")
+            self.demo.on_update(self._on_demo)
+            self.demo_note = gui.add_markdown("")
             row = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             row.on_click(self._on_control)
             self.controls = row
@@ -71,11 +84,18 @@ class Panels:
                 "Branch here", visible=False, hint="leave the trace: the scheduler runs"
             )
             self.branch.on_click(self._guard(lambda e: self.session.branch_here()))
+            self.aside = gui.add_markdown("")
+            self.restore = gui.add_button(
+                "Return to set-aside branch",
+                visible=False,
+                hint="go back to the recorded steps the last branch dropped, and follow them",
+            )
+            self.restore.on_click(self._guard(lambda e: self.session.return_to_set_aside()))
+            self.banner = gui.add_markdown("")
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
             self.last_event = gui.add_text("Last event", initial_value="", disabled=True)
             self.log = gui.add_markdown("")
             self.stats = gui.add_markdown("")
-            self.banner = gui.add_markdown("")
             self.numbers = gui.add_checkbox(
                 "Numbers", initial_value=True, hint="each robot's number beside it"
             )
@@ -87,8 +107,14 @@ class Panels:
             self.scheduler.on_update(self._on_scheduler)
             self.seed = gui.add_number("Seed", initial_value=session.seed, step=1)
             self.seed.on_update(self._on_seed)
+            self.click = gui.add_button_group("Click", ("advance", "select"), visible=False)
+            self.click.on_click(self._on_click_mode)
             self.next_phase = gui.add_markdown("")
-        with gui.add_folder("Algorithm"):
+        with gui.add_folder("Selected robot"):
+            self.caption = gui.add_markdown("")
+        with gui.add_folder("Why"):
+            self.why = gui.add_markdown("Select a robot to see why it acted.")
+        with gui.add_folder("Algorithm", expand_by_default=False):
             self.algorithm = gui.add_dropdown(
                 "Algorithm", self._algorithm_names(), initial_value=session.algorithm_name
             )
@@ -105,18 +131,14 @@ class Panels:
                 "Light semantics", ("compute", "lc-atomic"), initial_value=session.config.light_semantics
             )
             self.semantics.on_update(self._on_semantics)
-        with gui.add_folder("Selected robot"):
-            self.caption = gui.add_markdown("")
-        with gui.add_folder("Why"):
-            self.why = gui.add_markdown("Select a robot to see why it acted.")
-        with gui.add_folder("Edit"):
+        with gui.add_folder("Edit", expand_by_default=False):
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
             self.counts = gui.add_markdown("")
             gui.add_button("Clear pattern").on_click(self._guard(lambda e: self.session.clear_pattern()))
-        with gui.add_folder("Files"):
-            self.demo = gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
-            self.demo.on_update(self._on_demo_pattern)
+        with gui.add_folder("Files", expand_by_default=False):
+            self.demo_pattern = gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+            self.demo_pattern.on_update(self._on_demo_pattern)
             self.demo_start = gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
             self.demo_start.on_update(self._on_demo_start)
             for label, loader in (
@@ -134,25 +156,27 @@ class Panels:
             gui.add_button("Save screenshot").on_click(self._screenshot)
             self.record = gui.add_button("Record GIF")
             self.record.on_click(self._on_record)
-        with gui.add_folder("Moves over events"):
+        with gui.add_folder("Moves over events", expand_by_default=False):
             self.plot = gui.add_uplot(
                 (np.array([0.0]), np.array([0.0])),
                 ({"label": "event"}, {"label": "moves", "stroke": "#d33", "width": 2}),
                 scales={"x": {"time": False}},  # uPlot reads x as timestamps unless told otherwise
                 aspect=2.0,
             )
-        with gui.add_folder("Lights"):
-            self.legend = gui.add_html("")
 
     # ------------------------------------------------------------------ callbacks
-    def _guard(self, fn: Callable) -> Callable:
-        """Run a callback under a notification for bad input; always re-render afterwards."""
+    def _guard(self, fn: Callable, title: str = "apf-viz") -> Callable:
+        """Run a callback; bad input, or what it has to say (a returned string), is told to the browser
+        that caused it, not to every browser (a laptop's hint must not pop up on the projector). Always
+        re-render afterwards."""
 
         def wrapped(event) -> None:
             try:
-                fn(event)
+                said = fn(event)
+                if isinstance(said, str) and said:
+                    tell(event.client, title, said)
             except (InputError, ValueError) as err:
-                self.notify("Refused", str(err), True)
+                tell(event.client, "Refused", str(err), error=True)
             self.changed()
 
         return wrapped
@@ -162,7 +186,8 @@ class Panels:
         s = self.session
         if value == "Step":
             s.pause()
-            s.step()
+            if not s.step():
+                tell(event.client, "Step", s.why_not_step())
         elif value == "Back":
             s.back()
         elif value in ("Play", "Pause"):
@@ -224,14 +249,33 @@ class Panels:
         if event.client is None:
             return
         mode = MODES.get(self.mode.value)
-        # A refused switch queues its reason as a session message: every browser is told once.
-        if mode is None or self.session.set_mode(mode):  # type: ignore[arg-type]
+        problem = self.session.set_mode(mode) if mode is not None else f"no mode {self.mode.value!r}"  # type: ignore[arg-type]
+        if problem:  # refused: the drafts stay, and the browser that asked is told why
             self.mode.value = MODE_LABELS[self.session.mode]
+            tell(event.client, "Still editing", problem, error=True)
         self.changed()
 
+    def _on_click_mode(self, event) -> None:
+        if event.client is not None:
+            self.session.set_click_advances(event.target.value == "advance")
+            self.changed()
+
+    def _on_demo(self, event) -> None:
+        """A ready scenario; what it shows stays under the dropdown, for the room to read."""
+        if event.client is None or self.demo.value == "—":
+            return
+
+        def load(e) -> None:
+            shows = self.session.load_scenario(self.demo.value)
+            self.demo_note.content = f"<small>{symbol_html(shows)}</small>"
+
+        self._guard(load)(event)
+
     def _on_demo_pattern(self, event) -> None:
-        if event.client is not None and self.demo.value != "—":
-            self._guard(lambda e: self._load_demo("", self.demo.value, self.session.load_pattern))(event)
+        if event.client is not None and self.demo_pattern.value != "—":
+            self._guard(lambda e: self._load_demo("", self.demo_pattern.value, self.session.load_pattern))(
+                event
+            )
 
     def _on_demo_start(self, event) -> None:
         if event.client is not None and self.demo_start.value != "—":
@@ -240,17 +284,17 @@ class Panels:
             )
 
     @staticmethod
-    def _load_demo(folder: str, name: str, load: Callable[[str, bytes], None]) -> None:
+    def _load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
         """A dropdown's value names a file only through the list of demo files: never a path."""
         path = demo_files(folder).get(name)
         if path is None:
             raise InputError(f"no demo called {name[:80]!r}")
-        load(path.name, path.read_bytes())
+        return load(path.name, path.read_bytes())
 
-    def _uploader(self, loader: Callable[[str, bytes], None]) -> Callable:
+    def _uploader(self, loader: Callable[[str, bytes], str | None]) -> Callable:
         def on_upload(event) -> None:
             f = event.target.value
-            self._guard(lambda e: loader(f.name, f.content))(event)
+            self._guard(lambda e: loader(f.name, f.content), f.name)(event)
 
         return on_upload
 
@@ -281,11 +325,29 @@ class Panels:
         following = view.trace_position is not None
         if self.branch.visible != following:
             self.branch.visible = following
-        self.trace.content = (
-            f"Following the trace: event **{view.trace_position[0]}** of {view.trace_position[1]}"
-            if following
+        trace = ""
+        if following:
+            at, of = view.trace_position  # type: ignore[misc]
+            end = " — its end" if at >= of else ""
+            trace = f"Following {view.following_what}: event **{at}** of {of}{end}"
+        if view.trace_note:
+            trace += f"  \n<small>The trace: {symbol_html(view.trace_note)}</small>"
+        self.trace.content = trace
+        aside = view.set_aside is not None
+        if self.restore.visible != aside:
+            self.restore.visible = aside
+        self.aside.content = (
+            f"Branched at step {view.set_aside[0]}: the {view.set_aside[1]} recorded steps after it are "
+            "set aside"
+            if view.set_aside
             else ""
         )
+        marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
+        if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
+            self.timeline._marks = marks or None
+        manual = s.scheduler_name == "manual"
+        if self.click.visible != manual:
+            self.click.visible = manual
         if self.numbers.value != view.numbers:
             self.numbers.value = view.numbers
         self.caption.content = view.caption
@@ -359,6 +421,10 @@ class Panels:
             return ""
         icon = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}.get(view.outcome, "")
         detail = f"\n\n{view.collision[0]} (red on the grid)" if view.collision else ""
+        if view.never_act:
+            detail = "\n\nNo next cycle of any robot changes anything: all (ringed dark red) will never act"
+        if view.outcome == "formed":
+            detail = "\n\nEvery robot is on a target cell of the pattern."
         return f"## {icon} {view.outcome.upper()}{detail}"
 
     @staticmethod

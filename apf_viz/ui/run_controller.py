@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
+from apf_viz.core.history import StepRecord
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.ui.move_series import MoveSeries
 from apf_viz.ui.run_config import RunConfig
@@ -46,7 +47,13 @@ class RunController:
         return self._series
 
     # ------------------------------------------------------------------ building
-    def _rebuild(self, config: RunConfig, engine: Engine | None = None, trace_events: int = 0) -> None:
+    def _rebuild(
+        self,
+        config: RunConfig,
+        engine: Engine | None = None,
+        trace_events: int = 0,
+        trace_options: Mapping[str, object] | None = None,
+    ) -> None:
         make_scheduler(config.scheduler)  # validates the name
         self.engine = engine if engine is not None else config.engine(self.plugins)
         self.config = config
@@ -54,7 +61,12 @@ class RunController:
         self._playing = False
         # A replayed trace is followed step by step until the person branches (Branch here).
         self.following = engine is not None and engine.history.length > 0
+        self.following_what = "the trace"
+        # Steps a branch dropped (where, what), so that the person can go back to them.
+        self.set_aside: tuple[int, list[StepRecord]] | None = None
         self.trace_events = trace_events if self.following else 0
+        # What the trace's header says about it (a verdict, a livelock's loop): kept for this run.
+        self.trace_options: dict[str, object] = dict(trace_options or {}) if self.following else {}
 
     @property
     def trace_position(self) -> tuple[int, int] | None:
@@ -72,12 +84,18 @@ class RunController:
         with self.lock:
             self._rebuild(config)
 
-    def adopt(self, config: RunConfig, engine: Engine, trace_events: int) -> None:
-        """Take over an engine built elsewhere (a replayed trace of ``trace_events`` events), at its
-        start; Step then follows the trace."""
+    def adopt(
+        self,
+        config: RunConfig,
+        engine: Engine,
+        trace_events: int,
+        trace_options: Mapping[str, object] | None = None,
+    ) -> None:
+        """Take over an engine built elsewhere (a replayed trace of ``trace_events`` events, whose header
+        has ``trace_options``), at its start; Step then follows the trace."""
         with self.lock:
             engine.seek(0)
-            self._rebuild(config, engine, trace_events)
+            self._rebuild(config, engine, trace_events, trace_options)
 
     def reset(self) -> None:
         """Back to the start of the same run."""
@@ -118,16 +136,45 @@ class RunController:
             record = make_scheduler(self.config.scheduler).choose(
                 self.engine, step_rng(self.config.seed, self.engine.step_index)
             )
-            self.engine.step(record.robots, round=record.round)
+            self._branching_step(record.robots, record.round)
             return True
 
     def step_robot(self, robot: int) -> str:
         """Manual: run this robot's next phase. Returns the phase run."""
         with self.lock:
             phase = self.engine.next_event(robot)
-            self.engine.step([robot])
+            self._branching_step([robot], None)
             self.following = False  # a person's choice leaves the trace
             return phase
+
+    def _branching_step(self, robots, round: int | None) -> None:
+        """A step that may differ from the recorded future: then the future is set aside, not lost."""
+        history = self.engine.history
+        generation = history.generation
+        self.engine.step(robots, round=round)
+        if history.generation != generation and history.dropped is not None:
+            self.set_aside = history.dropped
+
+    def return_to_set_aside(self) -> None:
+        """Go back to the steps a branch dropped: replay them from where they were dropped, then follow
+        them (Step, Play) from there. The branch left is set aside in turn, so this toggles."""
+        with self.lock:
+            if self.set_aside is None:
+                raise InputError("no branch was set aside")
+            at, records = self.set_aside
+            e = self.engine
+            self._playing = False
+            e.seek(at)
+            generation = e.history.generation
+            for record in records:
+                if e.finished:
+                    break
+                e.step(record.robots, round=record.round)
+            left = e.history.dropped if e.history.generation != generation else None
+            self.trace_events = e.state.events
+            e.seek(at)
+            self.set_aside = left
+            self.following, self.following_what = True, "the set-aside branch"
 
     def back(self) -> None:
         with self.lock:

@@ -1,11 +1,11 @@
 """The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
 
-Up to ``DENSE`` robots, robots and ghosts are batched meshes (one message each however many robots),
-each robot's y-axis (the adversary's flip) the nose of its sphere, and pending moves are line segments.
-Above it, robots are shaded point sprites with a diamond beside each for its y-axis, and a pending move
-is a red dot on the cell it goes to: one vertex each, because in a browser without a GPU every instance
-of a batched mesh or line set costs about as much as a draw call of its own. Phase halos and target
-cells are point clouds of flat squares; rays, K, the leader's frame and the grid are line-segment
+Robots are flat, unlit discs in their light's legend colour (one point cloud per light) on a dark
+outline, with a small diamond on each robot's +y side for its y-axis (the adversary's flip); its phase,
+the last actor and the selection are rings: wider discs under it. One vertex per robot and ring, because
+in a browser without a GPU every instance of a batched mesh or line set costs about as much as a draw
+call of its own. Up to ``DENSE`` robots a pending move is a line segment, above it a red dot on the cell
+it goes to. Target cells are flat squares; rays, K, the leader's frame and the grid are line-segment
 sets, the grid's density chosen by :func:`grid_steps`. Every node is created once and then updated in
 place, hidden when empty: a node re-created gets a new material, and a software-rendered browser
 compiles its shader again. docs/PERFORMANCE.md has the measurements.
@@ -25,7 +25,7 @@ from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
 from apf_viz.ui.session import SessionView
 
 PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
-ROBOT_RADIUS = 0.34
+ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
 # GRID_CELL_PX wide, and darker section lines every 5, 10, 50, ... cells, at least GRID_SECTION_PX apart.
 VIEW_PX = 1000
@@ -39,7 +39,28 @@ DENSE = 50
 # viser draws a point of size s as a square 2·s world units wide (its scale divides by tan(fov/2), where
 # the frustum's height is 2·tan(fov/2)·z); sizes here are world widths.
 _VISER_POINT_SCALE = 0.5
-Z = 0.3  # robots sit on the grid, their centres this high
+# Robots and their rings are flat discs in layers just above the grid, far enough apart for the depth
+# buffer (about 0.006 units at a typical camera distance) and close enough that perspective does not
+# shift one against another. Flat and unlit: a light's colour on the canvas is its legend swatch.
+Z = 0.12  # the robots' discs
+_LAYER = {
+    "selected": 0.02,  # rings, widest at the bottom
+    "never": 0.03,
+    "last": 0.04,
+    "phase": 0.06,
+    "ghost_outline": 0.075,
+    "ghost": 0.085,
+    "outline": 0.1,
+    "nose": 0.14,
+}
+_SIZE = {  # disc diameters in cells: each ring shows as the band between its disc and the next
+    "selected": 1.22,
+    "never": 1.1,
+    "last": 1.02,
+    "phase": 0.88,
+    "outline": 2 * ROBOT_RADIUS + 0.1,
+    "robot": 2 * ROBOT_RADIUS,
+}
 
 
 def grid_steps(width: int) -> tuple[bool, int]:
@@ -61,7 +82,9 @@ TARGET_COLORS = {"placed": (100, 205, 100), "preview": (160, 220, 160), "drawing
 # The engine's marks, one colour each; the legend (ui/why.py) reads the same table.
 MARK_COLORS: dict[str, tuple[int, int, int]] = {
     "ray": (250, 200, 0),
-    "ghost": (120, 120, 255),
+    "ghost": (120, 60, 200),
+    "never": (150, 0, 0),
+    "outline": (50, 50, 50),
     "pending": (230, 40, 40),
     "axis": (255, 0, 0),
     "collision": (230, 0, 0),
@@ -73,92 +96,6 @@ MARK_COLORS: dict[str, tuple[int, int, int]] = {
 }
 REGION_OPACITY = 0.13
 LABEL_SCALE = 1.1
-
-
-def _icosphere() -> tuple[np.ndarray, np.ndarray]:
-    """A low-poly sphere (80 faces)."""
-    return _subdivide(*_icosahedron())
-
-
-def _icosahedron() -> tuple[np.ndarray, np.ndarray]:
-    """The regular icosahedron on the unit sphere (20 faces)."""
-    t = (1 + 5**0.5) / 2
-    v = np.array(
-        [
-            (-1, t, 0),
-            (1, t, 0),
-            (-1, -t, 0),
-            (1, -t, 0),
-            (0, -1, t),
-            (0, 1, t),
-            (0, -1, -t),
-            (0, 1, -t),
-            (t, 0, -1),
-            (t, 0, 1),
-            (-t, 0, -1),
-            (-t, 0, 1),
-        ],
-        dtype=np.float32,
-    )
-    v /= np.linalg.norm(v[0])
-    faces = np.array(
-        [
-            (0, 11, 5),
-            (0, 5, 1),
-            (0, 1, 7),
-            (0, 7, 10),
-            (0, 10, 11),
-            (1, 5, 9),
-            (5, 11, 4),
-            (11, 10, 2),
-            (10, 7, 6),
-            (7, 1, 8),
-            (3, 9, 4),
-            (3, 4, 2),
-            (3, 2, 6),
-            (3, 6, 8),
-            (3, 8, 9),
-            (4, 9, 5),
-            (2, 4, 11),
-            (6, 2, 10),
-            (8, 6, 7),
-            (9, 8, 1),
-        ],
-        dtype=np.uint32,
-    )
-    return v, faces
-
-
-def _with_nose(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A unit sphere with a small tetrahedral nose along +y: the robot's own y-axis."""
-    nose = np.array([(-0.45, 0.75, 0.0), (0.45, 0.75, 0.0), (0.0, 1.7, 0.0), (0.0, 0.9, 0.45)], np.float32)
-    n = len(v)
-    tip = np.array([(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)], dtype=np.uint32) + n
-    return np.vstack([v, nose]), np.vstack([faces, tip])
-
-
-def _subdivide(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One loop of midpoint subdivision, pushed onto the unit sphere (20 → 80 faces)."""
-    verts = [tuple(p) for p in v]
-    index: dict[tuple[int, int], int] = {}
-
-    def mid(a: int, b: int) -> int:
-        key = (min(a, b), max(a, b))
-        if key not in index:
-            m = (v[a] + v[b]) / 2
-            verts.append(tuple(m / np.linalg.norm(m)))
-            index[key] = len(verts) - 1
-        return index[key]
-
-    out = []
-    for a, b, c in faces.tolist():
-        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-        out += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-    return np.array(verts, dtype=np.float32), np.array(out, dtype=np.uint32)
-
-
-_IDENTITY = np.array([1.0, 0.0, 0.0, 0.0], dtype=np.float32)
-_HALF_TURN_X = np.array([0.0, 1.0, 0.0, 0.0], dtype=np.float32)  # wxyz: y ↦ −y (and z ↦ −z)
 
 
 def _xyz(points, z: float) -> np.ndarray:
@@ -181,8 +118,8 @@ class SceneRenderer:
         # Nothing here casts a shadow, but lights that may cast one make the browser clear three
         # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
         self.scene.configure_default_lights(enabled=True, cast_shadow=False)
-        self._sphere = _with_nose(*_icosphere())
         self._sprite_lights: set[str] = set()
+        self._ghost_lights: set[str] = set()
         self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
@@ -194,56 +131,6 @@ class SceneRenderer:
         self.framed_pose = self.camera_pose()  # the pose browsers were last sent (tests project with it)
 
     # ------------------------------------------------------------------ batched helpers
-    def _batched(
-        self,
-        name: str,
-        mesh,
-        positions: np.ndarray,
-        colors: np.ndarray,
-        *,
-        opacity=None,
-        scale: float = 1.0,
-        wxyzs: np.ndarray | None = None,
-    ) -> None:
-        """Create, update (only what changed) or remove one batched mesh."""
-        n = len(positions)
-        if wxyzs is None:
-            wxyzs = np.tile(np.array([1, 0, 0, 0], dtype=np.float32), (n, 1))
-        handle = self._handles.get(name)
-        if n == 0:
-            if handle is not None:
-                handle.remove()  # type: ignore[attr-defined]
-                del self._handles[name]
-                self._last.pop(name, None)
-            return
-        last = self._last.get(name)
-        if handle is None or self._counts.get(name) != n:
-            if handle is not None:
-                handle.remove()  # type: ignore[attr-defined]
-            vertices, faces = mesh
-            self._handles[name] = self.scene.add_batched_meshes_simple(
-                name,
-                vertices * scale,
-                faces,
-                batched_wxyzs=wxyzs,
-                batched_positions=positions,
-                batched_colors=colors,
-                opacity=opacity,
-                lod="off",
-                cast_shadow=False,
-                receive_shadow=False,
-            )
-            self._counts[name] = n
-        else:
-            assert last is not None
-            if not np.array_equal(last[0], positions):
-                handle.batched_positions = positions  # type: ignore[attr-defined]
-            if not np.array_equal(last[1], colors):
-                handle.batched_colors = colors  # type: ignore[attr-defined]
-            if not np.array_equal(last[2], wxyzs):
-                handle.batched_wxyzs = wxyzs  # type: ignore[attr-defined]
-        self._last[name] = (positions, colors, wxyzs)
-
     def _in_place(self, name: str, data: np.ndarray, create: Callable[[], object], field: str) -> None:
         """Send ``data`` to the node ``name`` only if it changed: create the node once, then assign
         ``field`` in place; hide it when empty. (A node removed and re-added gets a new material, and
@@ -271,8 +158,8 @@ class SceneRenderer:
         size: float,
         shape: Literal["square", "circle", "diamond"] = "square",
     ) -> None:
-        """Points of one colour and size (world units): flat squares (target cells, halos), shaded
-        discs (robots) or diamonds."""
+        """Points of one colour and size (world units), flat and unlit: squares (target cells), discs
+        (robots, rings) or diamonds."""
         self._in_place(
             name,
             points,
@@ -283,7 +170,7 @@ class SceneRenderer:
                 point_size=size * _VISER_POINT_SCALE,
                 point_shape=shape,
                 precision="float32",
-                point_shading="gradient" if shape == "circle" else "flat",
+                point_shading="flat",
             ),
             "points",
         )
@@ -320,24 +207,14 @@ class SceneRenderer:
         self._update_bounds(pts, view)
         self._grid()
         dense = len(pts) > DENSE
-        self._robot_spheres(view, pts[:0] if dense else pts)
-        self._robot_sprites(view, pts if dense else pts[:0])
-        self._phase_halos(view, pts)
+        self._robots(view, pts)
         self._rings(view, pts)
         numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
         self._labels("/numbers", numbers if view.numbers else [])
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
         self._points("/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.25, "circle")
         self._targets(view)
-        ghosts = self._local(view.ghosts)
-        self._batched(
-            "/ghosts",
-            self._sphere,
-            _xyz(ghosts, Z),
-            np.tile(np.array(MARK_COLORS["ghost"], dtype=np.uint8), (len(ghosts), 1)),
-            opacity=0.35,
-            scale=ROBOT_RADIUS * 0.8,
-        )
+        self._ghosts(view)
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
         self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
@@ -350,43 +227,64 @@ class SceneRenderer:
         self._marks(view)
         self._why_regions(view)
 
-    def _robot_spheres(self, view: SessionView, pts: np.ndarray) -> None:
-        """Robots as spheres coloured by light, one batched mesh. Each robot's own +y (the adversary's
-        flip) is the nose of its sphere: a flipped robot is the same mesh turned half a turn about x."""
-        robots = view.robots[: len(pts)]
-        palette = light_colors(view)
-        colors = np.array([palette[r.light] for r in robots], dtype=np.uint8).reshape(-1, 3)
-        flipped = np.array([not r.y_up for r in robots], dtype=bool)
-        wxyzs = np.where(flipped[:, None], _HALF_TURN_X, _IDENTITY).astype(np.float32).reshape(-1, 4)
-        self._batched("/robots", self._sphere, _xyz(pts, Z), colors, scale=ROBOT_RADIUS, wxyzs=wxyzs)
-
-    def _robot_sprites(self, view: SessionView, pts: np.ndarray) -> None:
-        """Above ``DENSE`` robots: each robot a shaded disc (one vertex), one point cloud per light so
-        that a light change moves a point between clouds instead of recolouring one (viser rebuilds a
-        point cloud's material, and the browser its shader, when its colours change); the y-axis is a
-        small dark diamond on the robot's +y side. At 1,000 robots this doubles the browser's frame
-        rate over 20-face spheres in a software-rendered browser (docs/PERFORMANCE.md)."""
+    def _robots(self, view: SessionView, pts: np.ndarray) -> None:
+        """Each robot a flat disc in its light's colour on a dark outline (so a pale light shows on the
+        white grid), one point cloud per light: a light change moves a point between clouds instead of
+        recolouring one (viser rebuilds a point cloud's material, and the browser its shader, when its
+        colours change). The y-axis is a small dark diamond on the robot's +y side."""
         robots = view.robots[: len(pts)]
         lights = np.array([r.light for r in robots], dtype=object)
-        centre = _xyz(pts, Z)
         palette = light_colors(view)
+        self._points(
+            "/robots/outline",
+            _xyz(pts, _LAYER["outline"]),
+            MARK_COLORS["outline"],
+            _SIZE["outline"],
+            "circle",
+        )
         for light in set(self._sprite_lights) | set(lights.tolist()):
             self._sprite_lights.add(light)
             color = palette.get(light, (0, 0, 0))
-            self._points(f"/robots/{light}", centre[lights == light], color, 2 * ROBOT_RADIUS, "circle")
+            self._points(f"/robots/{light}", _xyz(pts[lights == light], Z), color, _SIZE["robot"], "circle")
         sign = np.array([1.0 if r.y_up else -1.0 for r in robots], dtype=np.float32)
-        nose = centre.copy()
-        nose[:, 1] += 0.42 * sign
-        nose[:, 2] += 0.05
-        self._points("/robots/y_axes", nose, (70, 70, 70), 0.24, "diamond")
+        nose = _xyz(pts, _LAYER["nose"])
+        nose[:, 1] += 0.2 * sign
+        self._points("/robots/y_axes", nose, (40, 40, 40), 0.16, "diamond")
 
-    def _phase_halos(self, view: SessionView, pts: np.ndarray) -> None:
-        """A halo under each robot that has Looked (yellow) or Computed (orange); none when idle.
-
-        One point cloud of flat squares per phase: a single vertex per robot in that phase."""
+    def _rings(self, view: SessionView, pts: np.ndarray) -> None:
+        """Rings under the robots, widest at the bottom: selected (blue), will never act (dark red, a
+        deadlock), acted last (dark), and the phase (yellow: looked, orange: computed; none when idle)."""
         phases = np.array([r.phase for r in view.robots])
         for phase in ("looked", "computed"):
-            self._points(f"/phase/{phase}", _xyz(pts[phases == phase], 0.01), PHASE_COLORS[phase], 0.92)
+            at = pts[phases == phase] if len(phases) else pts[:0]
+            self._points(
+                f"/phase/{phase}", _xyz(at, _LAYER["phase"]), PHASE_COLORS[phase], _SIZE["phase"], "circle"
+            )
+        one = {"selected": view.selected, "last": view.last_actor}
+        for name in ("selected", "last"):
+            robot = one[name]
+            at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
+            self._points(f"/ring/{name}", _xyz(at, _LAYER[name]), MARK_COLORS[name], _SIZE[name], "circle")
+        never = pts[[r for r in view.never_act if r < len(pts)]] if view.never_act else pts[:0]
+        self._points(
+            "/ring/never", _xyz(never, _LAYER["never"]), MARK_COLORS["never"], _SIZE["never"], "circle"
+        )
+
+    def _ghosts(self, view: SessionView) -> None:
+        """Where the selected robot saw robots that have moved or changed light since: a disc in the light
+        it saw, on a violet outline, one point cloud per light seen."""
+        places = self._local([p for p, _ in view.ghosts])
+        lights = np.array([light for _, light in view.ghosts], dtype=object)
+        palette = light_colors(view)
+        self._points(
+            "/ghosts/outline", _xyz(places, _LAYER["ghost_outline"]), MARK_COLORS["ghost"], 0.62, "circle"
+        )
+        for light in set(self._ghost_lights) | set(lights.tolist()):
+            self._ghost_lights.add(light)
+            at = places[lights == light] if len(lights) else places[:0]
+            self._points(
+                f"/ghosts/{light}", _xyz(at, _LAYER["ghost"]), palette.get(light, (0, 0, 0)), 0.44, "circle"
+            )
 
     # ------------------------------------------------------------------ origin
     def _place_origin(self, robots: np.ndarray, view: SessionView) -> None:
@@ -413,16 +311,6 @@ class SceneRenderer:
         """The grid cell a click ray hits (see :func:`cell_of_ray`), in grid coordinates."""
         cell = cell_of_ray(origin, direction)
         return None if cell is None else (cell[0] + self.origin[0], cell[1] + self.origin[1])
-
-    def _rings(self, view: SessionView, pts: np.ndarray) -> None:
-        """A dark disc under the robot that acted last and a blue one under the selected robot: rings
-        around the sphere, distinct from the square phase halos."""
-        for name, robot, color, size in (
-            ("/ring/last", view.last_actor, MARK_COLORS["last"], 0.98),
-            ("/ring/selected", view.selected, MARK_COLORS["selected"], 1.12),
-        ):
-            at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
-            self._points(name, _xyz(at, 0.004 if name.endswith("last") else 0.003), color, size, "circle")
 
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
         extra = self._local(view.targets)
@@ -473,12 +361,12 @@ class SceneRenderer:
         if not view.rays:
             return np.zeros((0, 2, 3))
         a = self._local(np.array(view.rays, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
-        return np.concatenate([a, np.full((len(a), 2, 1), Z, dtype=np.float32)], axis=2)
+        return np.concatenate([a, np.full((len(a), 2, 1), Z - 0.01, dtype=np.float32)], axis=2)
 
     def _pending(self, view: SessionView) -> np.ndarray:
         pairs = [(r.position, r.pending) for r in view.robots if r.pending is not None]
         ends = self._local(np.array(pairs, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
-        return np.concatenate([ends, np.full((len(ends), 2, 1), Z + 0.35, dtype=np.float32)], axis=2)
+        return np.concatenate([ends, np.full((len(ends), 2, 1), Z + 0.04, dtype=np.float32)], axis=2)
 
     # ------------------------------------------------------------------ the algorithm's marks
     def _targets(self, view: SessionView) -> None:

@@ -14,13 +14,21 @@ import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import repeat
+from pathlib import Path
 from typing import Literal, NamedTuple
 
 import numpy as np
 
 from apf_viz.algorithms import Factory
 from apf_viz.core.engine import NEXT_EVENT, Phase
-from apf_viz.core.formats import InputError, pattern_json, robots_json, size_problem, trace_text
+from apf_viz.core.formats import (
+    MAX_TRACE_BYTES,
+    InputError,
+    pattern_json,
+    robots_json,
+    size_problem,
+    trace_text,
+)
 from apf_viz.core.frames import move_to_global, random_y_up
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.portrayal import (
@@ -40,10 +48,12 @@ from apf_viz.core.portrayal import (
     overlays_of,
 )
 from apf_viz.core.run import trace_header
+from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.ui import loader
 from apf_viz.ui.editor import Editor
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
+from apf_viz.ui.snapshot_diff import SeenRobot, seen_robots
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
 SCHEDULER_LABELS = {
@@ -57,6 +67,7 @@ SCHEDULER_LABELS = {
 
 
 _PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
+MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
 NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
 _COMPUTED = int(Phase.COMPUTED)
 
@@ -91,8 +102,8 @@ class SessionView:
     robots: tuple[RobotView, ...]
     targets: tuple[Point, ...]  # the cells of the overlays (or of the pattern being drawn)
     selected: int | None
-    rays: tuple[tuple[Point, Point], ...]
-    ghosts: tuple[Point, ...]
+    rays: tuple[tuple[Point, Point], ...]  # to what the selected robot saw (its snapshot) or sees now
+    ghosts: tuple[tuple[Point, str], ...]  # where a robot was seen, with the light seen, if changed since
     overlays: Overlays
     legend: dict[str, LightStyle]
     why: WhyView | None
@@ -116,6 +127,12 @@ class SessionView:
     numbers: bool = False  # draw each robot's number beside it
     trace_position: tuple[int, int] | None = None  # (event, events in the trace) while following one
     collision: tuple[str, tuple[Point, ...]] | None = None  # what collided, in words, and the cells
+    never_act: tuple[int, ...] = ()  # stuck: robots whose every future cycle changes nothing
+    set_aside: tuple[int, int] | None = None  # a branch dropped recorded steps: (at step, how many)
+    following_what: str = "the trace"  # what Step follows while trace_position is set
+    click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
+    trace_note: str = ""  # what a loaded trace's header says it shows (a verdict, a gap, a loop)
+    timeline_marks: tuple[tuple[int, str], ...] = ()  # steps of the timeline worth a mark (a loop)
 
 
 class Session:
@@ -154,7 +171,7 @@ class Session:
         self.mode: Mode = "run"
         self.selected: int | None = None
         self.numbers: bool | None = None  # robot numbers on the canvas; None: on up to NUMBERS_UP_TO robots
-        self.messages: list[str] = []  # notifications for the UI to show, drained by the app
+        self.click_advances = True  # Manual: a click runs the robot's next phase; False: it only selects
 
     # ------------------------------------------------------------------ the run, read-only
     @property
@@ -230,11 +247,20 @@ class Session:
                 return False
             if self.scheduler_name == "manual" and not self.run.following:
                 if self.selected is None:
-                    self.messages.append("Manual: click a robot to run its next phase")
                     return False
                 self.run.step_robot(self.selected)
                 return True
             return self.run.step()
+
+    def why_not_step(self) -> str:
+        """Why Step ran nothing, for the person who pressed it."""
+        if self.mode != "run":
+            return "Step runs in Run mode: switch Mode back to Run"
+        if self.engine.finished:
+            return f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
+        if self.scheduler_name == "manual":
+            return "Manual: click a robot to run its next phase"
+        return "nothing could run"
 
     def play_step(self) -> bool:
         """One step of Play (the render thread's); stops playing when nothing ran."""
@@ -302,15 +328,14 @@ class Session:
         return int(hits[0]) if hits.size else None
 
     def click(self, cell: Point) -> str:
-        """A click on a grid cell, interpreted by the current mode. Returns what happened."""
+        """A click on a grid cell, interpreted by the current mode. Returns what happened; a click outside
+        the supported grid is refused (InputError)."""
         with self.lock:
             if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
-                message = (
+                raise InputError(
                     f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
                     f"(|x|, |y| ≤ {COORD_LIMIT:,})"
                 )
-                self.messages.append(message)
-                return message
             if self.mode == "edit-pattern":
                 return self.editor.toggle_target(cell)
             if self.mode == "edit-robots":
@@ -320,21 +345,26 @@ class Session:
                 self.selected = None
                 return "nothing here"
             self.selected = r
-            if self.scheduler_name == "manual" and not self.engine.finished:
+            if self.scheduler_name == "manual" and self.click_advances and not self.engine.finished:
                 return f"robot {r}: {self.run.step_robot(r)}"
             return f"selected robot {r}"
+
+    def set_click_advances(self, advances: bool) -> None:
+        """Manual: whether a click on a robot runs its next phase (advance) or only selects it, so that
+        a student can read a robot's snapshot before choosing who acts."""
+        with self.lock:
+            self.click_advances = bool(advances)
 
     # ------------------------------------------------------------------ editing
     def set_mode(self, mode: Mode) -> str | None:
         """Switch modes. Leaving an edit mode validates the drafts and restarts the run; on a problem the
-        mode stays, the drafts are kept, and the problem is returned (and queued as a message)."""
+        mode stays, the drafts are kept, and the problem is returned (for the browser that asked)."""
         with self.lock:
             if mode == self.mode:
                 return None
             if self.mode != "run" and mode == "run":
                 problem = self.editor.problem()
                 if problem:
-                    self.messages.append(problem)
                     return problem
                 e = self.editor
                 self._start(
@@ -350,35 +380,76 @@ class Session:
             self.editor.clear_pattern()
 
     # ------------------------------------------------------------------ files
-    def load_pattern(self, filename: str, content: bytes) -> None:
+    def load_pattern(self, filename: str, content: bytes) -> str | None:
         """A pattern file; if its size fits the robots the run restarts with it, otherwise it becomes the
-        pattern being drawn (Edit pattern), so nothing is lost."""
+        pattern being drawn (Edit pattern), so nothing is lost; then what to do is returned."""
         points = tuple(tuple(p) for p in loader.pattern_upload(filename, content).points)
         with self.lock:
             if len(points) == len(self.config.robots):
                 self._start(self.config.but(pattern=points))
-            else:
-                self.editor.pattern = list(points)
-                self.run.pause()
-                self.mode = "edit-pattern"
-                self.messages.append(
-                    f"{filename}: {len(points)} points for {len(self.config.robots)} robots: "
-                    "edit the pattern or the robots, then switch back to Run"
-                )
+                return None
+            self.editor.pattern = list(points)
+            self.run.pause()
+            self.mode = "edit-pattern"
+            return (
+                f"{filename}: {len(points)} points for {len(self.config.robots)} robots: "
+                "edit the pattern or the robots, then switch back to Run"
+            )
 
-    def load_robots(self, filename: str, content: bytes) -> None:
+    def load_robots(self, filename: str, content: bytes) -> str | None:
+        """A robots file. If the current pattern has another size, a demo pattern of the robots' size
+        is taken instead (the draft keeps the old one for Edit pattern), and said; an unsolvable start
+        opens in Edit robots with its axis shown. Returns what to tell the person, if anything."""
         parsed = loader.robots_upload(filename, content)
         with self.lock:
             points = tuple(tuple(p) for p in parsed.robots)
             y_up = tuple(parsed.flips(self.seed))  # the same rule as every other way in (RobotsFile.flips)
-            self.editor = Editor(points, y_up, self.config.pattern)
+            pattern, note = self.config.pattern, None
+            if len(pattern) != len(points):
+                offered = pattern_of_size(len(points))
+                if offered is not None:
+                    pattern = tuple(offered[1])
+                    note = (
+                        f"{filename}: {len(points)} robots, but the pattern had {len(self.config.pattern)} "
+                        f"points: the run uses the demo pattern {offered[0]} ({len(points)} points); "
+                        "Edit pattern or Upload pattern to change it"
+                    )
+            self.editor = Editor(points, y_up, pattern)
             problem = self.editor.problem()
             if problem is None:
-                self._start(self.config.but(robots=points, y_up=y_up))
-            else:
-                self.run.pause()
-                self.mode = "edit-robots"
-                self.messages.append(f"{filename}: {problem}")
+                self._start(self.config.but(robots=points, y_up=y_up, pattern=pattern))
+                return note
+            self.run.pause()
+            self.mode = "edit-robots"
+            return f"{filename}: {problem}"
+
+    def load_scenario(self, name: str) -> str:
+        """A ready scenario by its name in the Demo list (never a path). Returns what it shows."""
+        scenario = scenarios().get(name)
+        if scenario is None:
+            raise InputError(f"no demo called {name[:80]!r}")
+        files = scenario.files()
+        if "trace" in files:
+            path = files["trace"]
+            self.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)  # our own file
+            return scenario.shows
+        pattern = loader.pattern_upload(files["pattern"].name, files["pattern"].read_bytes())
+        with self.lock:
+            note = self._load_start_with(files["robots"], tuple(tuple(p) for p in pattern.points))
+        return scenario.shows + (f"  \n{note}" if note else "")
+
+    def _load_start_with(self, robots: Path, pattern: tuple[Point, ...]) -> str | None:
+        parsed = loader.robots_upload(robots.name, robots.read_bytes())
+        points = tuple(tuple(p) for p in parsed.robots)
+        y_up = tuple(parsed.flips(self.seed))
+        self.editor = Editor(points, y_up, pattern)
+        problem = self.editor.problem()
+        if problem is None:
+            self._start(self.config.but(robots=points, y_up=y_up, pattern=pattern))
+            return None
+        self.run.pause()
+        self.mode = "edit-robots"
+        return problem
 
     def load_trace(self, filename: str, content: bytes, limit: int = loader.MAX_TRACE_UPLOAD_BYTES) -> None:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
@@ -393,7 +464,7 @@ class Session:
             scheduler=h.scheduler if h.scheduler in SCHEDULER_LABELS.values() else self.scheduler_name,
         )
         with self.lock:
-            self.run.adopt(config, loaded.engine, loaded.events)
+            self.run.adopt(config, loaded.engine, loaded.events, h.options)
             self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self.selected = None
@@ -455,12 +526,13 @@ class Session:
         if self.mode != "run":
             sel = None
         rays: list[tuple[Point, Point]] = []
-        ghosts: list[Point] = []
-        if sel is not None:
+        ghosts: list[tuple[Point, str]] = []
+        seen = seen_robots(e, sel, list(self.config.robots)) if sel is not None else []
+        if sel is not None and st.snapshot[sel] is not None:  # what it saw, not what is there now
+            rays = [(pts[sel], s.seen_at) for s in seen]
+            ghosts = [(s.seen_at, s.seen_light) for s in seen if s.changed]
+        elif sel is not None:
             rays = [(pts[sel], pts[j]) for j in e.visible(sel).tolist()]
-            snap = st.snapshot[sel]
-            if snap is not None:
-                ghosts = list(in_frame(snap.offsets(), pts[sel], y_up[sel]))
         overlays = self._overlays(pts, st.lights)
         targets = next((m.points for m in overlays.marks if isinstance(m, Cells)), ())
         return SessionView(
@@ -473,12 +545,18 @@ class Session:
             legend=legend_of(e.algorithm),
             why=self._why(sel, pts) if sel is not None else None,
             outcome=st.outcome,
-            caption=self._caption(sel, pts),
+            caption=self._caption(sel, seen),
             last_events=self._last_events(),
             trace_position=self.run.trace_position,
             last_actor=self._last_actor(),
             numbers=self.numbers if self.numbers is not None else len(robots) <= NUMBERS_UP_TO,
             collision=self._collision(pts) if st.outcome == "collision" else None,
+            never_act=tuple(range(e.k)) if st.outcome == "stuck" else (),
+            set_aside=(self.run.set_aside[0], len(self.run.set_aside[1])) if self.run.set_aside else None,
+            following_what=self.run.following_what,
+            click_advances=self.click_advances,
+            trace_note=trace_note(self.run.trace_options),
+            timeline_marks=loop_marks(self.run.trace_options, e.history.length, self.config.scheduler),
             event=st.events,
             steps=st.steps,
             history_length=e.history.length,
@@ -497,6 +575,10 @@ class Session:
     def branch_here(self) -> None:
         """Stop following a loaded trace: from this event on, the chosen scheduler runs."""
         self.run.branch_here()
+
+    def return_to_set_aside(self) -> None:
+        """Back to the recorded steps the last branch dropped; Step then follows them."""
+        self.run.return_to_set_aside()
 
     def set_numbers(self, on: bool) -> None:
         with self.lock:
@@ -529,10 +611,16 @@ class Session:
         return events[-1].robot if len(events) == 1 else None
 
     def _overlays(self, pts: list[Point], lights: list[str]) -> Overlays:
-        """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead."""
+        """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead, and
+        while robots are placed, the pattern they will be given (the draft's, not the run's)."""
         if self.mode == "edit-pattern":
             return Overlays(
                 (Cells(tuple(self.editor.pattern), "pattern being drawn"),), "editing the pattern"
+            )
+        if self.mode == "edit-robots":
+            return Overlays(
+                (Cells(tuple(self.editor.pattern), "pattern for these robots", "preview"),),
+                "editing the robots",
             )
         config = Configuration(tuple(pts), tuple(lights), self.config.pattern, self.config.robots)
         return overlays_of(self.engine.algorithm, config)
@@ -579,7 +667,7 @@ class Session:
         c = self.config
         return max(*extent(c.robots), *extent(c.pattern), len(c.robots))
 
-    def _caption(self, sel: int | None, pts: list[Point]) -> str:
+    def _caption(self, sel: int | None, seen: list[SeenRobot]) -> str:
         if sel is None:
             return "Click a robot to see what it sees and why it acts."
         e = self.engine
@@ -589,17 +677,22 @@ class Session:
             f"**Robot {sel}** — light `{st.lights[sel]}`, {phase}; next: {e.next_event(sel)}; "
             f"y-axis {'up' if self.config.y_up[sel] else 'flipped'}",
         ]
-        snap = st.snapshot[sel]
-        if snap is not None:
-            # Stale only when another robot it saw moved or changed light (its own light does not count;
-            # robots that came into sight since are a new Look's business).
-            changed = self._changed_since(snap, pts[sel], self.config.y_up[sel], pts, st.lights)
-            if changed:
-                lines.append(
-                    f"Its snapshot is stale: {changed[0]}"
-                    + (f" (and {len(changed) - 1} more)" if len(changed) > 1 else "")
-                    + "; ghosts show where it saw them."
-                )
+        if st.snapshot[sel] is None:
+            lines.append(f"Idle: rays show the {len(e.visible(sel))} robots it would see if it looked now.")
+            return "\n\n".join(lines)
+        look = (
+            f"its snapshot from step {int(st.look_step[sel])} ({len(seen)} robots; rays go where it saw them)"
+        )
+        changed = [s.describe() for s in seen if s.changed]
+        if not changed:
+            lines.append(f"It holds {look}. Nothing it saw has changed since: the snapshot is current.")
+            return "\n\n".join(lines)
+        shown = changed[:MAX_DIFFS]
+        more = f"  \n… and {len(changed) - len(shown)} more" if len(changed) > len(shown) else ""
+        lines.append(
+            f"It holds {look}. **Stale**: {len(changed)} of them changed since (ghosts, in the light it "
+            "saw, mark where):  \n" + "  \n".join(f"· {c}" for c in shown) + more
+        )
         return "\n\n".join(lines)
 
     # ------------------------------------------------------------------ what just happened
@@ -622,6 +715,38 @@ class Session:
                 if len(out) == n:
                     return tuple(out)
         return tuple(out)
+
+
+def trace_note(options: Mapping[str, object]) -> str:
+    """What a trace's header says it shows, in one line ("" for a plain recorded run)."""
+    verdict = options.get("verdict") or options.get("literal_failure")
+    detail = options.get("detail")
+    problems = options.get("problems")
+    if not detail and isinstance(problems, list) and problems:
+        detail = str(problems[0])
+    gap = options.get("shows_gap")
+    parts = []
+    if gap:
+        parts.append(f"shows gap {gap} (the variant without its resolution)")
+    if verdict:
+        parts.append(f"verdict: {verdict}" + (f" — {detail}" if detail and detail != verdict else ""))
+    return "; ".join(parts)
+
+
+def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tuple[tuple[int, str], ...]:
+    """A livelock from ``apf-viz check``: the header gives the explorer step where the loop begins, and
+    the trace runs the loop twice; marks where it begins, repeats and ends, in engine steps (a
+    synchronous explorer step is three engine steps: Looks, Computes, Moves)."""
+    start = options.get("loop_starts_at_step")
+    if not isinstance(start, int) or isinstance(start, bool) or start < 0:
+        return ()
+    per = 1 if scheduler in ("async", "manual", "stale-first", "round-robin") else 3
+    items = steps // per
+    if items <= start:
+        return ()
+    twice = (items - start) // 2
+    first, again = start * per, (start + twice) * per
+    return ((first, "loop starts"), (again, "loop repeats"), (again + twice * per, "…for ever"))
 
 
 def describe_event(ev, stays: bool = False) -> str:

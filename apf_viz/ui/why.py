@@ -77,40 +77,62 @@ def why_markdown(view: SessionView) -> str:
 
 
 def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
-    radius = "6px" if shape == "disc" else "1px"
-    return (
-        f'<span style="display:inline-block;width:12px;height:12px;border-radius:{radius};'
-        f'background:rgb{tuple(color)}"></span>'
-    )
+    """A legend swatch drawn as the canvas draws the mark: a disc, a square, a ring or a line."""
+    outline = MARK_COLORS["outline"]
+    style = {
+        "disc": f"border-radius:50%;background:rgb{tuple(color)};border:1.5px solid rgb{outline}",
+        "square": f"border-radius:1px;background:rgb{tuple(color)}",
+        "ring": f"border-radius:50%;border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
+        "line": f"height:3px;margin-bottom:4px;background:rgb{tuple(color)}",
+    }[shape]
+    return f'<span style="display:inline-block;flex:none;width:13px;height:13px;{style}"></span>'
+
+
+UPSIDE_DOWN = (
+    "Robots agree only on left and right, so a pattern formed upside down (mirrored in y) counts as formed."
+)
 
 
 def legend_html(view: SessionView) -> str:
-    """Every mark the screen can show: the algorithm's lights and overlays, then the engine's marks."""
-    rows = [
-        f"{_swatch(style.color)} <b>{html.escape(light)}</b>"
-        + (f" — {symbol_html(style.meaning)}" if style.meaning else "")
+    """Every mark the screen can show, in two columns: the algorithm's lights (their meaning on hover)
+    and overlays, then the engine's marks, each swatch drawn as the canvas draws it."""
+    cells = [
+        (_swatch(style.color), f"<b>{html.escape(light)}</b>", style.meaning or "")
         for light, style in view.legend.items()
     ]
     for mark in view.overlays.marks:  # in the colours the scene draws them
         if isinstance(mark, Cells):
-            color = TARGET_COLORS[mark.style]
+            cells.append((_swatch(TARGET_COLORS[mark.style], "square"), symbol_html(mark.label), ""))
         else:
             color = (
                 getattr(mark, "color", None) or MARK_COLORS["frame" if isinstance(mark, Frame) else "line"]
             )
-        rows.append(f"{_swatch(color, 'square')} {symbol_html(mark.label)}")
+            cells.append((_swatch(color, "line"), symbol_html(mark.label), ""))
     c = MARK_COLORS
-    rows += [
-        f"{_swatch(PHASE_COLORS['looked'], 'square')} halo: has looked · "
-        f"{_swatch(PHASE_COLORS['computed'], 'square')} has computed",
-        "nose (many robots: grey diamond): the robot's own +y, down if flipped by the adversary",
-        f"{_swatch(c['pending'], 'square')} a computed move (many robots: a dot where it goes)",
-        f"{_swatch(c['ray'], 'square')} rays: what the selected robot sees · "
-        f"{_swatch(c['ghost'])} ghosts: where its snapshot saw them",
-        f"{_swatch(c['region'], 'square')} Why: the regions its last rule tested",
-        f"{_swatch(c['last'])} the robot that acted last · {_swatch(c['selected'])} the selected robot",
-        f"{_swatch(c['collision'])} where a collision happened",
-        f"{_swatch(c['axis'], 'square')} Edit robots: the symmetry axis of an unsolvable start",
+    cells += [
+        (_swatch(PHASE_COLORS["looked"], "ring"), "has looked", "holds a snapshot, has not computed"),
+        (_swatch(PHASE_COLORS["computed"], "ring"), "has computed", "its light is set, its move pending"),
+        (_swatch(c["last"], "ring"), "acted last", "the robot of the last event"),
+        (_swatch(c["selected"], "ring"), "selected", "click a robot to select it"),
+        ("<b>◆</b>", "its own +y", "the diamond: the robot's +y, down if the adversary flipped it"),
+        (_swatch(c["pending"], "line"), "pending move", "many robots: a dot where it goes"),
+        (_swatch(c["ray"], "line"), "rays: what it saw", "to its snapshot; idle: what it would see now"),
+        (
+            _swatch(c["ghost"], "ring"),
+            "ghost: seen there",
+            "a robot it saw, in the light it saw, since changed",
+        ),
+        (_swatch(c["region"], "square"), "Why: regions tested", "the regions its last rule tested"),
+        (_swatch(c["collision"]), "collision", "the cell and robots of a collision"),
+        (_swatch(c["never"], "ring"), "will never act", "stuck: no robot's next cycle changes anything"),
+        (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
     ]
-    body = "".join(f'<div style="margin:2px 0">{row}</div>' for row in rows)
-    return f'<div style="font-size:0.85em">{body}</div>'
+    body = "".join(
+        f'<div title="{html.escape(tip, quote=True)}" style="display:flex;align-items:center;gap:5px">'
+        f"{swatch}<span>{text}</span></div>"
+        for swatch, text, tip in cells
+    )
+    grid = f'<div style="display:grid;grid-template-columns:1fr 1fr;gap:2px 8px">{body}</div>'
+    return (
+        f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div></div>'
+    )
