@@ -62,6 +62,12 @@ def open_page(browser, app: App):
     return page
 
 
+def open_folder(page, title: str) -> None:
+    """Expand one of the folders that start collapsed (Algorithm, Edit, Files, Moves over events)."""
+    page.get_by_text(title, exact=True).first.click()
+    time.sleep(0.3)
+
+
 def event_value(page) -> int:
     return int(page.get_by_label("Event").input_value())
 
@@ -165,6 +171,7 @@ def test_manual_mode_a_click_on_a_robot_runs_its_next_phase(browser, app):
 
 def test_edit_pattern_clicks_change_the_target_count(browser, app):
     page = open_page(browser, app)
+    open_folder(page, "Edit")
     page.get_by_role("combobox", name="Mode").click()
     page.get_by_role("option", name="Edit pattern").click()
     wait_for(lambda: app.session.mode == "edit-pattern")
@@ -192,6 +199,7 @@ def test_a_malformed_upload_shows_a_notification_and_keeps_the_run(browser, app,
     bad = tmp_path / "broken.json"
     bad.write_text('{"points": [[0, 0], [0, 0]]}')
     with page.expect_file_chooser() as chooser:
+        open_folder(page, "Files")
         page.get_by_role("button", name="Upload pattern").click()
     chooser.value.set_files(str(bad))
     page.get_by_text("duplicate pattern point at (0, 0)").wait_for()
@@ -216,6 +224,7 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
     for _ in range(3):
         page.get_by_role("button", name="Step").click()
     wait_for(lambda: event_value(page) == app.session.view().event > 0)
+    open_folder(page, "Files")
     page.get_by_role("button", name="Save screenshot").click()
     link = page.locator("a[download$='.png']")
     link.wait_for()
@@ -240,6 +249,7 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
 def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     page = open_page(browser, app)
     started = time.perf_counter()
+    open_folder(page, "Files")
     page.get_by_role("button", name="Record GIF").click()
     page.get_by_role("button", name="Stop recording").wait_for()
     wait_for(lambda: app.panels._recorder is not None)
@@ -285,6 +295,7 @@ def test_the_moves_plot_reads_events_on_its_x_axis_not_dates(browser, app):
         app.session.step()
     app.request_render()
     page = open_page(browser, app)
+    open_folder(page, "Moves over events")
     plot = page.locator(".uplot .u-over").first
     plot.scroll_into_view_if_needed()
     plot.hover()  # the legend shows the values under the cursor
@@ -327,6 +338,7 @@ def test_switching_the_algorithm_to_the_literal_paper_and_back(browser, app):
     for _ in range(5):
         page.get_by_role("button", name="Step").click()
     wait_for(lambda: app.session.engine.step_index >= 5)
+    open_folder(page, "Algorithm")
     page.get_by_role("combobox", name="Algorithm").click()
     page.get_by_role("option", name="apf-opaque-grid-literal").click()
     wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid-literal")
@@ -406,4 +418,156 @@ def test_step_follows_a_loaded_trace_and_branch_here_leaves_it(browser, app):
     page.get_by_role("button", name="Branch here").click()
     wait_for(lambda: app.session.view().trace_position is None)
     page.get_by_role("button", name="Branch here").wait_for(state="hidden")
+    page.close()
+
+
+def _serve_args(*argv: str):
+    from apf_viz.cli import build_parser
+
+    return build_parser().parse_args(["serve", *argv])
+
+
+def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_collision(browser, tmp_path):
+    """The issue's recipe: `apf-viz check … --counterexample cex.jsonl`, then `apf-viz serve --trace`."""
+    from apf_viz.cli import main
+    from apf_viz.demos import demo_dir
+    from apf_viz.ui.app import session_from_args
+
+    cex = tmp_path / "cex.jsonl"
+    demos = demo_dir()
+    code = main(
+        [
+            "check",
+            "--robots",
+            str(demos / "starts" / "vertical-line-4.json"),
+            "--pattern",
+            str(demos / "tee-4.json"),
+            "--algorithm",
+            "apf-opaque-grid-literal",
+            "--counterexample",
+            str(cex),
+        ]
+    )
+    assert code == 1 and cex.is_file()
+    served = App(session_from_args(_serve_args("--trace", str(cex))), port=free_port(), verbose=False)
+    try:
+        page = open_page(browser, served)
+        page.get_by_text("Following the trace: event").wait_for()
+        step = page.get_by_role("button", name="Step")
+        for n in range(1, 42):
+            step.click()
+            wait_for(lambda n=n: served.session.engine.step_index == n)  # one event per click
+        page.get_by_role("heading", name="💥 COLLISION").wait_for()
+        last = page.locator("xpath=//*[text()='Last event']/following::input[1]")
+        wait_for(lambda: last.input_value() == "robot 3 · Move → (0, 1): COLLISION")
+        page.get_by_text("robot 3 moved onto robot 1 at (0, 1)").first.wait_for()
+        page.get_by_text("event 41 of 41 — its end").wait_for()
+        shot(page, "cex-collision")
+        for _ in range(11):
+            page.get_by_role("button", name="Back").click()
+        wait_for(lambda: served.session.engine.step_index == 30)
+        page.get_by_role("button", name="Branch here").click()
+        wait_for(lambda: served.session.view().trace_position is None)
+        step.click()  # now the ASYNC scheduler chooses
+        wait_for(lambda: served.session.engine.step_index == 31)
+        assert served.session.view().trace_position is None
+        page.close()
+    finally:
+        served.stop()
+
+
+def test_the_demo_played_to_formed_keeps_the_robots_on_the_target_cells(browser, app):
+    page = open_page(browser, app)
+    speed = page.locator("xpath=//*[text()='Speed']/following::input[2]")
+    speed.fill("500")
+    speed.press("Enter")
+    wait_for(lambda: app.session.speed == 500)
+    page.get_by_role("button", name="Play").click()
+    page.get_by_role("heading", name="✅ FORMED").wait_for(timeout=300_000)
+    v = app.session.view()
+    assert v.outcome == "formed"
+    assert {r.position for r in v.robots} == set(v.targets)  # the targets stayed where the pattern formed
+    drawn = np.asarray(app.renderer._handles["/targets"].points)[:, :2]
+    assert {app.renderer.to_scene(p) for p in v.targets} == {tuple(map(float, p)) for p in drawn}
+    shot(page, "formed")
+    page.close()
+
+
+def test_frame_run_after_reset_points_the_camera_at_the_run(browser, app):
+    page = open_page(browser, app)
+    client = next(iter(app.server.get_clients().values()))
+    framed = np.array(app.renderer.framed_pose[0])
+    box = page.locator("canvas").first.bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)  # clear of notifications
+    for _ in range(8):
+        page.mouse.wheel(0, 400)  # zoom far out
+        time.sleep(0.1)
+    wait_for(lambda: np.linalg.norm(np.array(client.camera.position) - framed) > 1.0)
+    page.get_by_role("button", name="Reset").click()
+    page.get_by_role("button", name="Frame run").click()
+    wait_for(lambda: np.linalg.norm(np.array(client.camera.position) - framed) < 0.05)
+    page.close()
+
+
+def test_a_hint_goes_only_to_the_page_that_caused_it(browser, app):
+    app.session.set_scheduler("Manual")
+    app.request_render()
+    page = open_page(browser, app)
+    projector = open_page(browser, app)
+    page.get_by_role("button", name="Step").click()  # Manual, nothing selected: a hint for this page
+    page.get_by_text("Manual: click a robot to run its next phase").wait_for()
+    time.sleep(1.0)
+    assert projector.get_by_text("Manual: click a robot to run its next phase").count() == 0
+    page.close()
+    projector.close()
+
+
+def test_click_select_shows_a_snapshot_without_advancing_in_manual(browser, app):
+    app.session.set_scheduler("Manual")
+    app.request_render()
+    page = open_page(browser, app)
+    r = 2
+    at = app.session.engine.current_points()[r]
+    page.mouse.click(*screen_of(app, page, at))
+    wait_for(lambda: app.session.engine.step_index == 1)  # advance (the default): robot 2 looks
+    page.get_by_role("button", name="select").click()
+    wait_for(lambda: not app.session.click_advances)
+    other = app.session.engine.current_points()[5]
+    page.mouse.click(*screen_of(app, page, other))
+    wait_for(lambda: app.session.selected == 5)
+    assert app.session.engine.step_index == 1  # selected, not advanced
+    page.get_by_text("Idle: rays show the").wait_for()
+    page.close()
+
+
+def test_the_demo_dropdown_loads_a_scenario_and_says_what_it_shows(browser, app):
+    page = open_page(browser, app)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="The literal paper collides").click()
+    page.get_by_text("Following the trace: event").wait_for()
+    page.get_by_text("Step follows the 41 events to the collision").wait_for()
+    wait_for(lambda: app.session.run.trace_events == 41)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="Unsolvable box").click()
+    page.get_by_text("Still editing").count()  # (no mode switch was asked for)
+    wait_for(lambda: app.session.mode == "edit-robots")
+    page.get_by_text("cannot be solved").first.wait_for()
+    shot(page, "demo-unsolvable")
+    page.close()
+
+
+def test_a_livelocks_loop_is_marked_on_the_timeline(browser, app, tmp_path):
+    import json
+
+    source = (Path(__file__).parent / "literal_traces" / "collision.jsonl").read_text().splitlines()
+    header = json.loads(source[0])
+    header["options"] = {"verdict": "livelock", "loop_starts_at_step": 20}  # as check writes one
+    trace = tmp_path / "loop.jsonl"
+    trace.write_text("\n".join([json.dumps(header), *source[1:]]) + "\n")
+    app.session.load_trace(trace.name, trace.read_bytes())
+    app.request_render()
+    page = open_page(browser, app)
+    page.get_by_text("loop starts").wait_for()
+    page.get_by_text("loop repeats").wait_for()
+    page.get_by_text("verdict: livelock").wait_for()
     page.close()

@@ -97,7 +97,12 @@ def legend_html(view: SessionView) -> str:
     """Every mark the screen can show, in two columns: the algorithm's lights (their meaning on hover)
     and overlays, then the engine's marks, each swatch drawn as the canvas draws it."""
     cells = [
-        (_swatch(style.color), f"<b>{html.escape(light)}</b>", style.meaning or "")
+        (
+            _swatch(style.color),
+            f"<b>{html.escape(light)}</b>"
+            + (f' <span style="color:#555">{symbol_html(style.meaning)}</span>' if style.meaning else ""),
+            style.meaning or "",
+        )
         for light, style in view.legend.items()
     ]
     for mark in view.overlays.marks:  # in the colours the scene draws them
@@ -128,11 +133,11 @@ def legend_html(view: SessionView) -> str:
         (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
     ]
     body = "".join(
-        f'<div title="{html.escape(tip, quote=True)}" style="display:flex;align-items:center;gap:5px">'
-        f"{swatch}<span>{text}</span></div>"
+        f'<div title="{html.escape(tip, quote=True)}" style="display:flex;align-items:center;gap:5px;min-width:0">'
+        f'{swatch}<span style="white-space:nowrap;overflow:hidden;text-overflow:ellipsis">{text}</span></div>'
         for swatch, text, tip in cells
     )
-    grid = f'<div style="display:grid;grid-template-columns:1fr 1fr;gap:2px 8px">{body}</div>'
+    grid = f'<div style="display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:2px 8px">{body}</div>'
     return (
         f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div></div>'
     )
