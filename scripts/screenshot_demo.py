@@ -1,7 +1,8 @@
-"""Regenerate the README's screenshot, static/demo-midrun.png: the built-in demo mid-run, with a robot
-selected that holds a stale snapshot (rays and ghosts shown).
+"""Regenerate the README's screenshot, static/demo-midrun.png: the built-in demo mid-lecture, with a
+robot selected that holds a stale snapshot (rays to where it saw the others, ghosts in the lights it
+saw, the differences listed), the last event and the legend.
 
-Run: python scripts/screenshot_demo.py [--out static/demo-midrun.png]
+Run: python scripts/screenshot_demo.py [--out static/demo-midrun.png] [--width 1400 --height 900]
 """
 
 from __future__ import annotations
@@ -13,26 +14,30 @@ from pathlib import Path
 from playwright.sync_api import sync_playwright
 
 from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.snapshot_diff import seen_robots
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", default="static/demo-midrun.png")
+    ap.add_argument("--width", type=int, default=1400)
+    ap.add_argument("--height", type=int, default=900)
     args = ap.parse_args()
     session = demo_session()
     engine = session.engine
     while sum(light == "done" for light in engine.state.lights) < 4 and session.step():
         pass
-    while True:  # stop where some robot holds a snapshot older than the configuration
-        st = engine.state
-        stale = [r for r in range(engine.k) if st.phase[r] != 0 and st.look_version[r] != st.version]
+    while True:  # stop where some robot holds a snapshot that another robot's move made stale
+        start = list(session.config.robots)
+        moved = [any(s.seen_at != s.now_at for s in seen_robots(engine, r, start)) for r in range(engine.k)]
+        stale = [r for r in range(engine.k) if moved[r]]
         if stale or not session.step():
             break
     session.selected = stale[0] if stale else 0
     app = App(session, port=free_port(), verbose=False)
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=["--no-sandbox"])
-        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        page = browser.new_page(viewport={"width": args.width, "height": args.height})
         page.goto(f"http://127.0.0.1:{app.port}")
         page.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(3)
