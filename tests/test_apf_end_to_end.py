@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import random
-from pathlib import Path
 
 import pytest
 
@@ -16,9 +15,10 @@ from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, 
 from apf_viz.algorithms.apf_opaque_grid.rules import RULE_IDS
 from apf_viz.core.engine import Engine
 from apf_viz.core.portrayal import explain
+from apf_viz.demos import demo_files
 
 SCHEDULERS = ["fsync", "ssync", "async", "stale-first", "round-robin"]
-DEMOS = sorted((Path(__file__).parent.parent / "demo_patterns").glob("*.json"))
+DEMOS = list(demo_files().values())  # the patterns (scenarios.json beside them is not one)
 
 
 def explanation_is_the_decision(engine: Engine, robot: int) -> None:

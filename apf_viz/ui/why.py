@@ -132,12 +132,15 @@ def legend_html(view: SessionView) -> str:
         (_swatch(c["never"], "ring"), "will never act", "stuck: no robot's next cycle changes anything"),
         (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
     ]
+    row = "display:flex;align-items:center;gap:5px;min-width:0"
+    clip = "white-space:nowrap;overflow:hidden;text-overflow:ellipsis"
     body = "".join(
-        f'<div title="{html.escape(tip, quote=True)}" style="display:flex;align-items:center;gap:5px;min-width:0">'
-        f'{swatch}<span style="white-space:nowrap;overflow:hidden;text-overflow:ellipsis">{text}</span></div>'
+        f'<div title="{html.escape(tip, quote=True)}" style="{row}">'
+        f'{swatch}<span style="{clip}">{text}</span></div>'
         for swatch, text, tip in cells
     )
-    grid = f'<div style="display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:2px 8px">{body}</div>'
+    columns = "display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:2px 8px"
+    grid = f'<div style="{columns}">{body}</div>'
     return (
         f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div></div>'
     )
