@@ -163,12 +163,12 @@ def test_the_legend_follows_the_overlays_as_they_appear():
     try:
         s = Session([(0, 0), (0, 2), (1, 0), (1, 2), (2, 5)], [(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)])
         s.set_scheduler("fsync")
-        panels = Panels(server, s, lambda: None, lambda *a: None)
+        panels = Panels(server, s, lambda: None)
         panels.refresh(s.view())
-        assert "> K</div>" not in panels.legend.content
+        assert ">K</span></div>" not in panels.legend.content
         while not any(isinstance(m, Line) and m.label == "K" for m in s.view().overlays.marks):
             assert s.step()
         panels.refresh(s.view())
-        assert "> K</div>" in panels.legend.content  # the swatch of K, in K's colour
+        assert ">K</span></div>" in panels.legend.content  # the swatch of K, in K's colour
     finally:
         server.stop()

@@ -146,8 +146,9 @@ def test_values_a_browser_sends_are_checked():
     session.seek(10**30)  # clamped to the history
     assert session.engine.step_index == session.engine.history.length
     session.set_mode("edit-robots")
-    message = session.click((10**13, 0))
-    assert "outside the grid" in message and (10**13, 0) not in session.editor.robots
+    with pytest.raises(InputError, match="outside the grid"):
+        session.click((10**13, 0))
+    assert (10**13, 0) not in session.editor.robots
 
 
 def test_the_command_line_loads_only_classes_and_factory_functions(write_json):
