@@ -57,7 +57,8 @@ def decisions_of_many_runs() -> frozenset[str]:
         for variant in VARIANTS:
             for scheduler in SCHEDULERS:
                 algorithm = get_algorithm(variant)
-                engine = Engine(start, pattern, algorithm, y_up=y_up, max_events=6_000)
+                # Every activation kept: "wait" rules fire only in cycles that change nothing.
+                engine = Engine(start, pattern, algorithm, y_up=y_up, max_events=6_000, skip_noops=False)
                 chooser = make_scheduler(scheduler)
                 while not engine.finished:
                     for event in engine.apply(chooser.choose(engine, step_rng(seed, engine.step_index))):

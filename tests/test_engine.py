@@ -148,7 +148,9 @@ def test_outcomes_formed_stuck_limit():
 
 def test_formed_up_to_translation_and_y_mirror():
     pattern = [(10, 10), (11, 10), (10, 11)]
-    assert Engine([(0, 0), (1, 0), (0, -2)], pattern, Stay()).outcome is None
+    assert Engine([(0, 0), (1, 0), (0, -2)], pattern, Stay(), skip_noops=False).outcome is None
+    # No robot can ever act (Stay): with no-ops skipped, that is known before any event.
+    assert (Engine([(0, 0), (1, 0), (0, -2)], pattern, Stay()).outcome, 0) == ("stuck", 0)
     e = Engine([(0, 0), (1, 0), (0, -1)], pattern, Stay())
     assert (e.outcome, e.state.events) == ("formed", 0)  # the start is the pattern, mirrored: formed at once
     e = Engine([(0, 0), (1, 0), (0, -1)], pattern, CompactLeft())
@@ -208,7 +210,7 @@ def test_a_repeated_view_is_not_recomputed():
             Counting.calls += 1
             return super().decide(view, pattern)
 
-    e = Engine([(0, 0), (5, 5)], [(0, 0), (1, 0)], Counting(), max_events=1_000)
+    e = Engine([(0, 0), (5, 5)], [(0, 0), (1, 0)], Counting(), max_events=1_000, skip_noops=False)
     for _ in range(30):
         e.step([0])  # robot 0 alone, nothing changes: one decision, then cache hits
         if e.finished:
@@ -251,7 +253,10 @@ def test_seeking_far_back_through_thinned_checkpoints_restores_the_exact_state()
     start, pattern = random_solvable_start(18, rng), random_pattern(18, rng)
 
     def engine(every: int = 64) -> Engine:
-        return Engine(start, pattern, get_algorithm("apf-opaque-grid"), checkpoint_every=every)
+        # Every activation kept: the history must be long (thousands of checkpoints to thin).
+        return Engine(
+            start, pattern, get_algorithm("apf-opaque-grid"), checkpoint_every=every, skip_noops=False
+        )
 
     e = engine(every=8)
     advance(e, make_scheduler("async"), 3)

@@ -53,7 +53,7 @@ def test_same_seed_same_run_other_seed_other_run(name):
 
 
 def test_fsync_rounds_are_all_look_then_all_compute_then_all_move():
-    e = Engine(START, PATTERN, CompactLeft(), max_events=20_000)
+    e = Engine(START, PATTERN, CompactLeft(), max_events=20_000, skip_noops=False)
     advance(e, make_scheduler("fsync"), 1, steps=9)
     for i, s in enumerate(e.history.steps):
         assert s.record.robots == tuple(range(e.k))

@@ -85,6 +85,9 @@ class EngineState:
     # Bumped on every move or light change: a cached view older than this may be out of date.
     version: int = 0
     starve_deadline: int = 0  # schedulers' cache: no robot is starved before this step
+    # Robot·steps passed over: at each step, the robots whose next cycle could change nothing (0 when
+    # every activation is kept).
+    skipped: int = 0
 
     def copy(self) -> EngineState:
         return EngineState(
@@ -108,6 +111,7 @@ class EngineState:
             lights_used=set(self.lights_used),
             version=self.version,
             starve_deadline=self.starve_deadline,
+            skipped=self.skipped,
         )
 
 
@@ -126,7 +130,10 @@ class Engine:
         light_semantics: ``"compute"`` (a new light is visible from the end of Compute) or
             ``"lc-atomic"`` (Look and Compute are one atomic event).
         max_events: the run ends with outcome ``limit`` after this many events (None: no limit).
+        max_moves: the same for moves (None: no limit).
         checkpoint_every: steps between state checkpoints used by :meth:`seek`.
+        skip_noops: schedulers choose only among robots whose next event can change something
+            (:meth:`eligible`); False keeps every no-op cycle (``--all-activations``).
     """
 
     def __init__(
@@ -138,7 +145,9 @@ class Engine:
         y_up: Sequence[bool] | None = None,
         light_semantics: LightSemantics = "compute",
         max_events: int | None = None,
+        max_moves: int | None = None,
         checkpoint_every: int = 64,
+        skip_noops: bool = True,
     ) -> None:
         k = len(robots)
         if k == 0:
@@ -157,7 +166,9 @@ class Engine:
             raise EngineError(f"y_up has {len(self.y_up)} entries for {k} robots")
         self.light_semantics: LightSemantics = light_semantics
         self.max_events = max_events
+        self.max_moves = max_moves
         self.checkpoint_every = checkpoint_every
+        self.skip_noops = skip_noops
         self._decisions: dict[Snapshot, Decision] = {}
         self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
@@ -169,6 +180,11 @@ class Engine:
         self._probe_hint = 0
         self._busy: tuple[int, int, int] = (-1, -1, -1)  # (robot, version, its last act) found active
         self._held: list[tuple[Snapshot, Decision] | None] = [None] * k  # each robot's last decision
+        self._all = np.ones(k, dtype=bool)
+        self._eligible = np.ones(k, dtype=bool)  # valid but for the robots in _dirty and _views.changed
+        self._dirty: set[int] = set(range(k))
+        if skip_noops and self.state.outcome is None and not self.eligible().any():
+            self._update_outcome()  # a start on which no robot can ever act: stuck (or formed) at once
 
     # ------------------------------------------------------------------ read-only views
     @property
@@ -233,6 +249,29 @@ class Engine:
         self._held[r] = (view, decision)
         return decision
 
+    def eligible(self) -> np.ndarray:
+        """Which robots' next event can change anything, shape (k,) bool (do not mutate): a robot that
+        has Looked or Computed, or an idle robot whose current view (with its own light) the algorithm
+        answers with anything but "same light, stay". An idle robot outside it would run a whole cycle
+        that changes nothing, and so would every later activation until its view changes; leaving it out
+        is a legal ASYNC delay (docs/ALGORITHM.md, "Skipping what cannot change anything"). Only robots
+        that acted or whose view changed since the last call are decided anew. All robots when
+        ``skip_noops`` is off."""
+        if not self.skip_noops:
+            return self._all
+        views = self._views
+        dirty = self._dirty
+        if views.changed:
+            dirty |= views.changed
+            views.changed = set()
+        if dirty:
+            st = self.state
+            phase, lights, eligible = st.phase, st.lights, self._eligible
+            for r in dirty:
+                eligible[r] = phase[r] != _IDLE or not self._decide(r, self.look(r)).is_noop(lights[r])
+            self._dirty = set()
+        return self._eligible
+
     # ------------------------------------------------------------------ stepping
     def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:
         """Activate these robots simultaneously; each runs its next phase. Returns the events."""
@@ -261,6 +300,8 @@ class Engine:
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
         robots, round = record
+        if self.skip_noops:
+            st.skipped += self.k - int(np.count_nonzero(self.eligible()))
         phase = st.phase[robots[0]]
         version = st.version
         if len(robots) == 1:  # ASYNC: one robot, one phase (two under lc-atomic)
@@ -284,6 +325,7 @@ class Engine:
             else:
                 events = self._move(robots, round)
             st.last_act[list(robots)] = st.steps + 1
+        self._dirty.update(robots)
         st.steps += 1
         st.events += len(events)
         if round is not None:
@@ -429,7 +471,9 @@ class Engine:
             return
         if changed and self._quiescent():
             st.outcome = "formed" if matches_pattern(self.current_points(), self.pattern) else "stuck"
-        elif self.max_events is not None and st.events >= self.max_events:
+        elif (self.max_events is not None and st.events >= self.max_events) or (
+            self.max_moves is not None and st.moves >= self.max_moves
+        ):
             st.outcome = "limit"
 
     def _quiescent(self) -> bool:
@@ -481,6 +525,7 @@ class Engine:
         self._probe = [(-1, False)] * self.k
         self._busy = (-1, -1, -1)
         self._snaps = [None] * self.k
+        self._dirty = set(range(self.k))
         for i in range(base, step):
             self._apply(self.history.steps.record(i))
 

@@ -87,7 +87,9 @@ def trace_header(
 
 
 def engine_for_trace(header: TraceHeader, algorithm: Algorithm, max_events: int | None = None) -> Engine:
-    """A fresh engine with the trace's start, pattern, flips and light semantics."""
+    """A fresh engine with the trace's start, pattern, flips and light semantics. It keeps every
+    activation: a replay applies recorded steps, and a trace may hold no-op cycles (one written with
+    ``--all-activations``, or before skipping existed) that a skipping engine would refuse to run."""
     return Engine(
         [tuple(p) for p in header.robots],
         [tuple(p) for p in header.pattern],
@@ -95,6 +97,7 @@ def engine_for_trace(header: TraceHeader, algorithm: Algorithm, max_events: int 
         y_up=header.y_up,
         light_semantics=header.light_semantics,
         max_events=max_events,
+        skip_noops=False,
     )
 
 

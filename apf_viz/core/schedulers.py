@@ -6,6 +6,11 @@ makes the same choices (pick a robot by hand, or change the seed, to branch).
 
 Every scheduler is fair with an explicit bound: a robot that has not had an event for ``starve_bound``
 steps (default ``4·k``, at least 16) is served before anyone else.
+
+Schedulers choose among the robots whose next event can change something (``Engine.eligible``): an
+idle robot whose view the algorithm answers with "same light, stay" is passed over until its view
+changes (a legal ASYNC delay: its cycle would change nothing). With ``--all-activations`` every robot is
+eligible, and the choices are exactly those of a scheduler that never skips.
 """
 
 from __future__ import annotations
@@ -38,8 +43,18 @@ def starve_bound(engine: Engine) -> int:
     return max(16, 4 * engine.k)
 
 
-def _most_starved(engine: Engine) -> int | None:
-    """The robot waiting longest, if it has waited past the fairness bound.
+_NEVER = np.iinfo(np.int64).max
+
+
+def candidates(engine: Engine) -> np.ndarray:
+    """The robots a scheduler may choose (whose next event can change something), as a bool mask; all of
+    them if none can (the run is then over, and nobody asks)."""
+    mask = engine.eligible()
+    return mask if mask.any() else np.ones(engine.k, dtype=bool)
+
+
+def _most_starved(engine: Engine, mask: np.ndarray) -> int | None:
+    """The eligible robot waiting longest, if it has waited past the fairness bound.
 
     ``last_act`` only grows, so nobody can be starved before min(last_act) + bound: that deadline is
     kept on the state (a stale, earlier value after a seek only costs one more scan)."""
@@ -47,19 +62,23 @@ def _most_starved(engine: Engine) -> int | None:
     if st.steps < st.starve_deadline:
         return None
     bound = starve_bound(engine)
-    r = int(np.argmin(st.last_act))  # ties: the lowest index
-    st.starve_deadline = int(st.last_act[r]) + bound
-    return r if st.steps - st.last_act[r] >= bound else None
+    st.starve_deadline = int(st.last_act.min()) + bound
+    r = int(np.argmin(np.where(mask, st.last_act, _NEVER)))  # ties: the lowest index
+    return r if mask[r] and st.steps - st.last_act[r] >= bound else None
 
 
 class AsyncScheduler:
-    """ASYNC: one Look, Compute or Move of a uniformly random robot per step."""
+    """ASYNC: one Look, Compute or Move of a uniformly random eligible robot per step."""
 
     name = "async"
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
-        r = _most_starved(engine)
-        return _new(StepRecord, ((rng.randrange(engine.k) if r is None else r,), None))
+        mask = candidates(engine)
+        r = _most_starved(engine, mask)
+        if r is None:  # with every robot eligible, the same draw as a scheduler that never skips
+            pool = np.flatnonzero(mask)
+            r = int(pool[rng.randrange(pool.size)])
+        return _new(StepRecord, ((r,), None))
 
 
 class RoundRobinScheduler:
@@ -72,7 +91,8 @@ class RoundRobinScheduler:
         busy = np.flatnonzero(st.phase)
         if busy.size:
             return StepRecord((int(busy[0]),))
-        return StepRecord((int(np.argmin(st.last_cycle_end)),))
+        mask = candidates(engine)
+        return StepRecord((int(np.argmin(np.where(mask, st.last_cycle_end, _NEVER))),))
 
 
 class StaleFirstScheduler:
@@ -84,10 +104,11 @@ class StaleFirstScheduler:
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
-        starved = _most_starved(engine)
+        mask = candidates(engine)
+        starved = _most_starved(engine, mask)
         if starved is not None:
             return StepRecord((starved,))
-        early = np.flatnonzero(st.phase != int(Phase.COMPUTED))
+        early = np.flatnonzero((st.phase != int(Phase.COMPUTED)) & mask)
         if early.size:
             return StepRecord((int(early[rng.randrange(early.size)]),))
         return StepRecord((int(np.argmin(st.look_step)),))
@@ -117,7 +138,7 @@ class FsyncScheduler(_RoundScheduler):
     name = "fsync"
 
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
-        return tuple(range(engine.k))
+        return tuple(np.flatnonzero(candidates(engine)).tolist())
 
 
 class SsyncScheduler(_RoundScheduler):
@@ -129,9 +150,10 @@ class SsyncScheduler(_RoundScheduler):
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
         st = engine.state
         bound = starve_bound(engine)
-        chosen = {r for r in range(engine.k) if rng.random() < 0.5 or st.steps - st.last_act[r] >= bound}
+        pool = np.flatnonzero(candidates(engine)).tolist()
+        chosen = {r for r in pool if rng.random() < 0.5 or st.steps - st.last_act[r] >= bound}
         if not chosen:
-            chosen = {rng.randrange(engine.k)}
+            chosen = {pool[rng.randrange(len(pool))]}
         return tuple(sorted(chosen))
 
 

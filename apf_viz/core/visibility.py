@@ -50,6 +50,8 @@ class Views:
         self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
         self._cached: list[tuple[tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
+        # Robots whose view changed since the engine last drained this set (it re-decides only them).
+        self.changed: set[int] = set()
 
     # ------------------------------------------------------------------ reading
     def view(self, r: int) -> tuple[tuple[Seen, ...], tuple[int, ...]]:
@@ -184,6 +186,7 @@ class Views:
                 del ids[bisect_left(ids, m)]
             if seen_before or seen_after:
                 self._cached[r] = None
+                self.changed.add(r)
 
     def relit(self, m: int) -> None:
         """Robot m's light changed (the engine's ``lights`` list already holds the new one)."""
@@ -200,6 +203,7 @@ class Views:
             i = bisect_left(entries, (lx, ly))
             entries[i] = Seen(lx, ly, light)
             self._cached[r] = None
+            self.changed.add(r)
 
     def _forget(self, m: int) -> None:
         """A robot that moved sees everything shifted: its view is rebuilt on its next Look."""
@@ -207,6 +211,7 @@ class Views:
             self._built.discard(m)
             self._near[m] = None
             self._cached[m] = None
+            self.changed.add(m)
 
     def _drop(self, r: int, j: int, gx: int, gy: int) -> None:
         entries = self._entries[r]
@@ -214,11 +219,13 @@ class Views:
         ids = self._ids[r]
         del ids[bisect_left(ids, j)]
         self._cached[r] = None
+        self.changed.add(r)
 
     def _add(self, r: int, j: int, gx: int, gy: int) -> None:
         insort(self._entries[r], Seen(gx, gy * self._flip[r], self._lights[j]))
         insort(self._ids[r], j)
         self._cached[r] = None
+        self.changed.add(r)
 
     def _walk(
         self,
