@@ -39,6 +39,10 @@ class Scenario(BaseModel):
     robots: str | None = None  # demo_patterns/starts/<robots>.json
     pattern: str | None = None  # demo_patterns/<pattern>.json
     trace: str | None = None  # demo_patterns/traces/<trace>.jsonl
+    algorithm: str = "apf-opaque-grid"  # for a start and pattern (a trace names its own)
+    # Rule ids its run fires under the visualiser's default adversary (ASYNC, seed 1): what its text
+    # promises, checked by tests/test_session.py.
+    fires: tuple[str, ...] = ()
 
     @model_validator(mode="after")
     def _one_source(self) -> Scenario:

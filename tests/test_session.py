@@ -424,6 +424,42 @@ def test_every_demo_scenario_loads_and_says_what_it_shows():
         demo_session().load_scenario("../../etc/passwd")
 
 
+def test_each_scenario_run_shows_what_its_text_promises():
+    from apf_viz.demos import scenarios
+
+    for name, scenario in scenarios().items():
+        if not scenario.fires:
+            continue
+        s = demo_session()  # the visualiser's default adversary: ASYNC, seed 1
+        s.load_scenario(name)
+        while s.step():
+            pass
+        fired = {ev.rule_id for ev in s.engine.history.events() if ev.phase == "compute"}
+        assert s.engine.outcome == "formed" and set(scenario.fires) <= fired, (
+            name,
+            set(scenario.fires) - fired,
+        )
+
+
+def test_a_scenario_runs_its_own_algorithm_and_an_unsolvable_one_starts_afresh_in_edit_robots():
+    s = demo_session()
+    s.load_scenario("The literal paper deadlocks")
+    while s.step():
+        pass
+    assert s.view().outcome == "stuck" and s.algorithm_name == "apf-opaque-grid-literal"
+    s.load_scenario("Heart from 10 robots")
+    assert s.algorithm_name == "apf-opaque-grid" and s.view().scenario_note.startswith("the paper end to end")
+    s.load_scenario("The literal paper deadlocks")
+    while s.step():
+        pass
+    s.load_scenario("Unsolvable box")
+    v = s.view()
+    assert v.mode == "edit-robots" and v.event == 0 and v.outcome is None and v.trace_position is None
+    assert v.never_act == () and v.scenario_note.startswith("Theorem 1")
+    s.editor.robots[0] = (0, 1)  # move one robot onto the axis: solvable
+    assert s.set_mode("run") is None and s.view().scenario_note == ""  # the text no longer applies
+
+
 def test_the_literal_collision_scenario_ends_located_after_41_events():
     s = demo_session()
     s.load_scenario("The literal paper collides")
@@ -444,6 +480,10 @@ def test_a_deadlock_rings_every_robot_that_will_never_act():
         pass
     v = s.view()
     assert v.outcome == "stuck" and v.never_act == tuple(range(s.engine.k))
+    from apf_viz.ui.why import why_markdown
+
+    s.selected = 0
+    assert "If it looked now:" in why_markdown(s.view()) and "would change nothing" in why_markdown(s.view())
 
 
 def test_a_livelock_from_check_marks_its_loop_on_the_timeline():

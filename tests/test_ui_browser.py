@@ -505,7 +505,10 @@ def test_frame_run_after_reset_points_the_camera_at_the_run(browser, app):
     wait_for(lambda: np.linalg.norm(np.array(client.camera.position) - framed) > 1.0)
     page.get_by_role("button", name="Reset").click()
     page.get_by_role("button", name="Frame run").click()
-    wait_for(lambda: np.linalg.norm(np.array(client.camera.position) - framed) < 0.05)
+    fitted = np.array(app.renderer.camera_pose(client.camera.aspect)[0])  # fitted to this canvas
+    wait_for(lambda: np.linalg.norm(np.array(client.camera.position) - fitted) < 0.05)
+    x0, y0, x1, y1 = app.renderer.bounds
+    assert abs(fitted[0] - (x0 + x1) / 2) < 1e-6  # centred on the run
     page.close()
 
 
@@ -530,8 +533,10 @@ def test_click_select_shows_a_snapshot_without_advancing_in_manual(browser, app)
     at = app.session.engine.current_points()[r]
     page.mouse.click(*screen_of(app, page, at))
     wait_for(lambda: app.session.engine.step_index == 1)  # advance (the default): robot 2 looks
-    page.get_by_role("button", name="select").click()
+    page.get_by_role("combobox", name="Click").click()
+    page.get_by_role("option", name="select").click()
     wait_for(lambda: not app.session.click_advances)
+    page.get_by_text("Manual, Click: select").wait_for()
     other = app.session.engine.current_points()[5]
     page.mouse.click(*screen_of(app, page, other))
     wait_for(lambda: app.session.selected == 5)
@@ -549,8 +554,8 @@ def test_the_demo_dropdown_loads_a_scenario_and_says_what_it_shows(browser, app)
     wait_for(lambda: app.session.run.trace_events == 41)
     page.get_by_role("combobox", name="Demo").click()
     page.get_by_role("option", name="Unsolvable box").click()
-    page.get_by_text("Still editing").count()  # (no mode switch was asked for)
     wait_for(lambda: app.session.mode == "edit-robots")
+    assert page.get_by_text("Following the trace").count() == 0  # nothing of the previous run is left
     page.get_by_text("cannot be solved").first.wait_for()
     shot(page, "demo-unsolvable")
     page.close()

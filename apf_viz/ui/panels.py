@@ -107,8 +107,14 @@ class Panels:
             self.scheduler.on_update(self._on_scheduler)
             self.seed = gui.add_number("Seed", initial_value=session.seed, step=1)
             self.seed.on_update(self._on_seed)
-            self.click = gui.add_button_group("Click", ("advance", "select"), visible=False)
-            self.click.on_click(self._on_click_mode)
+            self.click = gui.add_dropdown(
+                "Click",
+                ("advance", "select"),
+                initial_value="advance",
+                visible=False,
+                hint="Manual: a click on a robot runs its next phase (advance) or only selects it (select)",
+            )
+            self.click.on_update(self._on_click_mode)
             self.next_phase = gui.add_markdown("")
         with gui.add_folder("Selected robot"):
             self.caption = gui.add_markdown("")
@@ -257,7 +263,7 @@ class Panels:
 
     def _on_click_mode(self, event) -> None:
         if event.client is not None:
-            self.session.set_click_advances(event.target.value == "advance")
+            self.session.set_click_advances(self.click.value == "advance")
             self.changed()
 
     def _on_demo(self, event) -> None:
@@ -266,8 +272,7 @@ class Panels:
             return
 
         def load(e) -> None:
-            shows = self.session.load_scenario(self.demo.value)
-            self.demo_note.content = f"<small>{symbol_html(shows)}</small>"
+            self.session.load_scenario(self.demo.value)
 
         self._guard(load)(event)
 
@@ -315,8 +320,15 @@ class Panels:
         last = view.last_events[0] if view.last_events else ""
         if self.last_event.value != last:
             self.last_event.value = last
-            self.log.content = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])
+            latest = f"<small><b>{view.last_events[0]}</b></small>" if view.last_events else ""
+            self.log.content = "  \n".join([latest, *(f"<small>{e}</small>" for e in view.last_events[1:6])])
+        note = f"<small>{symbol_html(view.scenario_note)}</small>" if view.scenario_note else ""
+        if self.demo_note.content != note:
+            self.demo_note.content = note
+        if not view.scenario_note and self.demo.value != "—":
+            self.demo.value = "—"  # another run replaced the scenario
         self.stats.content = (
+            f"Algorithm **{view.algorithm}**  \n"
             f"Moves **{view.moves}** · cycles **{view.cycles}** · step {view.steps}/{view.history_length}  \n"
             f"Stage: **{view.stage}** · moves/(k·D) = {view.moves_per_kD:.3f}  \n"
             f"Lights in use: {', '.join(view.lights_in_use)}"
@@ -337,8 +349,8 @@ class Panels:
         if self.restore.visible != aside:
             self.restore.visible = aside
         self.aside.content = (
-            f"Branched at step {view.set_aside[0]}: the {view.set_aside[1]} recorded steps after it are "
-            "set aside"
+            f"Set aside: the branch you left, {view.set_aside[1]} recorded step(s) after step "
+            f"{view.set_aside[0]}."
             if view.set_aside
             else ""
         )
@@ -348,6 +360,9 @@ class Panels:
         manual = s.scheduler_name == "manual"
         if self.click.visible != manual:
             self.click.visible = manual
+        click = "advance" if view.click_advances else "select"
+        if self.click.value != click:
+            self.click.value = click
         if self.numbers.value != view.numbers:
             self.numbers.value = view.numbers
         self.caption.content = view.caption
@@ -446,4 +461,9 @@ class Panels:
             f"{phase}: {', '.join(map(str, rs[:20]))}{'…' if len(rs) > 20 else ''}"
             for phase, rs in sorted(counts.items())
         ]
-        return "Manual — click a robot to run its next phase.  \n" + "  \n".join(parts)
+        head = (
+            "Manual — click a robot to run its next phase."
+            if view.click_advances
+            else "Manual, Click: select — a click only selects; Step runs the selected robot's next phase."
+        )
+        return head + "  \n" + "  \n".join(parts)

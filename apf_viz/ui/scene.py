@@ -88,13 +88,16 @@ MARK_COLORS: dict[str, tuple[int, int, int]] = {
     "pending": (230, 40, 40),
     "axis": (255, 0, 0),
     "collision": (230, 0, 0),
-    "last": (40, 40, 40),
-    "selected": (40, 120, 255),
+    "last": (140, 90, 40),  # brown and black: no light of the paper's legend is either
+    "selected": (0, 0, 0),
     "region": (40, 120, 255),
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),
 }
 REGION_OPACITY = 0.13
+# The canvas a new browser is framed for before it reports its own: 1024×768 with the panel docked
+# (about 640×768). A wider canvas then shows a margin; a narrower guess would cut a 1024 projector's view.
+NARROW_ASPECT = 0.83
 LABEL_SCALE = 1.1
 
 
@@ -252,8 +255,8 @@ class SceneRenderer:
         self._points("/robots/y_axes", nose, (40, 40, 40), 0.16, "diamond")
 
     def _rings(self, view: SessionView, pts: np.ndarray) -> None:
-        """Rings under the robots, widest at the bottom: selected (blue), will never act (dark red, a
-        deadlock), acted last (dark), and the phase (yellow: looked, orange: computed; none when idle)."""
+        """Rings under the robots, widest at the bottom: selected (black), will never act (dark red, a
+        deadlock), acted last (brown), and the phase (yellow: looked, orange: computed; none when idle)."""
         phases = np.array([r.phase for r in view.robots])
         for phase in ("looked", "computed"):
             at = pts[phases == phase] if len(phases) else pts[:0]
@@ -530,12 +533,16 @@ class SceneRenderer:
         return (x0 + 0.2, y, 0.1)
 
     # ------------------------------------------------------------------ camera
-    def camera_pose(self) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
-        """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between)."""
+    def camera_pose(
+        self, aspect: float = NARROW_ASPECT
+    ) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
+        """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between), for
+        a canvas ``aspect`` = width / height (the field of view is vertical, so a narrow canvas needs the
+        camera higher to fit the run's width)."""
         x0, y0, x1, y1 = self.bounds
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
-        extent = max(x1 - x0, y1 - y0, 6) + 4
         fov = float(np.deg2rad(50))
+        extent = max(y1 - y0 + 4, (x1 - x0 + 4) / max(aspect, 0.2), 10)
         h = extent / (2 * np.tan(fov / 2))
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
@@ -549,8 +556,15 @@ class SceneRenderer:
         initial.look_at = look_at
 
     def frame_camera(self, camera) -> None:
-        """Move a connected browser's camera to the whole run (position first: it drags look_at along)."""
-        position, look_at, fov = self.camera_pose()
+        """Move a connected browser's camera to the whole run (position first: it drags look_at along),
+        fitted to that browser's canvas."""
+        try:
+            aspect = float(camera.aspect)
+        except (AssertionError, AttributeError, TypeError, ValueError):
+            aspect = NARROW_ASPECT
+        position, look_at, fov = self.camera_pose(
+            aspect if aspect == aspect and aspect > 0 else NARROW_ASPECT
+        )
         try:
             camera.fov = fov
             camera.position = position

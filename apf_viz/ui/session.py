@@ -14,12 +14,12 @@ import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import repeat
-from pathlib import Path
 from typing import Literal, NamedTuple
 
 import numpy as np
 
 from apf_viz.algorithms import Factory
+from apf_viz.core.algorithm import Decision
 from apf_viz.core.engine import NEXT_EVENT, Phase
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
@@ -93,6 +93,7 @@ class WhyView:
     regions: tuple[Mark, ...]
     holds_snapshot: bool  # it has looked again since (its next Compute will decide anew)
     changed: tuple[str, ...] = ()  # robots it saw that have since moved or changed light
+    now: Decision | None = None  # what it would decide if it looked now
 
 
 @dataclass(frozen=True)
@@ -128,6 +129,8 @@ class SessionView:
     trace_position: tuple[int, int] | None = None  # (event, events in the trace) while following one
     collision: tuple[str, tuple[Point, ...]] | None = None  # what collided, in words, and the cells
     never_act: tuple[int, ...] = ()  # stuck: robots whose every future cycle changes nothing
+    scenario_note: str = ""  # what the Demo scenario shown shows
+    algorithm: str = ""  # the run's algorithm (by name)
     set_aside: tuple[int, int] | None = None  # a branch dropped recorded steps: (at step, how many)
     following_what: str = "the trace"  # what Step follows while trace_position is set
     click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
@@ -172,6 +175,7 @@ class Session:
         self.selected: int | None = None
         self.numbers: bool | None = None  # robot numbers on the canvas; None: on up to NUMBERS_UP_TO robots
         self.click_advances = True  # Manual: a click runs the robot's next phase; False: it only selects
+        self.scenario_note = ""  # what the Demo scenario being shown shows, until another run starts
 
     # ------------------------------------------------------------------ the run, read-only
     @property
@@ -221,6 +225,7 @@ class Session:
         self.editor = Editor(config.robots, config.y_up, config.pattern)
         self.selected = None
         self.mode = "run"
+        self.scenario_note = ""  # what a Demo scenario shows no longer applies
 
     def reset(self) -> None:
         """Back to the start of the current run (same start, pattern, flips, algorithm)."""
@@ -424,7 +429,8 @@ class Session:
             return f"{filename}: {problem}"
 
     def load_scenario(self, name: str) -> str:
-        """A ready scenario by its name in the Demo list (never a path). Returns what it shows."""
+        """A ready scenario by its name in the Demo list (never a path): its own algorithm, start and
+        pattern (or trace) replace the run. Returns what it shows."""
         scenario = scenarios().get(name)
         if scenario is None:
             raise InputError(f"no demo called {name[:80]!r}")
@@ -432,24 +438,23 @@ class Session:
         if "trace" in files:
             path = files["trace"]
             self.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)  # our own file
+            self.scenario_note = scenario.shows
             return scenario.shows
         pattern = loader.pattern_upload(files["pattern"].name, files["pattern"].read_bytes())
+        robots = loader.robots_upload(files["robots"].name, files["robots"].read_bytes())
         with self.lock:
-            note = self._load_start_with(files["robots"], tuple(tuple(p) for p in pattern.points))
-        return scenario.shows + (f"  \n{note}" if note else "")
-
-    def _load_start_with(self, robots: Path, pattern: tuple[Point, ...]) -> str | None:
-        parsed = loader.robots_upload(robots.name, robots.read_bytes())
-        points = tuple(tuple(p) for p in parsed.robots)
-        y_up = tuple(parsed.flips(self.seed))
-        self.editor = Editor(points, y_up, pattern)
-        problem = self.editor.problem()
-        if problem is None:
-            self._start(self.config.but(robots=points, y_up=y_up, pattern=pattern))
-            return None
-        self.run.pause()
-        self.mode = "edit-robots"
-        return problem
+            points = tuple(tuple(p) for p in robots.robots)
+            y_up = tuple(robots.flips(self.seed))
+            targets = tuple(tuple(p) for p in pattern.points)
+            # A new run even on an unsolvable start, so that nothing of the previous run (a trace being
+            # followed, an outcome) shows while its robots are edited; it is never stepped in Edit robots.
+            config = self.config.but(robots=points, y_up=y_up, pattern=targets, algorithm=scenario.algorithm)
+            self._start(config)
+            problem = self.editor.problem()
+            if problem:
+                self.mode = "edit-robots"
+            self.scenario_note = scenario.shows
+        return scenario.shows + (f"  \n{problem}" if problem else "")
 
     def load_trace(self, filename: str, content: bytes, limit: int = loader.MAX_TRACE_UPLOAD_BYTES) -> None:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
@@ -465,6 +470,7 @@ class Session:
         )
         with self.lock:
             self.run.adopt(config, loaded.engine, loaded.events, h.options)
+            self.scenario_note = ""
             self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self.selected = None
@@ -550,8 +556,10 @@ class Session:
             trace_position=self.run.trace_position,
             last_actor=self._last_actor(),
             numbers=self.numbers if self.numbers is not None else len(robots) <= NUMBERS_UP_TO,
-            collision=self._collision(pts) if st.outcome == "collision" else None,
-            never_act=tuple(range(e.k)) if st.outcome == "stuck" else (),
+            collision=self._collision(pts) if st.outcome == "collision" and self.mode == "run" else None,
+            never_act=tuple(range(e.k)) if st.outcome == "stuck" and self.mode == "run" else (),
+            scenario_note=self.scenario_note,
+            algorithm=self.algorithm_name,
             set_aside=(self.run.set_aside[0], len(self.run.set_aside[1])) if self.run.set_aside else None,
             following_what=self.run.following_what,
             click_advances=self.click_advances,
@@ -640,8 +648,9 @@ class Session:
             dx, dy = move_to_global(explained.decision.move, up).delta  # it has moved since that Look
             x, y = x - dx, y - dy
         regions = tuple(_to_global(m, (x, y), up) for m in explained.regions)
+        now = self.engine.decide(self.engine.look(r))  # what it would decide on the present view
         return WhyView(
-            r, explained, (x, y), regions, holds, self._changed_since(view, (x, y), up, pts, st.lights)
+            r, explained, (x, y), regions, holds, self._changed_since(view, (x, y), up, pts, st.lights), now
         )
 
     @staticmethod
@@ -729,6 +738,7 @@ def trace_note(options: Mapping[str, object]) -> str:
     if gap:
         parts.append(f"shows gap {gap} (the variant without its resolution)")
     if verdict:
+        detail = str(detail or "").removeprefix(f"{verdict}: ")
         parts.append(f"verdict: {verdict}" + (f" — {detail}" if detail and detail != verdict else ""))
     return "; ".join(parts)
 

@@ -69,10 +69,22 @@ def why_markdown(view: SessionView) -> str:
             '<table style="font-size:0.9em"><tr><th>tested</th><th>value</th><th>meaning</th></tr>'
             f"{rows}</table>"
         )
-    else:
+    elif not d.rule_id:
         lines.append("_This algorithm does not explain its decisions._")
+    else:
+        lines.append("_No predicates are listed for this rule._")
     if why.regions:
         lines.append("Regions it looked at are shaded blue on the grid, in its own frame.")
+    if why.now is not None:
+        n = why.now
+        now_move = n.move.value if n.move is not None else "stay"
+        idle = (
+            "its next cycle would change nothing" if n.light == d.light and n.move is None else "it will act"
+        )
+        lines.append(
+            f"**If it looked now:** rule <code>{html.escape(n.rule_id or '—')}</code> → light "
+            f"<code>{html.escape(n.light)}</code>, move: {now_move}: {idle}."
+        )
     return "\n\n".join(lines)
 
 
@@ -134,10 +146,12 @@ def legend_html(view: SessionView) -> str:
     ]
     row = "display:flex;align-items:center;gap:5px;min-width:0"
     clip = "white-space:nowrap;overflow:hidden;text-overflow:ellipsis"
+    wide = ";grid-column:1 / -1"
+    lights = len(view.legend)  # a light's row spans both columns: its meaning is read aloud in a lecture
     body = "".join(
-        f'<div title="{html.escape(tip, quote=True)}" style="{row}">'
-        f'{swatch}<span style="{clip}">{text}</span></div>'
-        for swatch, text, tip in cells
+        f'<div title="{html.escape(tip, quote=True)}" style="{row}{wide if i < lights else ""}">'
+        f'{swatch}<span style="{"" if i < lights else clip}">{text}</span></div>'
+        for i, (swatch, text, tip) in enumerate(cells)
     )
     columns = "display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:2px 8px"
     grid = f'<div style="{columns}">{body}</div>'
