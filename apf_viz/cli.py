@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_command_line, get_algorithm
+from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import (
     InputError,
@@ -35,7 +36,6 @@ from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
-DEFAULT_MAX_EVENTS = 2_000_000
 
 
 class _Parser(argparse.ArgumentParser):
@@ -101,13 +101,17 @@ def _problem(args: argparse.Namespace, output: Path | None):
 def _cmd_run(args: argparse.Namespace) -> int:
     robots, points, targets, algorithm = _problem(args, args.trace)
     scheduler = make_scheduler(args.scheduler)
+    skip = not args.all_activations
+    budget = run_budget(points, targets, skip)  # a cap given on the command line replaces its part
     engine = Engine(
         points,
         targets,
         algorithm,
         y_up=robots.flips(args.seed),
         light_semantics=args.light_semantics,
-        max_events=args.max_events,
+        max_events=args.max_events or budget.max_events,
+        max_moves=args.max_moves or budget.max_moves,
+        skip_noops=skip,
     )
     advance(engine, scheduler, args.seed)
     summary = RunSummary.of(engine)
@@ -124,9 +128,13 @@ def _print_summary(summary: RunSummary, as_json: bool) -> None:
         data["final"] = [list(p) for p in summary.final]
         print(json.dumps(data))
     else:
+        limit = ""
+        if summary.outcome == "limit":
+            limit = f" (the run's cap: {summary.max_moves:,} moves or {summary.max_events:,} events)"
         print(
-            f"{summary.outcome}: {summary.events} events, {summary.moves} moves, {summary.cycles} cycles; "
-            f"lights used: {', '.join(summary.lights_used)}"
+            f"{summary.outcome}{limit}: {summary.events} events, {summary.moves} moves "
+            f"(moves/(k·D) = {summary.moves_per_kD:.3f}), {summary.cycles} cycles, {summary.skipped} "
+            f"robot·steps passed over; lights used: {', '.join(summary.lights_used)}"
         )
 
 
@@ -301,13 +309,26 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--max-events",
         type=_positive,
-        default=DEFAULT_MAX_EVENTS,
-        help="stop with outcome 'limit' after this many events",
+        help="stop with outcome 'limit' after this many events (default: the run's budget, "
+        f"{EVENTS_PER_MOVE} per budgeted move, or {EVENTS_PER_MOVE} + {EVENTS_PER_MOVE_PER_ROBOT}·k with "
+        "--all-activations)",
+    )
+    run.add_argument(
+        "--max-moves",
+        type=_positive,
+        help=f"stop with outcome 'limit' after this many moves (default: the budget, {MOVES_PER_KD}·k·D)",
+    )
+    run.add_argument(
+        "--all-activations",
+        action="store_true",
+        help="keep every activation, also the cycles that change nothing (by default the scheduler "
+        "passes over a robot whose view it would answer with 'same light, stay')",
     )
     run.add_argument(
         "--json",
         action="store_true",
-        help="print one JSON object: outcome, final, moves, events, cycles, lights_used",
+        help="print one JSON object: outcome, final, k, D, moves, events, cycles, skipped, "
+        "moves_per_kD, max_moves, max_events, lights_used",
     )
     run.add_argument("--trace", type=Path, help="write every event to this JSON Lines file (atomically)")
     run.add_argument("--force", action="store_true", help="run an unsolvable start anyway")

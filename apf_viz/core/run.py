@@ -9,6 +9,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 from apf_viz.core.algorithm import Algorithm
+from apf_viz.core.budget import paper_D
 from apf_viz.core.engine import Engine, EngineError
 from apf_viz.core.formats import InputError, TraceHeader, event_to_json
 from apf_viz.core.grid import Point
@@ -50,21 +51,34 @@ class RunSummary:
 
     outcome: str
     final: list[Point]
+    k: int
+    D: int  # max(m, n, M, N, k) of the paper
     moves: int
     events: int
     cycles: int
+    skipped: int  # robot·steps passed over because their next cycle could change nothing
+    moves_per_kD: float
+    max_moves: int | None  # the run's caps (its budget unless the command line gave them)
+    max_events: int | None
     lights_used: list[str]
 
     @classmethod
     def of(cls, engine: Engine) -> RunSummary:
         st = engine.state
         order = {name: i for i, name in enumerate(engine.algorithm.lights)}
+        d = paper_D(engine.start, engine.pattern)
         return cls(
             outcome=st.outcome or "running",
             final=engine.current_points(),
+            k=engine.k,
+            D=d,
             moves=st.moves,
             events=st.events,
             cycles=st.cycles,
+            skipped=st.skipped,
+            moves_per_kD=round(st.moves / (engine.k * d), 6),
+            max_moves=engine.max_moves,
+            max_events=engine.max_events,
             lights_used=sorted(st.lights_used, key=lambda s: order.get(s, len(order))),
         )
 

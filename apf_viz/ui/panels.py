@@ -107,6 +107,13 @@ class Panels:
             self.scheduler.on_update(self._on_scheduler)
             self.seed = gui.add_number("Seed", initial_value=session.seed, step=1)
             self.seed.on_update(self._on_seed)
+            self.all_activations = gui.add_checkbox(
+                "All activations",
+                initial_value=not session.config.skip_noops,
+                hint="keep the cycles that change nothing (a robot waking to a view it answers with "
+                "'same light, stay'); off: the scheduler passes those robots over (the run restarts)",
+            )
+            self.all_activations.on_update(self._on_all_activations)
             self.click = gui.add_dropdown(
                 "Click",
                 ("advance", "select"),
@@ -261,6 +268,12 @@ class Panels:
             tell(event.client, "Still editing", problem, error=True)
         self.changed()
 
+    def _on_all_activations(self, event) -> None:
+        if event.client is not None:
+            keep = bool(self.all_activations.value)
+            if keep != (not self.session.config.skip_noops):
+                self._guard(lambda e: self.session.set_all_activations(keep))(event)
+
     def _on_click_mode(self, event) -> None:
         if event.client is not None:
             self.session.set_click_advances(self.click.value == "advance")
@@ -331,7 +344,8 @@ class Panels:
             f"Algorithm **{view.algorithm}**  \n"
             f"Moves **{view.moves}** · cycles **{view.cycles}** · step {view.steps}/{view.history_length}  \n"
             f"Stage: **{view.stage}** · moves/(k·D) = {view.moves_per_kD:.3f}  \n"
-            f"Lights in use: {', '.join(view.lights_in_use)}"
+            + (f"Passed over (changing nothing): {view.skipped:,} robot·steps  \n" if view.skipped else "")
+            + f"Lights in use: {', '.join(view.lights_in_use)}"
         )
         self.banner.content = self._banner(view)
         following = view.trace_position is not None
@@ -371,6 +385,8 @@ class Panels:
             self.algorithm.options = self._algorithm_names(s.algorithm_name)
             self.algorithm.value = s.algorithm_name
             self.variant.value = s.algorithm_name  # the field follows the run's algorithm
+        if self.all_activations.value == s.config.skip_noops:
+            self.all_activations.value = not s.config.skip_noops
         if self.semantics.value != s.config.light_semantics:
             self.semantics.value = s.config.light_semantics
         legend = legend_html(view)  # its overlay rows change with the run (K appears, a frame is fixed)

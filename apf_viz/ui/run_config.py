@@ -6,6 +6,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.grid import Point
 
@@ -22,17 +23,21 @@ class RunConfig:
     light_semantics: LightSemantics = "compute"
     scheduler: str = "async"
     seed: int = 1
-    max_events: int = 5_000_000
+    max_events: int = 5_000_000  # events a loaded trace may hold
+    skip_noops: bool = True  # False: every no-op activation is kept (the All activations box)
 
     def engine(self, plugins: Mapping[str, Factory] | None = None) -> Engine:
-        """A fresh engine at the start of this run."""
+        """A fresh engine at the start of this run, stopped by the run's budget (core/budget.py)."""
+        budget = run_budget(self.robots, self.pattern, self.skip_noops)
         return Engine(
             self.robots,
             self.pattern,
             get_algorithm(self.algorithm, plugins),
             y_up=self.y_up,
             light_semantics=self.light_semantics,
-            max_events=self.max_events,
+            max_events=budget.max_events,
+            max_moves=budget.max_moves,
+            skip_noops=self.skip_noops,
         )
 
     def but(self, **changes) -> RunConfig:

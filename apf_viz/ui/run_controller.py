@@ -95,6 +95,7 @@ class RunController:
         has ``trace_options``), at its start; Step then follows the trace."""
         with self.lock:
             engine.seek(0)
+            engine.skip_noops = config.skip_noops  # it replayed with every activation; a branch skips
             self._rebuild(config, engine, trace_events, trace_options)
 
     def reset(self) -> None:
@@ -119,6 +120,11 @@ class RunController:
         the command line loaded)."""
         get_algorithm(name, self.plugins)  # refuses an unknown name before anything changes
         self.restart(self.config.but(algorithm=name))
+
+    def set_skip_noops(self, skip: bool) -> None:
+        """Whether schedulers pass over robots whose next cycle changes nothing (the run restarts: its
+        history would mix both)."""
+        self.restart(self.config.but(skip_noops=bool(skip)))
 
     def set_light_semantics(self, semantics: str) -> None:
         if semantics not in ("compute", "lc-atomic"):

@@ -20,6 +20,7 @@ import numpy as np
 
 from apf_viz.algorithms import Factory
 from apf_viz.core.algorithm import Decision
+from apf_viz.core.budget import paper_D
 from apf_viz.core.engine import NEXT_EVENT, Phase
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
@@ -118,6 +119,7 @@ class SessionView:
     stage: str
     lights_in_use: tuple[str, ...]
     moves_per_kD: float
+    skipped: int = 0  # robot·steps passed over because their next cycle could change nothing
     mode: Mode
     draft_count: int  # points of the pattern being drawn / robots being placed
     robot_count: int
@@ -237,6 +239,13 @@ class Session:
         """The same start and pattern under another algorithm: the run restarts."""
         with self.lock:
             self.run.set_algorithm(name)
+            self.selected = None
+
+    def set_all_activations(self, keep: bool) -> None:
+        """Keep every no-op activation (teaching what the adversary can do) or skip them (the default);
+        the run restarts."""
+        with self.lock:
+            self.run.set_skip_noops(not keep)
             self.selected = None
 
     def set_light_semantics(self, semantics: str) -> None:
@@ -572,7 +581,8 @@ class Session:
             cycles=st.cycles,
             stage=overlays.stage,
             lights_in_use=tuple(sorted(set(st.lights), key=e.algorithm.lights.index)),
-            moves_per_kD=st.moves / (e.k * self._D()),
+            skipped=st.skipped,
+            moves_per_kD=st.moves / (e.k * paper_D(self.config.robots, self.config.pattern)),
             mode=self.mode,
             draft_count=len(self.editor.pattern) if self.mode != "edit-robots" else len(self.editor.robots),
             robot_count=len(self.editor.robots) if self.mode == "edit-robots" else e.k,
@@ -665,16 +675,6 @@ class Session:
             elif light != seen.light:
                 out.append(f"seen at ({p[0]}, {p[1]}) with light {seen.light}: now {light}")
         return tuple(out)
-
-    def _D(self) -> int:
-        """D = max(m, n, M, N, k) of the paper: the enclosing rectangles of start and pattern, and k."""
-
-        def extent(points: Sequence[Point]) -> tuple[int, int]:
-            xs, ys = [p[0] for p in points], [p[1] for p in points]
-            return max(xs) - min(xs) + 1, max(ys) - min(ys) + 1
-
-        c = self.config
-        return max(*extent(c.robots), *extent(c.pattern), len(c.robots))
 
     def _caption(self, sel: int | None, seen: list[SeenRobot]) -> str:
         if sel is None:
