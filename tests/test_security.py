@@ -18,6 +18,7 @@ from apf_viz.core.formats import InputError, trace_text
 from apf_viz.core.run import advance, trace_header
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.ui.panels import Panels
+from apf_viz.ui.run_controller import MAX_SPEED
 from apf_viz.ui.session import Session
 
 START = [(0, 0), (3, 0), (5, 0), (2, 2), (6, 2)]
@@ -136,7 +137,7 @@ def test_values_a_browser_sends_are_checked():
     session.set_seed(7.0)
     assert session.seed == 7
     session.set_speed(math.inf)
-    assert session.speed == 500.0
+    assert session.speed == MAX_SPEED
     session.set_speed(-3)
     assert session.speed == 1.0
     with pytest.raises(InputError):

@@ -479,9 +479,9 @@ def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_colli
 def test_the_demo_played_to_formed_keeps_the_robots_on_the_target_cells(browser, app):
     page = open_page(browser, app)
     speed = page.locator("xpath=//*[text()='Speed']/following::input[2]")
-    speed.fill("500")
+    speed.fill("5000")
     speed.press("Enter")
-    wait_for(lambda: app.session.speed == 500)
+    wait_for(lambda: app.session.speed == 5000)
     page.get_by_role("button", name="Play").click()
     page.get_by_role("heading", name="✅ FORMED").wait_for(timeout=300_000)
     v = app.session.view()

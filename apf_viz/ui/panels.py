@@ -21,6 +21,7 @@ from apf_viz.core.formats import InputError
 from apf_viz.demos import demo_files, scenarios
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
+from apf_viz.ui.run_controller import MAX_SPEED
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
 from apf_viz.ui.why import legend_html, symbol_html, why_markdown
 
@@ -65,7 +66,7 @@ class Panels:
             row.on_click(self._on_control)
             self.controls = row
             self.speed = gui.add_slider(
-                "Speed", min=1, max=500, step=1, initial_value=10, hint="steps per second"
+                "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
             )
             self.speed.on_update(lambda e: self._set_speed(e))
             self.timeline = gui.add_slider(

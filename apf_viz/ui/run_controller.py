@@ -18,7 +18,9 @@ from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.ui.move_series import MoveSeries
 from apf_viz.ui.run_config import RunConfig
 
-MAX_SPEED = 500.0  # steps per second: the Speed slider's top
+# Steps per second: the Speed slider's top. Play never spends more than a share of each frame stepping
+# (ui/app.py STEP_SHARE), so a speed the engine cannot reach plays as fast as it can at full frame rate.
+MAX_SPEED = 5000.0
 
 
 class RunController:

@@ -119,12 +119,12 @@ class SessionView:
     stage: str
     lights_in_use: tuple[str, ...]
     moves_per_kD: float
-    skipped: int = 0  # robot·steps passed over because their next cycle could change nothing
     mode: Mode
     draft_count: int  # points of the pattern being drawn / robots being placed
     robot_count: int
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
     move_series: tuple[tuple[int, int], ...] = field(default=())
+    skipped: int = 0  # robot·steps passed over because their next cycle could change nothing
     last_events: tuple[str, ...] = ()  # newest first, in words
     last_actor: int | None = None  # the robot of the last step (one robot: ASYNC or Manual)
     numbers: bool = False  # draw each robot's number beside it
