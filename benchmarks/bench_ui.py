@@ -3,9 +3,11 @@
 - scene update rate while playing with 1,000 robots (target ≥ 20 updates/s): how often the browser's
   `Event` number changes per second (each change is one rendered frame reaching the page), beside how
   many frames the page drew (a frame drawn before the next update arrives shows nothing new);
-- click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event.
+- click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event;
+- with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
+  watching (wall time, and the page's update rate meanwhile).
 
-Run: python benchmarks/bench_ui.py [--robots 1000]
+Run: python benchmarks/bench_ui.py [--robots 1000]; python benchmarks/bench_ui.py --robots 100 --to-formed
 """
 
 from __future__ import annotations
@@ -61,6 +63,7 @@ async () => {
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--robots", type=int, default=1000)
+    ap.add_argument("--to-formed", action="store_true", help="play at top speed until the run ends")
     args = ap.parse_args()
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
@@ -73,6 +76,11 @@ def main() -> None:
         page.goto(f"http://127.0.0.1:{app.port}")
         page.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(2)
+        if args.to_formed:
+            to_formed(app, session, page)
+            browser.close()
+            app.stop()
+            return
         run_controller.MAX_SPEED = 2000.0  # above the slider's top: a harder case than a person can set
         session.set_speed(2000.0)
         session.toggle_play()
@@ -104,6 +112,25 @@ def main() -> None:
         print(f"(server rendered {server_fps} frames in all)")
         browser.close()
     app.stop()
+
+
+def to_formed(app: App, session: Session, page) -> None:
+    """Play at the slider's top until the run ends; the page's update rate sampled every 10 s."""
+    session.set_speed(run_controller.MAX_SPEED)
+    t0 = time.perf_counter()
+    session.toggle_play()
+    rates = []
+    while session.engine.outcome is None and time.perf_counter() - t0 < 1800:
+        rate, _ = page.evaluate(COUNT_CHANGES, [2000])
+        rates.append(rate)
+        time.sleep(8)
+    wall = time.perf_counter() - t0
+    st = session.engine.state
+    print(
+        f"| {session.engine.k} robots played to {session.engine.outcome} at {run_controller.MAX_SPEED:.0f} "
+        f"steps/s requested | {wall:.0f} s | {st.events:,} events, {st.moves:,} moves | page updates/s: "
+        f"median {statistics.median(rates):.1f}, min {min(rates):.1f} |"
+    )
 
 
 if __name__ == "__main__":

@@ -555,7 +555,7 @@ def test_the_demo_dropdown_loads_a_scenario_and_says_what_it_shows(browser, app)
     page.get_by_role("combobox", name="Demo").click()
     page.get_by_role("option", name="Unsolvable box").click()
     wait_for(lambda: app.session.mode == "edit-robots")
-    assert page.get_by_text("Following the trace").count() == 0  # nothing of the previous run is left
+    wait_for(lambda: page.get_by_text("Following the trace").count() == 0)  # nothing of the last run left
     page.get_by_text("cannot be solved").first.wait_for()
     shot(page, "demo-unsolvable")
     page.close()

@@ -74,7 +74,10 @@ def why_markdown(view: SessionView) -> str:
     else:
         lines.append("_No predicates are listed for this rule._")
     if why.regions:
-        lines.append("Regions it looked at are shaded blue on the grid, in its own frame.")
+        lines.append(
+            "Regions it looked at are shaded blue on the grid, in its own frame, where it stood when it "
+            "looked (they stay there when it moves)."
+        )
     if why.now is not None:
         n = why.now
         now_move = n.move.value if n.move is not None else "stay"
