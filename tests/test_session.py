@@ -543,3 +543,17 @@ def test_notices_are_returned_to_the_caller_not_broadcast():
     with pytest.raises(InputError, match="outside the grid"):
         s.click((10**13, 0))
     assert not hasattr(s, "messages")
+
+
+def test_all_activations_restarts_the_run_keeping_every_cycle_and_the_panel_counts_what_was_skipped():
+    s = demo_session()
+    for _ in range(30):
+        s.step()
+    assert s.engine.skip_noops and s.view().skipped > 0
+    s.set_all_activations(True)
+    assert not s.engine.skip_noops and s.view().event == 0
+    for _ in range(30):
+        s.step()
+    assert s.view().skipped == 0
+    s.set_all_activations(False)
+    assert s.engine.skip_noops and s.config.skip_noops
