@@ -32,6 +32,14 @@ from apf_viz.core.formats import (
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.random_configs import random_pattern, random_robots
 from apf_viz.core.run import RunSummary, advance, engine_for_trace, replay, trace_header
+from apf_viz.core.schedule import (
+    ScheduleError,
+    follow,
+    load_schedule,
+    schedule_of_steps,
+    schedule_of_trace,
+    schedule_text,
+)
 from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
@@ -100,6 +108,13 @@ def _problem(args: argparse.Namespace, output: Path | None):
 
 def _cmd_run(args: argparse.Namespace) -> int:
     robots, points, targets, algorithm = _problem(args, args.trace)
+    for out in (args.schedule_out,):
+        if out:
+            check_writable(out)
+    if args.then and not args.schedule:
+        _fail("--then continues after a --schedule: give one")
+    schedule = load_schedule(args.schedule) if args.schedule else None
+    then = make_scheduler(args.then) if args.then else None
     scheduler = make_scheduler(args.scheduler)
     skip = not args.all_activations
     budget = run_budget(points, targets, skip)  # a cap given on the command line replaces its part
@@ -113,13 +128,42 @@ def _cmd_run(args: argparse.Namespace) -> int:
         max_moves=args.max_moves or budget.max_moves,
         skip_noops=skip,
     )
-    advance(engine, scheduler, args.seed)
-    summary = RunSummary.of(engine)
-    if args.trace:
-        header = trace_header(engine, scheduler.name, args.seed)
-        write_atomic(args.trace, trace_text(header, engine.history.events()))
+    outcome = None
+    if schedule is not None:
+        try:
+            for _ in follow(engine, schedule, str(args.schedule)):
+                pass
+        except ScheduleError:
+            _write_outputs(args, engine, "schedule")  # the run so far is kept
+            raise
+        if not engine.finished and then is None:
+            outcome = "schedule-end"
+        elif then is not None:
+            advance(engine, then, args.seed)
+    else:
+        advance(engine, scheduler, args.seed)
+    summary = RunSummary.of(engine, outcome)
+    _write_outputs(args, engine, scheduler.name if schedule is None else "schedule")
     _print_summary(summary, args.json)
     return EXIT_FORMED if summary.outcome == "formed" else EXIT_NOT_FORMED
+
+
+def _write_outputs(args: argparse.Namespace, engine: Engine, adversary: str) -> None:
+    if args.trace:
+        header = trace_header(engine, adversary, args.seed)
+        write_atomic(args.trace, trace_text(header, engine.history.events()))
+    if args.schedule_out:
+        write_atomic(args.schedule_out, schedule_text(engine.k, schedule_of_steps(engine.history.steps)))
+
+
+def _cmd_schedule(args: argparse.Namespace) -> int:
+    header, events = load_trace(args.from_trace)
+    text = schedule_text(len(header.robots), schedule_of_trace(events, header.light_semantics == "lc-atomic"))
+    if args.out:
+        write_atomic(args.out, text)
+    else:
+        sys.stdout.write(text)
+    return 0
 
 
 def _print_summary(summary: RunSummary, as_json: bool) -> None:
@@ -331,8 +375,27 @@ def build_parser() -> argparse.ArgumentParser:
         "moves_per_kD, max_moves, max_events, lights_used",
     )
     run.add_argument("--trace", type=Path, help="write every event to this JSON Lines file (atomically)")
+    run.add_argument(
+        "--schedule",
+        type=Path,
+        help="follow this schedule file (who acts, line by line; README 'Playing the adversary') instead "
+        "of --scheduler; the run stops where it ends (outcome schedule-end) unless --then",
+    )
+    run.add_argument(
+        "--then",
+        choices=[s for s in SCHEDULERS if s != "manual"],
+        help="with --schedule: when the schedule ends, continue under this scheduler",
+    )
+    run.add_argument(
+        "--schedule-out", type=Path, help="write the run's schedule (who acted) to this file (atomically)"
+    )
     run.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
     run.set_defaults(func=_cmd_run)
+
+    sch = command("schedule", "write the schedule (who acted, not what they saw) of a trace")
+    sch.add_argument("--from-trace", required=True, type=Path, help="the trace file (JSON Lines)")
+    sch.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
+    sch.set_defaults(func=_cmd_schedule)
 
     rep = command("replay", "re-run a trace file exactly and check every event")
     rep.add_argument("--trace", required=True, type=Path, help="the trace file (JSON Lines)")

@@ -63,12 +63,13 @@ class RunSummary:
     lights_used: list[str]
 
     @classmethod
-    def of(cls, engine: Engine) -> RunSummary:
+    def of(cls, engine: Engine, outcome: str | None = None) -> RunSummary:
+        """The summary of a run; ``outcome`` overrides "running" (e.g. ``schedule-end``)."""
         st = engine.state
         order = {name: i for i, name in enumerate(engine.algorithm.lights)}
         d = paper_D(engine.start, engine.pattern)
         return cls(
-            outcome=st.outcome or "running",
+            outcome=st.outcome or outcome or "running",
             final=engine.current_points(),
             k=engine.k,
             D=d,
