@@ -557,3 +557,26 @@ def test_all_activations_restarts_the_run_keeping_every_cycle_and_the_panel_coun
     assert s.view().skipped == 0
     s.set_all_activations(False)
     assert s.engine.skip_noops and s.config.skip_noops
+
+
+def test_download_schedule_after_manual_clicks_then_upload_it_on_a_reset_run_replays_them():
+    s = demo_session()
+    s.set_scheduler("Manual")
+    for r in (2, 2, 2, 5, 5):
+        s.click(s.engine.current_points()[r])
+    clicked = s.engine.history.events()
+    text = s.schedule_file()
+    assert text.splitlines()[1:3] == ['{"robot": 2, "phase": "look"}', '{"robot": 2, "phase": "compute"}']
+    s.reset()
+    assert s.load_schedule("s.jsonl", text.encode()) is None
+    v = s.view()
+    assert v.trace_position == (0, len(clicked)) and v.following_what == "the schedule s.jsonl"
+    while s.step():
+        pass
+    assert s.engine.history.events() == clicked
+    bad = text + '{"robot": 0, "phase": "move"}\n'
+    said = s.load_schedule("bad.jsonl", bad.encode())
+    assert "bad.jsonl:7: robot 0's next phase is look, not move" in said
+    assert s.run.trace_events == len(clicked)  # the run follows the schedule up to the bad line
+    with pytest.raises(InputError, match="a schedule for 4 robots"):
+        s.load_schedule("four.jsonl", b'{"format": "apf-viz-schedule", "version": 1, "robots": 4}\n')

@@ -6,6 +6,7 @@ also read the shared Session to check that a click reached the engine.
 
 from __future__ import annotations
 
+import json
 import time
 from collections.abc import Iterator
 from io import BytesIO
@@ -575,4 +576,38 @@ def test_a_livelocks_loop_is_marked_on_the_timeline(browser, app, tmp_path):
     page.get_by_text("loop starts").wait_for()
     page.get_by_text("loop repeats").wait_for()
     page.get_by_text("verdict: livelock").wait_for()
+    page.close()
+
+
+def test_download_schedule_after_manual_clicks_then_upload_schedule_on_a_reset_run_replays_them(
+    browser, app, tmp_path
+):
+    app.session.set_scheduler("Manual")
+    app.request_render()
+    page = open_page(browser, app)
+    at = app.session.engine.current_points()[2]
+    for n in range(1, 4):  # robot 2: Look, Compute, Move
+        page.mouse.click(*screen_of(app, page, at))
+        wait_for(lambda n=n: app.session.engine.step_index == n)
+    clicked = app.session.engine.history.events()
+    open_folder(page, "Files")
+    page.get_by_role("button", name="Download schedule").click()
+    link = page.locator("a[download='schedule.jsonl']")
+    link.wait_for()
+    text = page.evaluate("async (a) => await (await fetch(a.href)).text()", link.element_handle())
+    assert [json.loads(line) for line in text.splitlines()[1:]] == [
+        {"robot": 2, "phase": p} for p in ("look", "compute", "move")
+    ]
+    saved = tmp_path / "schedule.jsonl"
+    saved.write_text(text)
+    page.get_by_role("button", name="Reset").click()
+    wait_for(lambda: app.session.engine.step_index == 0)
+    with page.expect_file_chooser() as chooser:
+        page.get_by_role("button", name="Upload schedule").click()
+    chooser.value.set_files(str(saved))
+    page.get_by_text("Following the schedule schedule.jsonl: event").wait_for()
+    for n in range(1, 4):
+        page.get_by_role("button", name="Step").click()
+        wait_for(lambda n=n: app.session.engine.step_index == n)
+    assert app.session.engine.history.events() == clicked
     page.close()

@@ -18,6 +18,7 @@ from apf_viz.core.formats import (
     parse_trace,
 )
 from apf_viz.core.run import engine_for_trace, replay
+from apf_viz.core.schedule import Schedule, parse_schedule
 
 MAX_UPLOAD_BYTES = 2_000_000  # robots and pattern files from a browser
 MAX_TRACE_UPLOAD_BYTES = 50_000_000  # a trace from a browser: about 500,000 events
@@ -38,6 +39,10 @@ def robots_upload(filename: str, content: bytes) -> RobotsFile:
 
 def pattern_upload(filename: str, content: bytes) -> PatternFile:
     return parse_pattern(decode(filename, content), filename)
+
+
+def schedule_upload(filename: str, content: bytes) -> Schedule:
+    return parse_schedule(decode(filename, content, MAX_TRACE_UPLOAD_BYTES), filename)
 
 
 @dataclass(frozen=True)

@@ -159,12 +159,14 @@ class Panels:
                 ("Upload robots", session.load_robots),
                 ("Upload pattern", session.load_pattern),
                 ("Upload trace", session.load_trace),
+                ("Upload schedule", session.load_schedule),
             ):
                 gui.add_upload_button(label, mime_type="*/*").on_upload(self._uploader(loader))
             for label, name, make in (
                 ("Download robots", "robots.json", session.robots_file),
                 ("Download pattern", "pattern.json", session.pattern_file),
                 ("Download trace", "trace.jsonl", session.trace_file),
+                ("Download schedule", "schedule.jsonl", session.schedule_file),
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)

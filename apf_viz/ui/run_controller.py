@@ -92,13 +92,15 @@ class RunController:
         engine: Engine,
         trace_events: int,
         trace_options: Mapping[str, object] | None = None,
+        what: str = "the trace",
     ) -> None:
         """Take over an engine built elsewhere (a replayed trace of ``trace_events`` events, whose header
-        has ``trace_options``), at its start; Step then follows the trace."""
+        has ``trace_options``, or a followed schedule: ``what``), at its start; Step then follows it."""
         with self.lock:
             engine.seek(0)
             engine.skip_noops = config.skip_noops  # it replayed with every activation; a branch skips
             self._rebuild(config, engine, trace_events, trace_options)
+            self.following_what = what
 
     def reset(self) -> None:
         """Back to the start of the same run."""

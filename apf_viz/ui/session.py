@@ -49,6 +49,7 @@ from apf_viz.core.portrayal import (
     overlays_of,
 )
 from apf_viz.core.run import trace_header
+from apf_viz.core.schedule import ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.ui import loader
 from apf_viz.ui.editor import Editor
@@ -483,6 +484,30 @@ class Session:
             self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self.selected = None
+
+    def load_schedule(self, filename: str, content: bytes) -> str | None:
+        """Replay a schedule file from the start of the current run (same start, pattern, algorithm);
+        Step then follows it. A line that cannot be followed keeps the run up to it, and is returned."""
+        schedule = loader.schedule_upload(filename, content)
+        with self.lock:
+            engine = self.config.engine(self.run.plugins)
+            problem = None  # a schedule for another number of robots is refused before any step
+            try:
+                for _ in follow(engine, schedule, filename):
+                    pass
+            except ScheduleError as e:
+                problem = f"{e}; the run follows the schedule up to there"
+            self.run.adopt(self.config, engine, engine.state.events, what=f"the schedule {filename}")
+            self.scenario_note = ""
+            self.mode = "run"
+            self.selected = None
+            return problem
+
+    def schedule_file(self) -> str:
+        """Who acted so far (Manual clicks included), as a schedule file: it drives any algorithm."""
+        with self.lock:
+            e = self.engine
+            return schedule_text(e.k, schedule_of_steps(e.history.steps[: e.step_index]))
 
     def robots_file(self) -> str:
         with self.lock:
