@@ -611,3 +611,29 @@ def test_download_schedule_after_manual_clicks_then_upload_schedule_on_a_reset_r
         wait_for(lambda n=n: app.session.engine.step_index == n)
     assert app.session.engine.history.events() == clicked
     page.close()
+
+
+def test_verify_shows_verified_on_a_small_start_and_loads_the_literal_papers_violation(browser, app):
+    page = open_page(browser, app)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="One robot on L1").click()
+    wait_for(lambda: app.session.engine.k == 3)
+    page.get_by_role("button", name="Verify").click()
+    page.get_by_text("Verify: verified:").wait_for(timeout=120_000)
+    start = Path(__file__).parent.parent / "demo_patterns"
+    app.session.load_robots("vertical-line-4.json", (start / "starts" / "vertical-line-4.json").read_bytes())
+    app.session.load_pattern("tee-4.json", (start / "tee-4.json").read_bytes())
+    app.session.set_algorithm("apf-opaque-grid-literal")
+    assert sorted(app.session.config.pattern) == [(0, 1), (1, 0), (1, 1), (2, 1)]  # the tee-4
+    app.request_render()
+    page.get_by_role("button", name="Verify").click()
+    page.get_by_text("Verifying…").wait_for()
+    page.get_by_text("Verify: collision").wait_for(timeout=300_000)
+    page.get_by_text("Following the trace: event").wait_for()
+    wait_for(lambda: app.session.view().trace_position is not None)
+    while app.session.step():
+        pass
+    app.request_render()
+    page.get_by_role("heading", name="💥 COLLISION").wait_for()
+    shot(page, "verify-violation")
+    page.close()

@@ -91,13 +91,22 @@ def counterexample_engine(
     return e
 
 
-def write_counterexample(
-    path, algorithm, robots, pattern, y_up, scheduler, result: Result, light_semantics: str = "compute"
-) -> Engine:
+def counterexample_text(
+    algorithm, robots, pattern, y_up, scheduler, result: Result, light_semantics: str = "compute"
+) -> str:
+    """The explorer's failing schedule replayed by the real engine, as a trace file's text (its header
+    says the verdict and, for a livelock, where the loop starts)."""
     e = counterexample_engine(algorithm, robots, pattern, y_up, scheduler, result, light_semantics)
     options = {"verdict": result.verdict, "detail": result.detail}
     if result.loop_start is not None:
         options["loop_starts_at_step"] = result.loop_start
     header = trace_header(e, scheduler, None, options)
-    write_atomic(path, trace_text(header, e.history.events()))
-    return e
+    return trace_text(header, e.history.events())
+
+
+def write_counterexample(
+    path, algorithm, robots, pattern, y_up, scheduler, result: Result, light_semantics: str = "compute"
+) -> None:
+    write_atomic(
+        path, counterexample_text(algorithm, robots, pattern, y_up, scheduler, result, light_semantics)
+    )

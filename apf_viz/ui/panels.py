@@ -17,12 +17,14 @@ import viser.uplot
 from viser._messages import GuiSliderMark
 
 from apf_viz.algorithms import ALGORITHMS
-from apf_viz.core.formats import InputError
+from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.demos import demo_files, scenarios
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.run_controller import MAX_SPEED
 from apf_viz.ui.session import SCHEDULER_LABELS, Session, SessionView
+from apf_viz.ui.verifier import MAX_K, Verifier
+from apf_viz.ui.verifier import Status as VerifyStatus
 from apf_viz.ui.why import legend_html, symbol_html, why_markdown
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
@@ -48,6 +50,8 @@ class Panels:
         self.server, self.session, self.changed = server, session, changed
         self.frame = frame  # points one browser's camera at the whole run
         self._recorder: GifRecorder | None = None
+        self.verifier = Verifier(self._verified)
+        self._verify_client = None
         self._recording_lock = threading.Lock()
         gui = server.gui
         gui.configure_theme(control_width="large")
@@ -124,6 +128,14 @@ class Panels:
             )
             self.click.on_update(self._on_click_mode)
             self.next_phase = gui.add_markdown("")
+            self.verify = gui.add_button(
+                "Verify",
+                hint=f"explore every schedule of this start and pattern (k ≤ {MAX_K}), as apf-viz check does",
+            )
+            self.verify.on_click(self._on_verify)
+            self.cancel_verify = gui.add_button("Cancel verification", visible=False)
+            self.cancel_verify.on_click(lambda e: self.verifier.cancel())
+            self.verify_status = gui.add_markdown("")
         with gui.add_folder("Selected robot"):
             self.caption = gui.add_markdown("")
         with gui.add_folder("Why"):
@@ -277,6 +289,25 @@ class Panels:
             if keep != (not self.session.config.skip_noops):
                 self._guard(lambda e: self.session.set_all_activations(keep))(event)
 
+    def _on_verify(self, event) -> None:
+        why_not = self.verifier.start(self.session.config, self.session.run.plugins)
+        if why_not:
+            tell(event.client, "Verify", why_not, error=True)
+        else:
+            self._verify_client = event.client
+        self.changed()
+
+    def _verified(self, status: VerifyStatus) -> None:
+        """From the verifier's thread: progress, or the end (a counterexample is loaded into the run)."""
+        if status.state != "running":
+            if status.trace is not None:
+                try:
+                    self.session.load_trace("counterexample.jsonl", status.trace.encode(), MAX_TRACE_BYTES)
+                except InputError as e:  # cannot happen for the engine's own replay; said if it does
+                    tell(self._verify_client, "Verify", f"the counterexample did not load: {e}", error=True)
+            tell(self._verify_client, "Verify", status.text, error=status.state == "violation")
+        self.changed()
+
     def _on_click_mode(self, event) -> None:
         if event.client is not None:
             self.session.set_click_advances(self.click.value == "advance")
@@ -374,6 +405,15 @@ class Panels:
         marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
         if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
             self.timeline._marks = marks or None
+        v = self.verifier.status
+        running = v.state == "running"
+        self.verify_status.content = (
+            f"Verifying… **{v.states:,}** states, frontier {v.frontier:,}, {v.rate:,.0f} states/s"
+            if running
+            else (f"Verify: {v.text}" if v.text else "")
+        )
+        if self.cancel_verify.visible != running:
+            self.cancel_verify.visible = running
         manual = s.scheduler_name == "manual"
         if self.click.visible != manual:
             self.click.visible = manual
