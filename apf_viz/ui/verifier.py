@@ -122,7 +122,8 @@ class Verifier:
                 )  # fmt: skip
                 status = Status(
                     "violation", result.states, 0, 0.0,
-                    f"{result.verdict}: {result.detail} ({how}); counterexample loaded: Step follows it",
+                    f"{result.verdict}: {result.detail.removeprefix(result.verdict + ': ')} ({how}); "
+                    "counterexample loaded: Step follows it",
                     trace,
                 )  # fmt: skip
         with self._lock:
