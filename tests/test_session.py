@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -580,3 +581,32 @@ def test_download_schedule_after_manual_clicks_then_upload_it_on_a_reset_run_rep
     assert s.run.trace_events == len(clicked)  # the run follows the schedule up to the bad line
     with pytest.raises(InputError, match="a schedule for 4 robots"):
         s.load_schedule("four.jsonl", b'{"format": "apf-viz-schedule", "version": 1, "robots": 4}\n')
+
+
+def test_compare_steps_a_second_algorithm_with_the_run_and_names_the_first_divergence():
+    from apf_viz.core.formats import load_trace
+    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+
+    demos = Path(__file__).parent.parent / "demo_patterns"
+    s = demo_session()
+    s.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
+    s.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
+    assert s.algorithm_name == "apf-opaque-grid"  # A: the default, …
+    header, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
+    cex = schedule_text(4, schedule_of_trace(events, False))
+    s.load_schedule("cex.jsonl", cex.encode())  # … under the adversary that breaks the literal paper
+    s.compare_with("apf-opaque-grid-literal")  # B: the literal paper, stepping with it
+    while s.step():
+        pass
+    v = s.view()
+    assert v.compare is not None and v.compare.outcome == "collision" and v.outcome != "collision"
+    assert v.compare.event <= v.event and v.divergence is not None
+    at, what = v.divergence
+    assert 0 < at <= 41 and " | " in what
+    s.seek(0)
+    v = s.view()
+    assert v.compare.event == 0 and v.divergence is None  # back in time: before the divergence
+    s.compare_with(None)
+    assert s.view().compare is None
+    with pytest.raises(ValueError):
+        s.compare_with("os:abort")

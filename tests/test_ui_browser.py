@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 from PIL import Image, ImageSequence
 
+from apf_viz.core.formats import load_trace
 from apf_viz.ui.app import App, demo_session, free_port
 
 playwright = pytest.importorskip("playwright.sync_api")
@@ -636,4 +637,34 @@ def test_verify_shows_verified_on_a_small_start_and_loads_the_literal_papers_vio
     app.request_render()
     page.get_by_role("heading", name="💥 COLLISION").wait_for()
     shot(page, "verify-violation")
+    page.close()
+
+
+def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(browser, app):
+    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+
+    demos = Path(__file__).parent.parent / "demo_patterns"
+    app.session.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
+    app.session.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
+    _, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
+    app.session.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
+    app.request_render()
+    page = open_page(browser, app)
+    open_folder(page, "Compare")
+    page.get_by_role("button", name="Compare", exact=True).click()
+    page.get_by_text("B apf-opaque-grid-literal").wait_for()
+    step = page.get_by_role("button", name="Step")
+    for n in range(1, 42):
+        step.click()
+        wait_for(lambda n=n: app.session.engine.step_index == n)
+    page.get_by_text("First divergence at event").wait_for()
+    page.get_by_text("apf-opaque-grid-literal: COLLISION").wait_for()
+    a, b = app.renderer, app.compare_renderer
+    assert b is not None and b.origin[0] < a.origin[0]  # B is drawn to the right of A
+    titles = [h.text for n, h in b._handles.items() if n.startswith("/title/") and h.visible]
+    assert titles == ["B: apf-opaque-grid-literal · COLLISION"]
+    page.get_by_role("button", name="Frame run").click()
+    shot(page, "compare")
+    page.get_by_role("button", name="Stop comparing").click()
+    wait_for(lambda: app.compare_renderer is None)
     page.close()

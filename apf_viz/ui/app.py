@@ -49,6 +49,7 @@ class App:
         self.session = session
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         self.renderer = SceneRenderer(self.server)
+        self.compare_renderer: SceneRenderer | None = None  # Compare: the second run, to the right
         self.panels = Panels(self.server, session, self.request_render, self.frame_client)
         self._dirty = threading.Event()
         self._stop = threading.Event()
@@ -122,7 +123,8 @@ class App:
     def _render(self) -> None:
         view = self.session.view()
         with self.server.atomic():
-            self.renderer.render(view)
+            self.renderer.render(view, f"A: {view.algorithm}" if view.compare else None)
+            self._render_compare(view)
             self.panels.refresh(view)
         self.frames += 1
         if self._needs_reframe():
@@ -130,6 +132,28 @@ class App:
             for client in self.server.get_clients().values():
                 self.renderer.frame_camera(client.camera)
             self._framed = self.renderer.bounds
+
+    def _render_compare(self, view) -> None:
+        """The second run of Compare beside the first, at a fixed distance to its right (the width of
+        start ∪ pattern plus room for the runs to spread); the cameras frame both."""
+        other = view.compare
+        if other is None:
+            if self.compare_renderer is not None:
+                self.compare_renderer.clear()
+                self.compare_renderer = None
+            return
+        if self.compare_renderer is None:
+            self.compare_renderer = SceneRenderer(self.server, prefix="/compare")
+        c = self.session.config
+        xs = [p[0] for p in (*c.robots, *c.pattern)]
+        gap = max(xs) - min(xs) + len(c.robots) + 8
+        a = self.renderer
+        self.compare_renderer.fixed_origin = (a.origin[0] - gap, a.origin[1])
+        outcome = f" · {other.outcome.upper()}" if other.outcome else ""
+        self.compare_renderer.render(other, f"B: {other.algorithm}{outcome}")
+        b = self.compare_renderer.bounds
+        x0, y0, x1, y1 = a.bounds
+        a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]), max(y1, b[3]))
 
     def _needs_reframe(self) -> bool:
         """Keep the run framed: re-frame when a new run starts (Reset, a load, a switch of algorithm: a

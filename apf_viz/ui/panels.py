@@ -157,6 +157,16 @@ class Panels:
                 "Light semantics", ("compute", "lc-atomic"), initial_value=session.config.light_semantics
             )
             self.semantics.on_update(self._on_semantics)
+        with gui.add_folder("Compare", expand_by_default=False):
+            self.compare_with = gui.add_text(
+                "Compare with",
+                initial_value="apf-opaque-grid-literal",
+                hint="a second algorithm or variant (e.g. apf-opaque-grid@G1,G2): the same start, pattern "
+                "and adversary, drawn to the right and stepping with the run",
+            )
+            compare = gui.add_button_group("Compare runs", ("Compare", "Stop comparing"))
+            compare.on_click(self._on_compare)
+            self.compare_status = gui.add_markdown("")
         with gui.add_folder("Edit", expand_by_default=False):
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
@@ -308,6 +318,15 @@ class Panels:
             tell(self._verify_client, "Verify", status.text, error=status.state == "violation")
         self.changed()
 
+    def _on_compare(self, event) -> None:
+        if event.target.value == "Compare":
+            name = self.compare_with.value.strip()
+            self._guard(lambda e: self.session.compare_with(name))(event)
+        else:
+            self._guard(lambda e: self.session.compare_with(None))(event)
+        for client in self.server.get_clients().values():
+            self.frame(client)  # both runs in view
+
     def _on_click_mode(self, event) -> None:
         if event.client is not None:
             self.session.set_click_advances(self.click.value == "advance")
@@ -405,6 +424,7 @@ class Panels:
         marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
         if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
             self.timeline._marks = marks or None
+        self.compare_status.content = self._compare_text(view)
         v = self.verifier.status
         running = v.state == "running"
         self.verify_status.content = (
@@ -485,6 +505,23 @@ class Panels:
         client.send_file_download(f"apf-viz-events-{first}-{self.session.view().event}.gif", gif)
         if why:  # stopped early: the browser stopped answering
             client.add_notification("Recording stopped", why, color="red", auto_close_seconds=8.0)
+
+    @staticmethod
+    def _compare_text(view: SessionView) -> str:
+        other = view.compare
+        if other is None:
+            return ""
+
+        def side(name: str, v: SessionView) -> str:
+            state = (v.outcome or "running").upper()
+            return f"{name} **{v.algorithm}**: {state}, event {v.event}, {v.moves} moves"
+
+        if view.divergence is None:
+            split = "Same configurations so far."
+        else:
+            at, what = view.divergence
+            split = f"First divergence at event **{at}**: A {what.split(' | ')[0]}; B {what.split(' | ')[1]}"
+        return f"{side('A', view)}  \n{side('B', other)}  \n{split}"
 
     def _scheduler_label(self) -> str:
         return next(k for k, v in SCHEDULER_LABELS.items() if v == self.session.scheduler_name)

@@ -114,8 +114,12 @@ REORIGIN_DISTANCE = 1 << 20
 class SceneRenderer:
     """Draws session views into one viser server's scene."""
 
-    def __init__(self, server: viser.ViserServer) -> None:
+    def __init__(self, server: viser.ViserServer, prefix: str = "") -> None:
         self.server = server
+        # A second run drawn beside the first (Compare) is a second renderer under its own prefix, its
+        # origin set by the caller so that it stands to the right of the first.
+        self.prefix = prefix
+        self.fixed_origin: tuple[int, int] | None = None
         self.scene = server.scene
         self.scene.set_up_direction("+z")
         # Nothing here casts a shadow, but lights that may cast one make the browser clear three
@@ -167,7 +171,7 @@ class SceneRenderer:
             name,
             points,
             lambda: self.scene.add_point_cloud(
-                name,
+                self.prefix + name,
                 points,
                 np.array(color, dtype=np.uint8),
                 point_size=size * _VISER_POINT_SCALE,
@@ -195,14 +199,15 @@ class SceneRenderer:
             name,
             points,
             lambda: self.scene.add_line_segments(
-                name, points, color, thickness=thickness, thickness_units="screen"
+                self.prefix + name, points, color, thickness=thickness, thickness_units="screen"
             ),
             "points",
         )
 
     # ------------------------------------------------------------------ drawing
-    def render(self, view: SessionView) -> None:
-        """Draw one frame; the caller wraps it in ``server.atomic()``."""
+    def render(self, view: SessionView, title: str | None = None) -> None:
+        """Draw one frame; the caller wraps it in ``server.atomic()``. ``title``: a label above the run
+        (Compare names each side)."""
         editing_robots = view.mode == "edit-robots"
         grid_pts = np.array([r.position for r in view.robots], dtype=np.int64).reshape(-1, 2)
         self._place_origin(grid_pts, view)
@@ -229,6 +234,21 @@ class SceneRenderer:
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
         self._marks(view)
         self._why_regions(view)
+        x0, _, _, y1 = self.bounds
+        self._labels("/title", [(title, (x0 - 0.5, y1 + 2.0, 0.1))] if title else [])
+
+    def clear(self) -> None:
+        """Remove everything this renderer drew (Compare stopped)."""
+        for handle in self._handles.values():
+            handle.remove()  # type: ignore[attr-defined]
+        self._handles.clear()
+        self._last.clear()
+        self._counts.clear()
+        self._slots.clear()
+        self._colors.clear()
+        self._sprite_lights.clear()
+        self._ghost_lights.clear()
+        self._grid_key = None
 
     def _robots(self, view: SessionView, pts: np.ndarray) -> None:
         """Each robot a flat disc in its light's colour on a dark outline (so a pale light shows on the
@@ -292,6 +312,11 @@ class SceneRenderer:
     # ------------------------------------------------------------------ origin
     def _place_origin(self, robots: np.ndarray, view: SessionView) -> None:
         """Keep the origin near the run (robots and targets, grid coordinates)."""
+        if self.fixed_origin is not None:
+            if self.fixed_origin != self.origin:
+                self.origin = self.fixed_origin
+                self._grid_key = None
+            return
         allp = np.vstack([robots, np.array(view.targets, dtype=np.int64).reshape(-1, 2)])
         if not len(allp):
             return
@@ -448,7 +473,11 @@ class SceneRenderer:
                 text = canvas_symbol(text)
                 if handle is None:
                     self._handles[name] = self.scene.add_label(
-                        name, text, position=position, font_screen_scale=LABEL_SCALE, anchor="bottom-left"
+                        self.prefix + name,
+                        text,
+                        position=position,
+                        font_screen_scale=LABEL_SCALE,
+                        anchor="bottom-left",
                     )
                 else:
                     handle.text = text  # type: ignore[attr-defined]
@@ -498,7 +527,7 @@ class SceneRenderer:
                     dtype=np.float32,
                 )
                 self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
-                    f"/why/area{i}",
+                    f"{self.prefix}/why/area{i}",
                     vertices,
                     np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
                     color=MARK_COLORS["region"],

@@ -52,6 +52,7 @@ from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.ui import loader
+from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
@@ -137,6 +138,8 @@ class SessionView:
     set_aside: tuple[int, int] | None = None  # a branch dropped recorded steps: (at step, how many)
     following_what: str = "the trace"  # what Step follows while trace_position is set
     click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
+    compare: SessionView | None = None  # Compare: the same adversary under the second algorithm
+    divergence: tuple[int, str] | None = None  # Compare: the first event where the two differ
     trace_note: str = ""  # what a loaded trace's header says it shows (a verdict, a gap, a loop)
     timeline_marks: tuple[tuple[int, str], ...] = ()  # steps of the timeline worth a mark (a loop)
 
@@ -179,6 +182,7 @@ class Session:
         self.numbers: bool | None = None  # robot numbers on the canvas; None: on up to NUMBERS_UP_TO robots
         self.click_advances = True  # Manual: a click runs the robot's next phase; False: it only selects
         self.scenario_note = ""  # what the Demo scenario being shown shows, until another run starts
+        self.twin: Twin | None = None  # Compare: a second algorithm stepping with the run
 
     # ------------------------------------------------------------------ the run, read-only
     @property
@@ -532,30 +536,8 @@ class Session:
     def _view(self) -> SessionView:
         e = self.engine
         st = e.state
-        y_up = self.config.y_up
         pts = e.current_points()
-        phases = st.phase.tolist()
-        pending: list[Point | None] = [None] * e.k
-        for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
-            if st.pending[r].move is not None:
-                dx, dy = move_to_global(st.pending[r].move, y_up[r]).delta
-                pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
-        # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
-        robots = list(
-            map(
-                tuple.__new__,
-                repeat(RobotView),
-                zip(
-                    pts,
-                    st.lights,
-                    [_PHASE_NAMES[p] for p in phases],
-                    y_up,
-                    pending,
-                    [NEXT_EVENT[p] for p in phases],
-                    strict=True,
-                ),
-            )
-        )
+        robots = robot_views(e, pts)
         if self.mode == "edit-robots":  # the robots being placed, not the run's
             first = e.algorithm.lights[0]
             robots = [
@@ -597,6 +579,8 @@ class Session:
             set_aside=(self.run.set_aside[0], len(self.run.set_aside[1])) if self.run.set_aside else None,
             following_what=self.run.following_what,
             click_advances=self.click_advances,
+            compare=self._twin_view() if self.twin is not None and self.mode == "run" else None,
+            divergence=self.twin.divergence(e) if self.twin is not None and self.mode == "run" else None,
             trace_note=trace_note(self.run.trace_options),
             timeline_marks=loop_marks(self.run.trace_options, e.history.length, self.config.scheduler),
             event=st.events,
@@ -613,6 +597,48 @@ class Session:
             robot_count=len(self.editor.robots) if self.mode == "edit-robots" else e.k,
             axis=self.editor.axis() if self.mode == "edit-robots" else None,
             move_series=self.run.series.at(e.history, e.step_index),
+        )
+
+    def compare_with(self, algorithm: str | None) -> None:
+        """Compare: draw the same run (start, pattern, flips, adversary) under ``algorithm`` beside it,
+        stepping with it; None stops comparing."""
+        with self.lock:
+            self.twin = Twin(algorithm, self.run.plugins) if algorithm else None
+
+    def _twin_view(self) -> SessionView:
+        """The second run as the scene draws it: robots, the algorithm's overlays, its outcome."""
+        assert self.twin is not None
+        t = self.twin.follow(self.engine, self.config)
+        pts = t.current_points()
+        st = t.state
+        overlays = overlays_of(t.algorithm, Configuration(tuple(pts), tuple(st.lights), t.pattern, t.start))
+        return SessionView(
+            robots=tuple(robot_views(t, pts)),
+            targets=next((m.points for m in overlays.marks if isinstance(m, Cells)), ()),
+            selected=None,
+            rays=(),
+            ghosts=(),
+            overlays=overlays,
+            legend=legend_of(t.algorithm),
+            why=None,
+            outcome=st.outcome,
+            caption="",
+            event=st.events,
+            steps=st.steps,
+            history_length=t.history.length,
+            moves=st.moves,
+            cycles=st.cycles,
+            stage=overlays.stage,
+            lights_in_use=tuple(sorted(set(st.lights), key=t.algorithm.lights.index)),
+            moves_per_kD=st.moves / (t.k * paper_D(t.start, t.pattern)),
+            mode="run",
+            draft_count=len(t.pattern),
+            robot_count=t.k,
+            axis=None,
+            numbers=self.numbers if self.numbers is not None else t.k <= NUMBERS_UP_TO,
+            collision=None,
+            never_act=tuple(range(t.k)) if st.outcome == "stuck" else (),
+            algorithm=self.twin.algorithm,
         )
 
     def branch_here(self) -> None:
@@ -749,6 +775,33 @@ class Session:
                 if len(out) == n:
                     return tuple(out)
         return tuple(out)
+
+
+def robot_views(e, pts: list[Point]) -> list[RobotView]:
+    """What the scene draws for each robot of engine ``e`` (``pts``: its current points)."""
+    st = e.state
+    phases = st.phase.tolist()
+    pending: list[Point | None] = [None] * e.k
+    for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
+        if st.pending[r].move is not None:
+            dx, dy = move_to_global(st.pending[r].move, e.y_up[r]).delta
+            pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
+    # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
+    return list(
+        map(
+            tuple.__new__,
+            repeat(RobotView),
+            zip(
+                pts,
+                st.lights,
+                [_PHASE_NAMES[p] for p in phases],
+                e.y_up,
+                pending,
+                [NEXT_EVENT[p] for p in phases],
+                strict=True,
+            ),
+        )
+    )
 
 
 def trace_note(options: Mapping[str, object]) -> str:

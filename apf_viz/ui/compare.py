@@ -1,0 +1,83 @@
+"""Compare: the same start, pattern and adversary under a second algorithm, stepping with the run.
+
+The twin engine applies exactly the run's step records (who acts, in which round). A robot's phase
+depends only on how often it was activated, so the same records drive any algorithm; the twin stops
+where its own run ends (formed, collision, stuck) and the run goes on. It is brought to the run's step
+lazily, when a frame is drawn (after a step, Back, the timeline or a branch), so no control needs to
+know about it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.core.engine import Engine
+from apf_viz.core.history import Event
+from apf_viz.ui.run_config import RunConfig
+
+
+class Twin:
+    """A second engine that follows the run's steps, and the first event where the two differ."""
+
+    def __init__(self, algorithm: str, plugins: Mapping[str, Factory] | None = None) -> None:
+        get_algorithm(algorithm, plugins)  # refuses an unknown name before anything changes
+        self.algorithm = algorithm
+        self._plugins = plugins
+        self.engine: Engine | None = None
+        self._config: RunConfig | None = None
+        # (history generations, steps compared, events in them, the divergence found): scanned once.
+        self._divergence: tuple[tuple[int, int], int, int, tuple[int, str] | None] = ((-1, -1), 0, 0, None)
+
+    def follow(self, run: Engine, config: RunConfig) -> Engine:
+        """The twin at the run's step (rebuilt when the run's configuration changed)."""
+        if self.engine is None or config != self._config:
+            self._config = config
+            self.engine = config.but(algorithm=self.algorithm).engine(self._plugins)
+        twin = self.engine
+        target = run.step_index
+        if twin.step_index > target:
+            twin.seek(min(target, twin.history.length))
+        while twin.step_index < target and not twin.finished:
+            twin.apply(run.history.steps.record(twin.step_index))
+        return twin
+
+    def divergence(self, run: Engine) -> tuple[int, str] | None:
+        """(event number, what differs) of the first event at which the two configurations differ: a
+        Compute that sets another light, or a Move to another point; None while they agree."""
+        twin = self.engine
+        if twin is None:
+            return None
+        key = (run.history.generation, twin.history.generation)
+        cached_key, checked, events, found = self._divergence
+        if cached_key != key:
+            checked, events, found = 0, 0, None
+        upto = min(run.step_index, twin.step_index)
+        while found is None and checked < upto:
+            pairs = zip(run.history.steps[checked].events, twin.history.steps[checked].events, strict=False)
+            for a, b in pairs:
+                events += 1
+                if _differs(a, b):
+                    found = (events, f"{describe(a)} | {describe(b)}")
+                    break
+            checked += 1
+        self._divergence = (key, checked, events, found)
+        if found is not None and found[0] <= run.state.events:
+            return found
+        return None
+
+
+def _differs(a: Event, b: Event) -> bool:
+    if a.phase == "compute":
+        return a.light != b.light
+    if a.phase == "move":
+        return a.to != b.to or a.collision != b.collision
+    return False
+
+
+def describe(ev: Event) -> str:
+    if ev.phase == "compute":
+        return f"robot {ev.robot} · Compute → light {ev.light}"
+    if ev.phase == "move":
+        return f"robot {ev.robot} · Move → ({ev.to[0]}, {ev.to[1]})" + (" COLLISION" if ev.collision else "")
+    return f"robot {ev.robot} · Look"
