@@ -156,6 +156,51 @@ def _write_outputs(args: argparse.Namespace, engine: Engine, adversary: str) -> 
         write_atomic(args.schedule_out, schedule_text(engine.k, schedule_of_steps(engine.history.steps)))
 
 
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    try:
+        from apf_viz import sweep
+    except ImportError as e:  # the sweep extra is not installed
+        _fail(f"apf-viz sweep needs Dask and pyarrow: pip install 'apf-viz[sweep]' ({e.name} is missing)")
+    if args.out.suffix not in (".parquet", ".csv"):
+        _fail(f"--out {args.out}: write .parquet or .csv")
+    cells = sweep.grid(
+        sweep.parse_range(args.ks, "--ks"),
+        sweep.parse_range(args.seeds, "--seeds"),
+        [s.strip() for s in args.schedulers.split(",")],
+        [a.strip() for a in args.algorithms.split(",")],
+        [s.strip() for s in args.light_semantics.split(",")],
+        args.starts,
+    )
+    check_writable(args.out)
+    try:
+        rows = sweep.run_sweep(
+            cells,
+            args.out,
+            traces=args.traces,
+            workers=args.workers,
+            cluster=args.cluster,
+            progress=sweep.report_progress,
+        )
+    except KeyboardInterrupt:
+        return 130
+    print(sweep.summary(rows))
+    return 0
+
+
+def _cmd_plot(args: argparse.Namespace) -> int:
+    try:
+        from apf_viz import plot, sweep
+    except ImportError as e:
+        _fail(
+            f"apf-viz plot needs matplotlib and pyarrow: pip install 'apf-viz[sweep]' ({e.name} is missing)"
+        )
+    if not args.results.is_file():
+        _fail(f"{args.results}: no such file")
+    for path in plot.plot(sweep.read_results(args.results), args.out):
+        print(path)
+    return 0
+
+
 def _cmd_schedule(args: argparse.Namespace) -> int:
     header, events = load_trace(args.from_trace)
     text = schedule_text(len(header.robots), schedule_of_trace(events, header.light_semantics == "lc-atomic"))
@@ -391,6 +436,30 @@ def build_parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
     run.set_defaults(func=_cmd_run)
+
+    swp = command("sweep", "run a grid of runs on Dask into one results table (docs/SWEEPS.md)")
+    swp.add_argument(
+        "--ks", default="5,10,20", help="robot counts: a list and/or ranges, e.g. 5,10,20 or 3-6"
+    )
+    swp.add_argument("--seeds", default="1-10", help="seeds: e.g. 1-50 (each seed gives its own start)")
+    swp.add_argument("--schedulers", default="async", help="comma-separated schedulers")
+    swp.add_argument("--algorithms", default=DEFAULT_ALGORITHM, help="comma-separated algorithm names")
+    swp.add_argument("--light-semantics", default="compute", help="comma-separated: compute, lc-atomic")
+    swp.add_argument(
+        "--starts", type=Path, help="a folder of NAME.robots.json + NAME.pattern.json pairs instead of --ks"
+    )
+    swp.add_argument(
+        "--out", type=Path, required=True, help="results.parquet or results.csv (resumed if present)"
+    )
+    swp.add_argument("--traces", type=Path, help="write a trace of every run that did not form here")
+    swp.add_argument("--workers", type=_positive, help="local worker processes (default: one per core)")
+    swp.add_argument("--cluster", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    swp.set_defaults(func=_cmd_sweep)
+
+    plt = command("plot", "plot a sweep's results (PNG): moves vs k·D, failure rates, events per move")
+    plt.add_argument("results", type=Path, help="the results file of apf-viz sweep")
+    plt.add_argument("--out", type=Path, default=Path("plots"), help="folder for the PNGs")
+    plt.set_defaults(func=_cmd_plot)
 
     sch = command("schedule", "write the schedule (who acted, not what they saw) of a trace")
     sch.add_argument("--from-trace", required=True, type=Path, help="the trace file (JSON Lines)")

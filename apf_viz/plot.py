@@ -1,0 +1,107 @@
+"""`apf-viz plot`: the figures of a sweep's results table (matplotlib, PNG).
+
+- ``moves_vs_kD.png``: moves against k·D per algorithm (formed runs), the fitted constant c of
+  moves ≈ c·k·D (least squares through the origin), and the line c·k·D;
+- ``failure_rate.png``: the share of runs that did not form, per algorithm × scheduler × light semantics;
+- ``events_per_move.png``: events per move against k, per algorithm (median over seeds).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+from apf_viz.core.formats import InputError
+
+FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png")
+
+
+def _save(fig, path: Path) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".png")
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=120, bbox_inches="tight")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def fitted_constant(points: Sequence[tuple[float, float]]) -> float:
+    """c minimising Σ (y − c·x)²: the constant of y ≈ c·x."""
+    sxx = sum(x * x for x, _ in points)
+    return sum(x * y for x, y in points) / sxx if sxx else 0.0
+
+
+def plot(rows: Sequence[dict], out: Path) -> list[Path]:
+    if not rows:
+        raise InputError("the results table has no rows")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out.mkdir(parents=True, exist_ok=True)
+    algorithms = sorted({r["algorithm"] for r in rows})
+    written = []
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    top = 0.0
+    for alg in algorithms:
+        pts = [
+            (r["k"] * r["D"], r["moves"]) for r in rows if r["algorithm"] == alg and r["outcome"] == "formed"
+        ]
+        if not pts:
+            continue
+        c = fitted_constant(pts)
+        top = max(top, max(x for x, _ in pts))
+        ax.scatter([x for x, _ in pts], [y for _, y in pts], s=14, alpha=0.6, label=f"{alg} (c = {c:.2f})")
+        ax.plot([0, top], [0, c * top], linewidth=1)
+    ax.set_xlabel("k · D  (D = max(m, n, M, N, k))")
+    ax.set_ylabel("moves until formed")
+    ax.set_title("Moves against k·D: the paper's O(kD) bound, fitted moves ≈ c·k·D")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    written.append(out / FIGURES[0])
+    _save(fig, written[-1])
+    plt.close(fig)
+
+    groups: dict[str, list[dict]] = {}
+    for r in rows:
+        groups.setdefault(f"{r['algorithm']}\n{r['scheduler']}, {r['light_semantics']}", []).append(r)
+    names = sorted(groups)
+    rates = [100 * sum(r["outcome"] != "formed" for r in groups[n]) / len(groups[n]) for n in names]
+    fig, ax = plt.subplots(figsize=(max(6, 1.6 * len(names)), 4.5))
+    bars = ax.bar(range(len(names)), rates, color="#c44")
+    for bar, n in zip(bars, names, strict=True):
+        ax.annotate(f"{len(groups[n])} runs", (bar.get_x() + bar.get_width() / 2, bar.get_height()),
+                    ha="center", va="bottom", fontsize=7)  # fmt: skip
+    ax.set_xticks(range(len(names)), names, fontsize=7)
+    ax.set_ylabel("runs that did not form (%)")
+    ax.set_ylim(0, max(100, max(rates) + 5))
+    ax.set_title("Failure rate by algorithm × scheduler × light semantics")
+    written.append(out / FIGURES[1])
+    _save(fig, written[-1])
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for alg in algorithms:
+        by_k: dict[int, list[float]] = {}
+        for r in rows:
+            if r["algorithm"] == alg and r["moves"] > 0:
+                by_k.setdefault(r["k"], []).append(r["events"] / r["moves"])
+        ks = sorted(by_k)
+        if ks:
+            ax.plot(ks, [statistics.median(by_k[k]) for k in ks], marker="o", label=alg)
+    ax.set_xlabel("k (robots)")
+    ax.set_ylabel("events per move (median over runs)")
+    ax.set_title("Events per move against k")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    written.append(out / FIGURES[2])
+    _save(fig, written[-1])
+    plt.close(fig)
+    return written

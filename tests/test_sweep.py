@@ -1,0 +1,117 @@
+"""`apf-viz sweep` and `apf-viz plot` with a real Dask LocalCluster of 2 worker processes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from apf_viz.sweep import COLUMNS, KEY, grid, read_results, run_sweep
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", *args], capture_output=True, text=True, cwd=cwd
+    )
+
+
+def keys(rows: list[dict]) -> list[tuple]:
+    return [tuple(r[c] for c in KEY) for r in rows]
+
+
+def test_a_tiny_sweep_gives_one_row_per_run_with_every_column(tmp_path):
+    out = tmp_path / "results.parquet"
+    cells = grid([3, 4], [1, 2], ["async"], ["apf-opaque-grid", "apf-opaque-grid-literal"], ["compute"])
+    rows = run_sweep(cells, out, traces=tmp_path / "fails", workers=2)
+    table = read_results(out)
+    assert len(table) == len(rows) == 8 and sorted(keys(table)) == sorted(c.key() for c in cells)
+    assert all(set(r) == set(COLUMNS) for r in table)
+    default = [r for r in table if r["algorithm"] == "apf-opaque-grid"]
+    assert all(r["outcome"] == "formed" and r["trace"] == "" for r in default)
+    assert all(r["moves_per_kD"] == pytest.approx(r["moves"] / (r["k"] * r["D"])) for r in table)
+    for r in table:  # a trace exactly for every run that did not form
+        assert (r["trace"] != "") == (r["outcome"] != "formed")
+
+
+def test_a_sweep_resumes_without_duplicates_and_keeps_what_was_done(tmp_path):
+    out = tmp_path / "results.csv"
+    first = run_sweep(grid([3], [1, 2], ["async"], ["apf-opaque-grid"], ["compute"]), out, workers=2)
+    assert len(read_results(out)) == 2
+    cells = grid([3, 4], [1, 2], ["async", "round-robin"], ["apf-opaque-grid"], ["compute"])
+    rows = run_sweep(cells, out, workers=2)  # as if the first sweep had been interrupted after 2 runs
+    assert len(rows) == len(cells) == 8 and len(set(keys(rows))) == 8
+    kept = {tuple(r[c] for c in KEY): r["wall_s"] for r in read_results(out)}
+    assert all(kept[tuple(r[c] for c in KEY)] == pytest.approx(r["wall_s"]) for r in first)  # not re-run
+
+
+def test_a_run_that_kills_its_worker_is_recorded_as_error_and_the_sweep_goes_on(tmp_path, monkeypatch):
+    import dask
+
+    from tests.sweep_helpers import crash_on_k4_seed2
+
+    monkeypatch.setenv("PYTHONPATH", str(ROOT))  # the workers import tests.sweep_helpers
+    out = tmp_path / "results.parquet"
+    cells = grid([3, 4], [1, 2], ["async"], ["apf-opaque-grid"], ["compute"])
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):  # no retries of a crashing task
+        rows = run_sweep(cells, out, workers=2, run=crash_on_k4_seed2)
+    by_key = {(r["k"], r["seed"]): r for r in rows}
+    assert by_key[(4, 2)]["outcome"] == "error" and "KilledWorker" in by_key[(4, 2)]["error"]
+    assert [by_key[k]["outcome"] for k in [(3, 1), (3, 2), (4, 1)]] == ["formed"] * 3
+
+
+def test_starts_from_a_folder_of_pairs(tmp_path):
+    starts = tmp_path / "starts"
+    starts.mkdir()
+    demos = ROOT / "demo_patterns"
+    (starts / "line.robots.json").write_text((demos / "starts" / "vertical-line-4.json").read_text())
+    (starts / "line.pattern.json").write_text((demos / "tee-4.json").read_text())
+    (starts / "call.robots.json").write_text((demos / "starts" / "sym-call-7.json").read_text())
+    (starts / "call.pattern.json").write_text((demos / "cup-7.json").read_text())
+    out = tmp_path / "r.parquet"
+    rows = run_sweep(grid([], [1], ["async"], ["apf-opaque-grid"], ["compute"], starts), out, workers=2)
+    assert sorted((r["start"], r["k"], r["outcome"]) for r in rows) == [
+        ("call", 7, "formed"),
+        ("line", 4, "formed"),
+    ]
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--algorithms", "nope"], "--algorithms: unknown algorithm 'nope'"),
+        (["--seeds", "5-1"], "--seeds '5-1': the range 5-1 runs backwards"),
+        (["--out", "/proc/nope/r.parquet"], "/proc/nope/r.parquet"),
+        (["--out", "r.txt"], "write .parquet or .csv"),
+        (["--schedulers", "manual"], "unknown scheduler 'manual'"),
+    ],
+)
+def test_bad_sweep_input_is_one_line_exit_2(tmp_path, args, message):
+    base = {"--out": str(tmp_path / "r.parquet")}
+    argv = ["sweep", "--ks", "3", "--seeds", "1"]
+    for flag, value in zip(args[::2], args[1::2], strict=True):
+        base[flag] = value
+    for flag, value in base.items():
+        argv += [flag, value]
+    out = run_cli(*argv, cwd=tmp_path)
+    assert out.returncode == 2 and message in out.stderr and out.stderr.count("\n") == 1, out.stderr
+
+
+def test_the_cli_sweep_prints_a_summary_and_plot_writes_the_figures(tmp_path):
+    out = tmp_path / "r.parquet"
+    done = run_cli("sweep", "--ks", "3,4", "--seeds", "1-2", "--workers", "2", "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    assert "| apf-opaque-grid | async | compute | 4 | 4 | none |" in done.stdout
+    assert "4/4 runs" in done.stderr  # progress with an ETA on stderr
+    again = run_cli("sweep", "--ks", "3,4", "--seeds", "1-2", "--workers", "2", "--out", str(out))
+    assert again.returncode == 0 and len(read_results(out)) == 4  # nothing re-run, nothing duplicated
+    plots = run_cli("plot", str(out), "--out", str(tmp_path / "plots"))
+    assert plots.returncode == 0, plots.stderr
+    for name in ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png"):
+        png = tmp_path / "plots" / name
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000
+    json.dumps(read_results(out))  # plain values: a row is JSON-able
