@@ -115,3 +115,29 @@ def test_the_cli_sweep_prints_a_summary_and_plot_writes_the_figures(tmp_path):
         png = tmp_path / "plots" / name
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000
     json.dumps(read_results(out))  # plain values: a row is JSON-able
+
+
+def test_a_generated_row_is_reproduced_by_the_documented_apf_viz_run_recipe(tmp_path):
+    import math
+
+    from apf_viz.sweep import Cell, run_cell
+
+    k, seed = 6, 3
+    r = run_cell(Cell(k, seed, "stale-first", "apf-opaque-grid", "compute"))
+    s = max(3, math.isqrt(3 * k) + 1)
+    robots = run_cli(
+        "random-robots", "--count", str(k), "--width", str(s), "--height", str(s), "--seed", str(2 * seed)
+    )
+    pattern = run_cli("random-pattern", "--count", str(k), "--width", str(s), "--height", str(s),
+                      "--seed", str(2 * seed + 1))  # fmt: skip
+    (tmp_path / "r.json").write_text(robots.stdout)
+    (tmp_path / "p.json").write_text(pattern.stdout)
+    out = run_cli("run", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json"),
+                  "--scheduler", "stale-first", "--seed", str(seed), "--json")  # fmt: skip
+    data = json.loads(out.stdout)
+    assert (data["outcome"], data["moves"], data["events"], data["D"]) == (
+        r["outcome"],
+        r["moves"],
+        r["events"],
+        r["D"],
+    )
