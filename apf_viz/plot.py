@@ -8,26 +8,17 @@
 
 from __future__ import annotations
 
-import os
 import statistics
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import InputError
+from apf_viz.core.formats import InputError, replace_atomically
 
 FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png")
 
 
 def _save(fig, path: Path) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".png")
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=120, bbox_inches="tight")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"), ".png")
 
 
 def fitted_constant(points: Sequence[tuple[float, float]]) -> float:

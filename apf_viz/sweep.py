@@ -21,7 +21,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, check_writable, write_atomic
+from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
 
 COLUMNS = (
     "k", "D", "seed", "scheduler", "algorithm", "light_semantics", "start", "outcome", "moves", "events",
@@ -225,21 +225,11 @@ def write_results(path: Path, rows: list[dict]) -> None:
         w.writerows(rows)
         write_atomic(path, buf.getvalue())
         return
-    import os
-    import tempfile
-
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     table = pa.Table.from_pylist(rows, schema=_schema()) if rows else _schema().empty_table()
-    fd, tmp = tempfile.mkstemp(dir=path.parent or ".", prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        pq.write_table(table, tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    replace_atomically(path, lambda tmp: pq.write_table(table, tmp))
 
 
 def _schema():

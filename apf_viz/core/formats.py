@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -274,22 +274,33 @@ def check_writable(path: Path | str) -> None:
         raise InputError(f"{path}: cannot write: folder {str(folder)!r} is not writable")
 
 
-def write_atomic(path: Path | str, text: str) -> None:
-    """Write the whole file or nothing: a temp file in the same folder, fsync, then rename over."""
+def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: str = ".tmp") -> None:
+    """The whole file or nothing: ``write(temporary path)`` in the same folder, then rename over ``path``
+    (a table or an image written by another library goes through here too)."""
     p = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or ".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=suffix, dir=p.parent or ".")
+    os.close(fd)
     try:
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a saved file gets the usual permissions
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
+        write(tmp)
         os.replace(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def write_atomic(path: Path | str, text: str) -> None:
+    """Write the whole text file or nothing (fsynced before the rename)."""
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+
+    replace_atomically(path, write)
 
 
 def robots_json(robots: Iterable[Point], y_up: Sequence[bool] | None = None) -> str:
