@@ -141,3 +141,31 @@ def test_a_generated_row_is_reproduced_by_the_documented_apf_viz_run_recipe(tmp_
         r["events"],
         r["D"],
     )
+
+
+def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_path):
+    import signal
+    import time
+
+    out = tmp_path / "r.csv"
+    argv = [sys.executable, "-m", "apf_viz.cli", "sweep", "--ks", "30,35,40", "--seeds", "1-4",
+            "--workers", "2", "--out", str(out)]  # fmt: skip
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    deadline = time.time() + 120
+    while time.time() < deadline and not (out.exists() and len(read_results(out)) >= 1):
+        time.sleep(0.2)  # rows are written every few seconds as runs finish
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and "interrupted; keeping the runs that finished" in err
+    kept = read_results(out)
+    assert 1 <= len(kept) < 12 and len(set(keys(kept))) == len(kept)  # a valid, partial table
+    again = run_cli(*argv[3:], cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    rows = read_results(out)
+    assert len(rows) == 12 and len(set(keys(rows))) == 12  # resumed: the rest run, nothing twice
+    first = {tuple(r[c] for c in KEY): r["wall_s"] for r in kept}
+    assert all(
+        first[k] == pytest.approx(w)
+        for k, w in ((tuple(r[c] for c in KEY), r["wall_s"]) for r in rows)
+        if k in first
+    )
