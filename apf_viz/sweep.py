@@ -101,6 +101,10 @@ def grid(
     for s in semantics:
         if s not in ("compute", "lc-atomic"):
             raise InputError(f"--light-semantics: {s!r} is not compute or lc-atomic")
+    if starts is None and any(k < 1 for k in ks):
+        raise InputError(f"--ks: a run needs at least one robot (got {min(ks)})")
+    if any(seed < 0 for seed in seeds):
+        raise InputError(f"--seeds: seeds are 0 or more (got {min(seeds)})")
     pairs: list[tuple[str, int, list, list, list[bool]]] = []
     if starts is not None:
         pairs = [(name, 0, r, p, f) for name, r, p, f in start_pairs(starts)]
@@ -291,19 +295,27 @@ def run_sweep(
                 write_results(out, rows)
                 last_write = time.monotonic()
     except KeyboardInterrupt:
+        write_results(out, rows)  # first: every run that finished is kept, whatever shutting down does
         print("\napf-viz sweep: interrupted; keeping the runs that finished", file=sys.stderr)
-        for fut in futures:
-            fut.cancel()
-        write_results(out, rows)
-        client.close()
-        if local is not None:
-            local.close()
+        _shut_down(futures, client, local)
         raise
     write_results(out, rows)
     client.close()
     if local is not None:
         local.close()
     return rows
+
+
+def _shut_down(futures, client, local) -> None:
+    """Cancel what is queued and close the cluster; Dask may itself be interrupted mid-way (its errors
+    then are its own, and the results are already written)."""
+    try:
+        client.cancel(list(futures))
+        client.close()
+        if local is not None:
+            local.close()
+    except BaseException:  # a second Ctrl+C, or Dask's own shutdown errors: nothing is lost
+        pass
 
 
 def _cores() -> int:

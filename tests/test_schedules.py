@@ -171,3 +171,16 @@ def test_follow_refuses_before_it_changes_anything():
     assert e.state.events == 0
     with pytest.raises(InputError, match="for 4 robots"):
         list(follow(e, parse_schedule(json.dumps({**HEADER, "robots": 4}))))
+
+
+def test_a_line_naming_a_robot_that_does_not_exist_keeps_the_run_up_to_it(tmp_path):
+    path = write(tmp_path, [HEADER, {"robot": 0, "phase": "look"}, {"robot": 12, "phase": "look"}])
+    trace = tmp_path / "so-far.jsonl"
+    out = run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(path),
+                  "--trace", str(trace))  # fmt: skip
+    assert out.returncode == 2 and "s.jsonl:3: robot 12 does not exist (10 robots)" in out.stderr
+    assert [(e.robot, e.phase) for e in load_trace(trace)[1]] == [(0, "look")]
+    wrong_header = write(tmp_path, [{**HEADER, "robots": 5}, {"robot": 7, "phase": "look"}])
+    out = run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule",
+                  str(wrong_header))  # fmt: skip
+    assert out.returncode == 2 and "a schedule for 5 robots, but the run has 10" in out.stderr

@@ -169,3 +169,14 @@ def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_p
         for k, w in ((tuple(r[c] for c in KEY), r["wall_s"]) for r in rows)
         if k in first
     )
+
+
+def test_a_grid_of_no_robots_or_negative_seeds_is_bad_input(tmp_path):
+    for args, message in (
+        (["--ks", "0"], "--ks: a run needs at least one robot"),
+        (["--seeds", "-3"], "--seeds:"),
+    ):
+        out = run_cli(
+            "sweep", "--ks", "3", "--seeds", "1", *args, "--out", str(tmp_path / "r.csv"), cwd=tmp_path
+        )
+        assert out.returncode == 2 and message in out.stderr, out.stderr

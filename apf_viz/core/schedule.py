@@ -76,10 +76,6 @@ def parse_schedule(text: str, where: str = "schedule") -> Schedule:
     lines: list[tuple[int, Line]] = []
     for n, raw in numbered[1:]:
         line = _line(_parse_json(raw, f"{where}:{n}"), f"{where}:{n}")
-        robots = line.round if isinstance(line, Round) else [line.robot]
-        for r in robots:
-            if not 0 <= r < header.robots:
-                raise InputError(f"{where}:{n}: robot {r} does not exist ({header.robots} robots)")
         if isinstance(line, Round) and len(set(line.round)) != len(line.round):
             raise InputError(f"{where}:{n}: a robot is listed twice in one round")
         lines.append((n, line))
@@ -150,6 +146,10 @@ def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Itera
     for n, line in schedule.lines:
         if engine.finished:
             return
+        # Checked here, not when the file is read, so that the run up to a bad line is kept.
+        missing = [r for r in (line.round if isinstance(line, Round) else [line.robot]) if r >= engine.k]
+        if missing:
+            raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({engine.k} robots)")
         if isinstance(line, Activation):
             now = engine.next_event(line.robot)
             if now != line.phase:

@@ -321,6 +321,9 @@ class Panels:
     def _on_compare(self, event) -> None:
         if event.target.value == "Compare":
             name = self.compare_with.value.strip()
+            if name == self.session.algorithm_name:
+                tell(event.client, "Compare", f"the run already uses {name}: name another algorithm", True)
+                return
             self._guard(lambda e: self.session.compare_with(name))(event)
         else:
             self._guard(lambda e: self.session.compare_with(None))(event)
