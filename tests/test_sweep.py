@@ -57,7 +57,10 @@ def test_a_run_that_kills_its_worker_is_recorded_as_error_and_the_sweep_goes_on(
     monkeypatch.setenv("PYTHONPATH", str(ROOT))  # the workers import tests.sweep_helpers
     out = tmp_path / "results.parquet"
     cells = grid([3, 4], [1, 2], ["async"], ["apf-opaque-grid"], ["compute"])
-    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):  # no retries of a crashing task
+    # One task per single-threaded worker at a time (by default a worker also holds a queued task, which
+    # dies with it), and Dask's retries kept: a run that happened to share a dying worker is run again,
+    # while the crashing one dies on every retry and is recorded as an error.
+    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
         rows = run_sweep(cells, out, workers=2, run=crash_on_k4_seed2)
     by_key = {(r["k"], r["seed"]): r for r in rows}
     assert by_key[(4, 2)]["outcome"] == "error" and "KilledWorker" in by_key[(4, 2)]["error"]
