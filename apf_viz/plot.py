@@ -21,6 +21,20 @@ def _save(fig, path: Path) -> None:
     replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"), ".png")
 
 
+def _finish(fig, ax, path: Path, xlabel: str, ylabel: str, title: str) -> Path:
+    """Labels, legend and grid of a line or scatter figure; then written and closed."""
+    import matplotlib.pyplot as plt
+
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    _save(fig, path)
+    plt.close(fig)
+    return path
+
+
 def fitted_constant(points: Sequence[tuple[float, float]]) -> float:
     """c minimising Σ (y − c·x)²: the constant of y ≈ c·x."""
     sxx = sum(x * x for x, _ in points)
@@ -51,14 +65,10 @@ def plot(rows: Sequence[dict], out: Path) -> list[Path]:
         top = max(top, max(x for x, _ in pts))
         ax.scatter([x for x, _ in pts], [y for _, y in pts], s=14, alpha=0.6, label=f"{alg} (c = {c:.2f})")
         ax.plot([0, top], [0, c * top], linewidth=1)
-    ax.set_xlabel("k · D  (D = max(m, n, M, N, k))")
-    ax.set_ylabel("moves until formed")
-    ax.set_title("Moves against k·D: the paper's O(kD) bound, fitted moves ≈ c·k·D")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    written.append(out / FIGURES[0])
-    _save(fig, written[-1])
-    plt.close(fig)
+    title = "Moves against k·D: the paper's O(kD) bound, fitted moves ≈ c·k·D"
+    written.append(
+        _finish(fig, ax, out / FIGURES[0], "k · D  (D = max(m, n, M, N, k))", "moves until formed", title)
+    )
 
     groups: dict[str, list[dict]] = {}
     for r in rows:
@@ -87,12 +97,6 @@ def plot(rows: Sequence[dict], out: Path) -> list[Path]:
         ks = sorted(by_k)
         if ks:
             ax.plot(ks, [statistics.median(by_k[k]) for k in ks], marker="o", label=alg)
-    ax.set_xlabel("k (robots)")
-    ax.set_ylabel("events per move (median over runs)")
-    ax.set_title("Events per move against k")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    written.append(out / FIGURES[2])
-    _save(fig, written[-1])
-    plt.close(fig)
+    ylabel = "events per move (median over runs)"
+    written.append(_finish(fig, ax, out / FIGURES[2], "k (robots)", ylabel, "Events per move against k"))
     return written

@@ -23,6 +23,7 @@ from pydantic import BaseModel, ConfigDict, Field, StrictInt
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError, _parse_json, _read_text, _validate
 from apf_viz.core.history import Event, RecordedStep
+from apf_viz.core.run import steps_of_trace
 
 SCHEDULE_FORMAT = "apf-viz-schedule"
 SCHEDULE_VERSION = 1
@@ -109,28 +110,15 @@ def schedule_of_steps(steps: Iterable[RecordedStep]) -> list[Line]:
 
 
 def schedule_of_trace(events: Sequence[Event], lc_atomic: bool) -> list[Line]:
-    """A trace's schedule. Under lc-atomic a Look and the Compute that follows it are one activation."""
-    lines: list[Line] = []
-    current: int | None = None
-    rounds: dict[int, list[int]] = {}
-    for ev in events:
-        if ev.round is not None:
-            rounds.setdefault(ev.round, [])
-            if ev.phase == "look":
-                rounds[ev.round].append(ev.robot)
-    skip_next: int | None = None
-    for ev in events:
-        if ev.round is not None:
-            if ev.round != current:
-                current = ev.round
-                lines.append(Round(round=sorted(rounds[ev.round])))
-            continue
-        if skip_next == ev.robot and ev.phase == "compute":
-            skip_next = None
-            continue
-        lines.append(Activation(robot=ev.robot, phase=ev.phase))
-        skip_next = ev.robot if lc_atomic and ev.phase == "look" else None
-    return lines
+    """A trace's schedule: its events regrouped into the engine steps that made them (the grouping a
+    replay uses, ``core.run.steps_of_trace``), then :func:`schedule_of_steps`."""
+    steps: list[RecordedStep] = []
+    i = 0
+    for record in steps_of_trace(events, lc_atomic):
+        n = len(record.robots) * (2 if lc_atomic and events[i].phase == "look" else 1)
+        steps.append(RecordedStep(record, tuple(events[i : i + n])))
+        i += n
+    return schedule_of_steps(steps)
 
 
 class ScheduleError(InputError):

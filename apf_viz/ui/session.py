@@ -583,15 +583,7 @@ class Session:
             divergence=self.twin.divergence(e) if self.twin is not None and self.mode == "run" else None,
             trace_note=trace_note(self.run.trace_options),
             timeline_marks=loop_marks(self.run.trace_options, e.history.length, self.config.scheduler),
-            event=st.events,
-            steps=st.steps,
-            history_length=e.history.length,
-            moves=st.moves,
-            cycles=st.cycles,
-            stage=overlays.stage,
-            lights_in_use=tuple(sorted(set(st.lights), key=e.algorithm.lights.index)),
-            skipped=st.skipped,
-            moves_per_kD=st.moves / (e.k * paper_D(self.config.robots, self.config.pattern)),
+            **run_numbers(e, overlays),
             mode=self.mode,
             draft_count=len(self.editor.pattern) if self.mode != "edit-robots" else len(self.editor.robots),
             robot_count=len(self.editor.robots) if self.mode == "edit-robots" else e.k,
@@ -623,14 +615,7 @@ class Session:
             why=None,
             outcome=st.outcome,
             caption="",
-            event=st.events,
-            steps=st.steps,
-            history_length=t.history.length,
-            moves=st.moves,
-            cycles=st.cycles,
-            stage=overlays.stage,
-            lights_in_use=tuple(sorted(set(st.lights), key=t.algorithm.lights.index)),
-            moves_per_kD=st.moves / (t.k * paper_D(t.start, t.pattern)),
+            **run_numbers(t, overlays),
             mode="run",
             draft_count=len(t.pattern),
             robot_count=t.k,
@@ -802,6 +787,22 @@ def robot_views(e, pts: list[Point]) -> list[RobotView]:
             ),
         )
     )
+
+
+def run_numbers(e, overlays: Overlays) -> dict:
+    """The counts and stage a panel shows for engine ``e`` (the run's, or Compare's second run)."""
+    st = e.state
+    return {
+        "event": st.events,
+        "steps": st.steps,
+        "history_length": e.history.length,
+        "moves": st.moves,
+        "cycles": st.cycles,
+        "stage": overlays.stage,
+        "lights_in_use": tuple(sorted(set(st.lights), key=e.algorithm.lights.index)),
+        "skipped": st.skipped,
+        "moves_per_kD": st.moves / (e.k * paper_D(e.start, e.pattern)),
+    }
 
 
 def trace_note(options: Mapping[str, object]) -> str:

@@ -66,7 +66,7 @@ class Verifier:
             if self._status.state == "running":
                 return "a verification is already running (Cancel it first)"
             self._cancel.clear()
-            self._set(Status("running"))
+            self._status = Status("running")
         algorithm = get_algorithm(config.algorithm, plugins)
         self._thread = threading.Thread(target=self._run, args=(config, algorithm), daemon=True)
         self._thread.start()
@@ -79,14 +79,11 @@ class Verifier:
         if self._thread is not None:
             self._thread.join(timeout)
 
-    def _set(self, status: Status) -> None:
-        self._status = status
-
     def _progress(self, states: int, frontier: int, seconds: float) -> None:
         if self._cancel.is_set():
             raise _Cancelled
         with self._lock:
-            self._set(Status("running", states, frontier, states / max(seconds, 1e-9)))
+            self._status = Status("running", states, frontier, states / max(seconds, 1e-9))
         self._on_change(self.status)
 
     def _run(self, config: RunConfig, algorithm) -> None:
@@ -127,5 +124,5 @@ class Verifier:
                     trace,
                 )  # fmt: skip
         with self._lock:
-            self._set(status)
+            self._status = status
         self._on_change(status)
