@@ -9,7 +9,7 @@ the move to the global frame, applies it later (possibly on a stale snapshot), a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol, runtime_checkable
 
 from apf_viz.core.grid import Direction, Point
@@ -17,15 +17,50 @@ from apf_viz.core.view import Snapshot
 
 Pattern = tuple[Point, ...]
 
+Box = tuple[int | None, int | None, int | None, int | None]
+"""``(x0, x1, y0, y1)``: the closed box x0 ≤ dx ≤ x1, y0 ≤ dy ≤ y1 in the robot's own frame; None is
+unbounded on that side."""
+
+
+@dataclass(frozen=True, slots=True)
+class Watch:
+    """What a "same light, stay" decision depended on: the robot's answer stays "same light, stay" on every
+    later view that agrees with this one inside every region below and in which no robot showing one of
+    ``lights`` has come into sight. An algorithm's promise, in its own frame; the engine uses it to skip
+    re-deciding idle robots that no move or light change concerns (docs/ALGORITHM.md, "Watches").
+
+    Every region is convex and contains the robot itself, so whether a robot inside it is visible
+    depends only on the robots inside it: the engine needs no view to tell that a region is untouched.
+
+    Attributes:
+        boxes: closed axis-aligned boxes (:data:`Box`), each containing the origin.
+        segments: closed segments from the robot (the origin) to these offsets, e.g. to the robot whose
+            presence the decision relied on (a witness).
+        lights: a robot showing one of these lights coming into sight (by moving, by no longer being
+            hidden, or by taking the light) may change the answer.
+    """
+
+    boxes: tuple[Box, ...] = ()
+    segments: tuple[Point, ...] = ()
+    lights: frozenset[str] = frozenset()
+
+
+NOTHING = Watch()
+"""The watch of a decision that depends on nothing it sees (e.g. a robot that is done)."""
+
 
 @dataclass(frozen=True, slots=True)
 class Decision:
-    """The output of one Compute. ``move`` is in the robot's local frame; None means stay."""
+    """The output of one Compute. ``move`` is in the robot's local frame; None means stay.
+
+    ``watch`` (optional, only on "same light, stay") narrows what the engine must watch before asking
+    again; None means any change in the robot's view may matter."""
 
     light: str
     move: Direction | None = None
     rule: str = ""
     rule_id: str = ""  # stable, for tests and traces (e.g. "A1.off.terminal"); ``rule`` is the prose
+    watch: Watch | None = field(default=None, compare=False, repr=False)
 
     def is_noop(self, current_light: str) -> bool:
         """True when acting on this decision changes nothing: same light, no move."""

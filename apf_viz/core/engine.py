@@ -26,11 +26,12 @@ import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point, coordinate_problem
+from apf_viz.core.grid import Point, coordinate_problem, visible_from
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
+from apf_viz.core.watches import Watches
 
 LightSemantics = Literal["compute", "lc-atomic"]
 
@@ -134,6 +135,9 @@ class Engine:
         checkpoint_every: steps between state checkpoints used by :meth:`seek`.
         skip_noops: schedulers choose only among robots whose next event can change something
             (:meth:`eligible`); False keeps every no-op cycle (``--all-activations``).
+        use_watches: when skipping, trust the :class:`~apf_viz.core.algorithm.Watch` of a no-op decision
+            to tell when the robot must be asked again (False: after any change of its view; the same
+            run, slower; for tests).
     """
 
     def __init__(
@@ -148,6 +152,7 @@ class Engine:
         max_moves: int | None = None,
         checkpoint_every: int = 64,
         skip_noops: bool = True,
+        use_watches: bool = True,
     ) -> None:
         k = len(robots)
         if k == 0:
@@ -169,12 +174,14 @@ class Engine:
         self.max_moves = max_moves
         self.checkpoint_every = checkpoint_every
         self.skip_noops = skip_noops
+        self.use_watches = use_watches
         self._decisions: dict[Snapshot, Decision] = {}
         self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
         self.state = self._initial_state()
         self.history = History(self.state.copy())
         self._views = Views(self.state.positions, self.state.lights, self.y_up)
+        self._watches = self._new_watches()
         self._snaps: list[Snapshot | None] = [None] * k  # each robot's last snapshot, reused if unchanged
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
         self._probe_hint = 0
@@ -267,10 +274,23 @@ class Engine:
         if dirty:
             st = self.state
             phase, lights, eligible = st.phase, st.lights, self._eligible
+            watches = self._watches
+            watch = self.use_watches
             for r in dirty:
-                eligible[r] = phase[r] != _IDLE or not self._decide(r, self.look(r)).is_noop(lights[r])
+                watches.clear(r)
+                if phase[r] != _IDLE:
+                    eligible[r] = True
+                    continue
+                decision = self._decide(r, self.look(r))
+                noop = decision.is_noop(lights[r])
+                eligible[r] = not noop
+                if noop and watch and decision.watch is not None and watches.register(r, decision.watch):
+                    views.release(r)  # no need to keep its view: the watch says when to look again
             self._dirty = set()
         return self._eligible
+
+    def _new_watches(self) -> Watches:
+        return Watches(self.state.positions, self.state.lights, self.algorithm.lights, self.y_up)
 
     # ------------------------------------------------------------------ stepping
     def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:
@@ -368,6 +388,8 @@ class Engine:
             st.lights_used.add(decision.light)
             st.version += 1
             self._views.relit(r)
+            # Always told, watched or not: it keeps every robot's light bit for later reveals.
+            self._dirty.update(self._watches.relit(r, decision.light, lambda: visible_from(st.positions, r)))
         gmove = move_to_global(decision.move, self.y_up[r])
         rule_id = decision.rule_id or None
         return _new(
@@ -402,6 +424,12 @@ class Engine:
             st.positions[r] = targets[r]
         if movers:
             self._views.moved(movers, [here[r] for r in movers])
+            if self._watches.count:
+                self._dirty.update(
+                    self._watches.moved(
+                        [here[r] for r in movers], [targets[r] for r in movers], movers, self._views.occupied
+                    )
+                )
             st.moves += len(movers)
             st.version += 1
         for r in robots:
@@ -423,6 +451,8 @@ class Engine:
             return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
         st.positions[r] = to
         self._views.moved((r,), (here,))
+        if self._watches.count:
+            self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
         st.moves += 1
         st.version += 1
         self._finish_cycle(r)
@@ -483,7 +513,14 @@ class Engine:
         "all idle" is not required; an idle robot is the special case with nothing held.)
 
         Probes of the current view are cached per configuration version, and the robot found active last
-        time is probed first, so a busy run pays at most one Look per configuration change."""
+        time is probed first, so a busy run pays at most one Look per configuration change. When skipping,
+        :meth:`eligible` already knows every idle robot's answer: only the robots mid-cycle are probed."""
+        if self.skip_noops:
+            eligible = self.eligible()
+            phase = self.state.phase
+            return not any(
+                phase[r] == _IDLE or not self._robot_quiescent(r) for r in np.flatnonzero(eligible)
+            )
         hint = self._probe_hint
         if self._busy == (hint, self.state.version, self.state.last_act[hint]):
             return False  # found active, and neither it nor the configuration has changed since
@@ -522,6 +559,7 @@ class Engine:
         base, state = self.history.checkpoint_before(step)
         self.state = state.copy()
         self._views = Views(self.state.positions, self.state.lights, self.y_up)
+        self._watches = self._new_watches()
         self._probe = [(-1, False)] * self.k
         self._busy = (-1, -1, -1)
         self._snaps = [None] * self.k

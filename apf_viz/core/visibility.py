@@ -205,6 +205,15 @@ class Views:
             self._cached[r] = None
             self.changed.add(r)
 
+    def release(self, r: int) -> None:
+        """Stop keeping robot r's view (the engine watches r another way); it is rebuilt on r's next Look."""
+        if r in self._built:
+            self._built.discard(r)
+            self._near[r] = None
+            self._cached[r] = None
+            self._entries[r] = []
+            self._ids[r] = []
+
     def _forget(self, m: int) -> None:
         """A robot that moved sees everything shifted: its view is rebuilt on its next Look."""
         if m in self._built:

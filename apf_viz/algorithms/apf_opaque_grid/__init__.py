@@ -8,7 +8,7 @@ the robot's own light and the lights it sees (docs/ALGORITHM.md, "Phase dispatch
 
 from __future__ import annotations
 
-from apf_viz.algorithms.apf_opaque_grid import portrayal
+from apf_viz.algorithms.apf_opaque_grid import portrayal, watches
 from apf_viz.algorithms.apf_opaque_grid.pattern_formation import (
     embedded_targets,
     pattern_formation_leader,
@@ -36,7 +36,7 @@ from apf_viz.algorithms.apf_opaque_grid.resolutions import (
     deviation,
     parse_resolutions,
 )
-from apf_viz.core.algorithm import Decision, Pattern
+from apf_viz.core.algorithm import NOTHING, Decision, Pattern
 from apf_viz.core.portrayal import NO_EVIDENCE, Configuration, Evidence, Explanation, LightStyle, Overlays
 from apf_viz.core.view import Snapshot
 
@@ -50,7 +50,7 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     """Which procedure a robot runs, decided from its light and the lights it sees."""
     light = view.light
     if light == "done":
-        return stay(view, "done: stay", "done")
+        return stay(view, "done: stay", "done", NOTHING)
     seen = lights_of(view.robots)
     if light == "leader":
         return pattern_formation_leader(view, pattern, res, ev)
@@ -81,8 +81,16 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     if ev.test("two deciders on L_I", two_deciders_on_left_line(view), "Phase 2 has begun to my left"):
         return phase2_off(view, res, ev)
     if G1 in res and deviation(ev, G1, bool(seen - {"off", "terminal1"})):
-        return stay(view, "off: Phase 1 is over (a later light is visible) → wait (G1)", "A1.off.G1-wait")
-    return phase1_off(view, res, ev)
+        return stay(
+            view,
+            "off: Phase 1 is over (a later light is visible) → wait (G1)",
+            "A1.off.G1-wait",
+            watches.g1_wait(view),
+        )
+    decision = phase1_off(view, res, ev)
+    if G1 in res and decision.move is None and decision.light == "off":
+        return stay(view, decision.rule, decision.rule_id, watches.phase1_wait(view))
+    return decision
 
 
 class ApfOpaqueGrid:

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from operator import itemgetter
 
+from apf_viz.algorithms.apf_opaque_grid import watches
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
 from apf_viz.algorithms.apf_opaque_grid.resolutions import LA, N2, P3, Resolutions, deviation
 from apf_viz.core.algorithm import Decision, Pattern
@@ -169,7 +170,12 @@ def pattern_formation_off(
         leader = view.robots[list(map(_light, view.robots)).index("leader")]
     except ValueError:
         ev.test("the leader in sight", False, "I see the robot with light leader")
-        return stay(view, "Phase 3 (off): the leader is not in sight → wait", "A3.off.no-leader")
+        return stay(
+            view,
+            "Phase 3 (off): the leader is not in sight → wait",
+            "A3.off.no-leader",
+            watches.no_leader(view),
+        )
     ev.test("the leader in sight", True, "I see the robot with light leader")
     targets = embedded_targets(pattern)
     n = len(targets)
@@ -179,7 +185,8 @@ def pattern_formation_off(
     ev.test("my place in the leader's frame", f"({x}, {y})", "the line is row −1, L_H1 is row 0")
     if y > -1:
         # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
-        if leftmost_on_own_row(view, ev) and not robots_between(view, frame, ev):
+        leftmost = leftmost_on_own_row(view, ev)
+        if leftmost and not robots_between(view, frame, ev):
             placed = [(frame.of(s), s) for s in view.robots if s is not leader]
             line = sorted(p[0] for p, _ in placed if p[1] == -1)
             i = len(line)
@@ -209,6 +216,7 @@ def pattern_formation_off(
             view,
             "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
             "A3.off.not-my-turn",
+            watches.not_my_turn(view, leader, _turn_witness(view, frame, leftmost)),
         )
     # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
     # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
@@ -226,6 +234,18 @@ def pattern_formation_off(
             "A3.off.leave-line",
         )
     return stay(view, "Phase 3 (off): on the line, robots above are not done → wait", "A3.off.line-wait")
+
+
+def _turn_witness(view: Snapshot, frame: LeaderFrame, leftmost: bool) -> Seen:
+    """Why it is not r's turn: the nearest robot on r's row to its left, or (r leftmost) a robot strictly
+    between r's row and the leader's, a done one if any (it will not move away)."""
+    robots = view.robots
+    if not leftmost:
+        return max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0))
+    y = frame.me[1]
+    lo, hi = (-y, -1) if frame.s == 1 else (1, y)
+    between = [s for s in robots if lo <= s.dy <= hi]
+    return next((s for s in between if s.light == "done"), between[0])
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:
@@ -260,7 +280,12 @@ def pattern_formation_leader(
     if p3 and any(s.light not in ("off", "done") for s in view.robots):
         deviation(ev, P3, True)
     if ev.test("a robot still forming", bool(pending), "a robot I see is not done"):
-        return stay(view, "Phase 3 (leader): robots are still forming → wait", "A3.leader.wait")
+        return stay(
+            view,
+            "Phase 3 (leader): robots are still forming → wait",
+            "A3.leader.wait",
+            watches.leader_waits(pending),
+        )
     if ev.test("n = 1", n == 1, "the pattern is one point"):
         return Decision(
             "done", None, "Phase 3 (leader): alone, the pattern is one point → done", "A3.leader.alone"

@@ -20,14 +20,15 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     vertical_line,
 )
 from apf_viz.algorithms.apf_opaque_grid.resolutions import E2, Resolutions, deviation
-from apf_viz.core.algorithm import Decision
+from apf_viz.core.algorithm import Decision, Watch
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
 from apf_viz.core.view import Snapshot
 
 
-def stay(view: Snapshot, rule: str, rule_id: str = "") -> Decision:
-    return Decision(view.light, None, rule, rule_id)
+def stay(view: Snapshot, rule: str, rule_id: str = "", watch: Watch | None = None) -> Decision:
+    """Keep the light and do not move; ``watch``: what the answer depends on (None: the whole view)."""
+    return Decision(view.light, None, rule, rule_id, watch)
 
 
 def away_from(dy: int) -> Direction:

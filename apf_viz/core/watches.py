@@ -1,0 +1,187 @@
+"""Which idle robots a move or a light change concerns: the engine's side of a ``Watch``.
+
+An idle robot whose decision on its current view is "same light, stay" need not be asked again until
+something it depends on changes. Without a watch that is "anything in its view", so every observer of a
+move is re-decided and every built view patched: O(k) Python work per move, most of a large run's time
+(docs/PERFORMANCE.md). With a watch the robot's view is dropped, and per move or light change one numpy
+pass over all watched robots finds the few whose watch the event touches:
+
+- a point of a box or a segment is vacated, entered or relit (regions are convex and contain their robot,
+  so what the robot sees inside one depends on nothing outside it);
+- a robot showing a watched light comes into sight: it moves (conservatively: every robot watching its
+  light is asked again), it is revealed (the vacated point was the only robot between it and the
+  watcher: the two nearest robots on either side of the vacated point along one line), or it takes the
+  light while the watcher sees it.
+
+The watches are kept in the global frame, so a test costs the same for every robot. Coordinates are far
+below 2^62 (``COORD_LIMIT``), so the sentinel bounds never overflow; direction keys are packed only when
+the configuration's span allows it, else every robot watching a light is asked again (exact, slower).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Container, Iterable, Sequence
+
+import numpy as np
+
+from apf_viz.core.algorithm import Watch
+from apf_viz.core.grid import Point
+
+BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
+SEGMENTS = 2
+_BIG = 1 << 62
+_PACKED_SPAN_LIMIT = 1 << 20
+
+
+class Watches:
+    """The registered watches of idle robots, and the robots an event concerns.
+
+    Args:
+        positions: the engine's (k, 2) array (read, never written).
+        lights: the engine's list of lights (read).
+        light_names: every light the algorithm may show (a watched light is a bit of this list).
+        y_up: per robot, whether its local +y is the global +y.
+    """
+
+    def __init__(
+        self, positions: np.ndarray, lights: list[str], light_names: Sequence[str], y_up: Sequence[bool]
+    ) -> None:
+        k = positions.shape[0]
+        self._P = positions
+        self._bit = {name: 1 << i for i, name in enumerate(light_names)}
+        self._flip = [1 if up else -1 for up in y_up]
+        self.bits = np.array([self._bit.get(light, 0) for light in lights], dtype=np.int64)
+        self.active = np.zeros(k, dtype=bool)
+        # Unused box slots are empty (x0 > x1); unused segment slots have length g = 0, matching no point.
+        self._bx0 = np.full((k, BOXES), _BIG, dtype=np.int64)
+        self._bx1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
+        self._by0 = np.full((k, BOXES), _BIG, dtype=np.int64)
+        self._by1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
+        self._sdx = np.zeros((k, SEGMENTS), dtype=np.int64)  # primitive direction, global frame
+        self._sdy = np.zeros((k, SEGMENTS), dtype=np.int64)
+        self._sg = np.zeros((k, SEGMENTS), dtype=np.int64)  # length in lattice steps
+        self._mask = np.zeros(k, dtype=np.int64)  # watched lights
+        self.count = 0  # robots with a watch
+
+    # ------------------------------------------------------------------ registering
+    def register(self, r: int, watch: Watch) -> bool:
+        """Watch robot r (idle, at its current position) until an event touches ``watch``; False if the
+        watch has more regions than the slots (the caller keeps observing r fully)."""
+        if len(watch.boxes) > BOXES or len(watch.segments) > SEGMENTS:
+            return False
+        x, y = (int(v) for v in self._P[r])
+        s = self._flip[r]
+        for i, (x0, x1, y0, y1) in enumerate(watch.boxes):
+            if s == -1:  # the robot's +y is the global −y: its box flips about its own row
+                y0, y1 = (None if y1 is None else -y1), (None if y0 is None else -y0)
+            self._bx0[r, i] = -_BIG if x0 is None else x + x0
+            self._bx1[r, i] = _BIG if x1 is None else x + x1
+            self._by0[r, i] = -_BIG if y0 is None else y + y0
+            self._by1[r, i] = _BIG if y1 is None else y + y1
+        for i, (dx, dy) in enumerate(watch.segments):
+            dy *= s
+            g = np.gcd(dx, dy)
+            self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
+        mask = 0
+        for light in watch.lights:
+            mask |= self._bit.get(light, 0)
+        self._mask[r] = mask
+        self.active[r] = True
+        self.count += 1
+        return True
+
+    def clear(self, r: int) -> None:
+        """Robot r is asked again (it acted, or an event touched its watch)."""
+        if not self.active[r]:
+            return
+        self.active[r] = False
+        self.count -= 1
+        self._bx0[r] = _BIG
+        self._bx1[r] = -_BIG
+        self._by0[r] = _BIG
+        self._by1[r] = -_BIG
+        self._sg[r] = 0
+        self._mask[r] = 0
+
+    # ------------------------------------------------------------------ events
+    def moved(
+        self, old: Sequence[Point], new: Sequence[Point], movers: Sequence[int], occupied: Container[Point]
+    ) -> list[int]:
+        """Watched robots these simultaneous moves concern (positions and ``occupied`` already hold the
+        new points)."""
+        if not self.count:
+            return []
+        hit = self._touching(list(old) + list(new))
+        mover_bits = 0
+        for m in movers:
+            mover_bits |= int(self.bits[m])
+        hit |= (self._mask & mover_bits) != 0
+        if self._mask.any():
+            for p in old:
+                if p not in occupied:  # a point another mover entered hides as much as before
+                    hit |= self._revealed_through(p)
+        return self._take(hit)
+
+    def relit(self, m: int, light: str, seen_by: Callable[[], Iterable[int]]) -> list[int]:
+        """Watched robots robot m's new light concerns (``seen_by()``: the robots that see m, asked only
+        when someone watches the light)."""
+        self.bits[m] = self._bit.get(light, 0)
+        if not self.count:
+            return []
+        hit = self._touching([tuple(int(v) for v in self._P[m])])
+        bit = int(self.bits[m])
+        if bit:
+            watching = np.flatnonzero((self._mask & bit) != 0)
+            if watching.size:
+                sees = np.zeros_like(hit)
+                sees[np.fromiter(seen_by(), dtype=np.intp)] = True
+                hit[watching] |= sees[watching]
+        return self._take(hit)
+
+    def _take(self, hit: np.ndarray) -> list[int]:
+        hit &= self.active
+        robots = np.flatnonzero(hit).tolist()
+        for r in robots:
+            self.clear(r)
+        return robots
+
+    def _touching(self, points: Sequence[Point]) -> np.ndarray:
+        """Robots with a box or a segment containing one of these points."""
+        P = self._P
+        hit = np.zeros(P.shape[0], dtype=bool)
+        for px, py in points:
+            inside = (self._bx0 <= px) & (px <= self._bx1) & (self._by0 <= py) & (py <= self._by1)
+            hit |= inside.any(axis=1)
+            dx = px - P[:, 0]
+            dy = py - P[:, 1]
+            g = np.gcd(dx, dy)
+            g[g == 0] = 1  # the robot standing on the point: it is not watching (it is the mover)
+            qx, qy = (dx // g)[:, None], (dy // g)[:, None]
+            on = (qx == self._sdx) & (qy == self._sdy) & (g[:, None] <= self._sg)
+            hit |= on.any(axis=1)
+        return hit
+
+    def _revealed_through(self, p: Point) -> np.ndarray:
+        """Watchers to which a robot with a watched light is revealed now that p is empty: along each
+        line through p, the nearest robots on the two sides see each other now."""
+        P = self._P
+        hit = np.zeros(P.shape[0], dtype=bool)
+        dx = P[:, 0] - p[0]
+        dy = P[:, 1] - p[1]
+        span = int(max(np.abs(dx).max(), np.abs(dy).max())) + 1
+        if span >= _PACKED_SPAN_LIMIT:
+            return (self._mask & np.bitwise_or.reduce(self.bits)) != 0  # exact by excess
+        g = np.gcd(dx, dy)
+        key = (dx // g) * (2 * span + 1) + dy // g  # one per primitive direction; −key is the opposite
+        order = np.lexsort((g, key))
+        skey = key[order]
+        first = np.empty(skey.size, dtype=bool)
+        first[0] = True
+        np.not_equal(skey[1:], skey[:-1], out=first[1:])
+        nearest, nkey = order[first], skey[first]  # the nearest robot in each direction, keys ascending
+        j = np.searchsorted(nkey, -nkey)
+        j[j >= nkey.size] = 0
+        paired = nkey[j] == -nkey
+        a, b = nearest[paired], nearest[j[paired]]  # a and b face each other across p
+        hit[a] |= (self._mask[a] & self.bits[b]) != 0
+        return hit

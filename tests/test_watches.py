@@ -1,0 +1,167 @@
+"""Watches: an idle robot's "same light, stay" is trusted until an event touches what it depended on.
+
+The promise each watch makes (apf_opaque_grid/watches.py) is checked after every step of many runs
+against a decision on the view computed from scratch; runs with and without watches must be the same
+run, step for step; and the engine's side (core/watches.py) is checked event by event."""
+
+from __future__ import annotations
+
+import random
+
+import numpy as np
+import pytest
+
+from apf_viz.algorithms import get_algorithm
+from apf_viz.algorithms.apf_opaque_grid import LIGHTS
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.algorithms.apf_opaque_grid.watches import LATER_LIGHTS, PHASE1_LIGHTS
+from apf_viz.core.algorithm import Watch
+from apf_viz.core.engine import Engine
+from apf_viz.core.run import advance
+from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.view import Snapshot
+from apf_viz.core.visibility import Views
+from apf_viz.core.watches import Watches
+
+
+def case(k: int, seed: int):
+    rng = random.Random(k * 104729 + seed)
+    start, pattern = random_solvable_start(k, rng), random_pattern(k, rng)
+    return start, pattern, [rng.random() < 0.5 for _ in range(k)]
+
+
+def fresh_view(e: Engine, r: int) -> Snapshot:
+    """Robot r's view built from nothing but the current positions and lights."""
+    views = Views(e.state.positions.copy(), list(e.state.lights), e.y_up)
+    return Snapshot(e.state.lights[r], views.view(r)[0])
+
+
+def broken_promises(e: Engine) -> list[tuple[int, str]]:
+    """Watched robots whose decision on their present view, computed afresh, is not a no-op."""
+    bad = []
+    for r in np.flatnonzero(e._watches.active).tolist():
+        decision = e.algorithm.decide(fresh_view(e, r), e.pattern)
+        if not decision.is_noop(e.state.lights[r]):
+            bad.append((r, decision.rule_id))
+    return bad
+
+
+RUNS = [
+    # (algorithm, scheduler, light semantics, k, seeds)
+    ("apf-opaque-grid", "async", "compute", 9, range(6)),
+    ("apf-opaque-grid", "async", "compute", 16, range(2)),
+    ("apf-opaque-grid", "stale-first", "compute", 8, range(4)),
+    ("apf-opaque-grid", "ssync", "compute", 8, range(3)),
+    ("apf-opaque-grid", "fsync", "compute", 8, range(3)),
+    ("apf-opaque-grid", "async", "lc-atomic", 8, range(3)),
+    ("apf-opaque-grid-literal", "async", "compute", 7, range(4)),
+    ("apf-opaque-grid@G1,LA,P3", "stale-first", "compute", 7, range(3)),
+]
+
+
+@pytest.mark.parametrize("algorithm,scheduler,semantics,k,seeds", RUNS)
+def test_every_watched_robot_would_still_stay(algorithm, scheduler, semantics, k, seeds):
+    watched = 0
+    for seed in seeds:
+        start, pattern, y_up = case(k, seed)
+        e = Engine(start, pattern, get_algorithm(algorithm), y_up=y_up, light_semantics=semantics)
+        sched = make_scheduler(scheduler)
+        while not e.finished and e.state.events < 20_000:
+            advance(e, sched, seed, steps=1)
+            e.eligible()  # registers the watches of the robots re-decided after this step
+            assert not broken_promises(e), (algorithm, scheduler, seed, e.step_index, broken_promises(e))
+            watched += int(e._watches.active.sum())
+    assert watched > 0  # the promises were put to the test
+
+
+@pytest.mark.parametrize("scheduler", ["async", "stale-first", "fsync"])
+def test_watching_changes_nothing_in_the_run(scheduler):
+    """Watches only spare work: the same steps, events and outcome as asking after every view change."""
+    for seed in range(2):
+        start, pattern, y_up = case(20, seed)
+        runs = []
+        for use in (True, False):
+            e = Engine(start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up, use_watches=use)
+            advance(e, make_scheduler(scheduler), seed)
+            runs.append(
+                (
+                    e.outcome,
+                    e.state.events,
+                    e.state.moves,
+                    [e.history.steps.record(i) for i in range(e.step_index)],
+                )
+            )
+        assert runs[0] == runs[1]
+        assert runs[0][0] == "formed"
+
+
+def test_watches_spare_most_decisions():
+    start, pattern, y_up = case(40, 0)
+    calls = []
+    for use in (True, False):
+        e = Engine(start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up, use_watches=use)
+        advance(e, make_scheduler("async"), 0)
+        calls.append(e.decide_calls)
+    assert calls[0] * 5 < calls[1], calls
+
+
+def test_the_later_lights_are_every_light_but_phase_1s():
+    assert set(LIGHTS) == LATER_LIGHTS | PHASE1_LIGHTS and not LATER_LIGHTS & PHASE1_LIGHTS
+
+
+# ---------------------------------------------------------------------------- the engine's side
+def watches_on(points, lights=None, y_up=None):
+    P = np.array(points, dtype=np.int64)
+    lights = lights or ["off"] * len(points)
+    return P, lights, Watches(P, lights, LIGHTS, y_up or [True] * len(points))
+
+
+def move(P, w, m, to, occupied=None):
+    old = tuple(int(v) for v in P[m])
+    P[m] = to
+    occupied = occupied if occupied is not None else {tuple(p) for p in P.tolist()}
+    return w.moved([old], [to], [m], occupied)
+
+
+def test_a_box_is_touched_by_a_move_into_or_out_of_it_and_flips_with_the_robot():
+    P, _, w = watches_on([(0, 0), (5, 5), (-3, 2)], y_up=[False, True, True])
+    assert w.register(0, Watch(boxes=((-3, 0, 1, None),)))  # local y ≥ 1 is global y ≤ −1
+    assert move(P, w, 1, (5, 4)) == []
+    assert move(P, w, 2, (-3, 1)) == []  # global y = 1 is outside (flipped)
+    assert move(P, w, 2, (-3, 0)) == [] and move(P, w, 2, (-3, -1)) == [0]
+    assert not w.active[0]  # asked again: the watch is gone
+
+
+def test_a_segment_is_touched_on_its_points_only():
+    P, _, w = watches_on([(0, 0), (4, 2), (9, 9)])
+    assert w.register(0, Watch(segments=((4, 2),)))
+    assert move(P, w, 2, (9, 8)) == []
+    P[2] = (3, 2)
+    assert move(P, w, 2, (2, 1)) == [0]  # onto the segment's middle point
+    w.register(0, Watch(segments=((4, 2),)))
+    assert move(P, w, 1, (4, 3)) == [0]  # the witness itself leaves
+
+
+def test_a_watched_light_coming_into_sight_by_a_reveal():
+    # 0 watches for "leader"; 2 (leader) is hidden from 0 behind 1 on the x-axis.
+    P, lights, w = watches_on([(0, 0), (1, 0), (2, 0), (0, 5)], ["off", "off", "leader", "off"])
+    w.bits[2] = 1 << LIGHTS.index("leader")
+    assert w.register(0, Watch(lights=frozenset({"leader"})))
+    assert w.register(3, Watch(lights=frozenset({"leader"})))
+    assert move(P, w, 1, (1, 1)) == [0]  # 0 sees the leader now; 3 saw it all along
+    # A point that another robot enters at once reveals nothing.
+    P2, _, w2 = watches_on([(0, 0), (1, 0), (2, 0), (3, 0)], ["off", "off", "off", "leader"])
+    w2.bits[3] = 1 << LIGHTS.index("leader")
+    w2.register(0, Watch(lights=frozenset({"leader"})))
+    old = [(1, 0), (2, 0)]
+    P2[1], P2[2] = (1, 1), (1, 0)
+    assert w2.moved(old, [(1, 1), (1, 0)], [1, 2], {tuple(p) for p in P2.tolist()}) == []
+
+
+def test_a_relit_robot_concerns_only_the_watchers_that_see_it():
+    P, lights, w = watches_on([(0, 0), (1, 0), (2, 0), (0, 3)])
+    for r in (0, 3):
+        w.register(r, Watch(lights=frozenset({"done"})))
+    lights[2] = "done"
+    assert w.relit(2, "done", lambda: [1, 3]) == [3]  # 0 does not see 2 (1 is between)
+    assert w.relit(1, "call", lambda: [0, 2, 3]) == []  # nobody watches call
