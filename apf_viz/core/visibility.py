@@ -46,6 +46,9 @@ class Views:
         self.points: list[Point] = [(int(x), int(y)) for x, y in positions.tolist()]
         self.occupied: dict[Point, int] = {p: i for i, p in enumerate(self.points)}
         self._near: list[dict[Direction2, tuple[int, int]] | None] = [None] * k  # dir → (distance g, robot)
+        # What a built view's index is made from, until a patch first needs it: most views are read once
+        # (a robot about to move, or one the engine then watches another way) and never patched.
+        self._raw: list[tuple[np.ndarray, np.ndarray, list[int]] | None] = [None] * k
         self._entries: list[list[Seen]] = [[] for _ in range(k)]  # sorted by (dx, dy), observer's frame
         self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
         self._cached: list[tuple[tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
@@ -59,7 +62,7 @@ class Views:
         indices (sorted). Unchanged views return the same tuples."""
         cached = self._cached[r]
         if cached is None:
-            if self._near[r] is None:
+            if r not in self._built:
                 self._build(r)
             cached = self._cached[r] = (tuple(self._entries[r]), tuple(self._ids[r]))
         return cached
@@ -69,25 +72,44 @@ class Views:
         offsets = P - P[r]
         order = nearest_per_direction(offsets, r)
         seen = offsets[order]
-        g = np.gcd(seen[:, 0], seen[:, 1])
-        dx, dy = seen[:, 0].tolist(), seen[:, 1].tolist()
+        sx, sy = seen[:, 0], seen[:, 1]
         ids = order.tolist()
-        self._near[r] = dict(
-            zip(
-                zip((seen[:, 0] // g).tolist(), (seen[:, 1] // g).tolist(), strict=True),
-                zip(g.tolist(), ids, strict=True),
-                strict=True,
-            )
-        )
-        s = self._flip[r]
+        self._raw[r] = (sx, sy, ids)
+        self._near[r] = None
+        ly = sy if self._flip[r] == 1 else -sy
+        by_offset = np.lexsort((ly, sx))  # the view's order: by dx, then dy in r's own frame
         lights = self._lights
-        ly = dy if s == 1 else [-v for v in dy]
         # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
-        self._entries[r] = sorted(
-            map(tuple.__new__, repeat(Seen), zip(dx, ly, [lights[i] for i in ids], strict=True))
+        self._entries[r] = list(
+            map(
+                tuple.__new__,
+                repeat(Seen),
+                zip(
+                    sx[by_offset].tolist(),
+                    ly[by_offset].tolist(),
+                    [lights[i] for i in order[by_offset].tolist()],
+                    strict=True,
+                ),
+            )
         )
         self._ids[r] = sorted(ids)
         self._built.add(r)
+
+    def _index(self, r: int) -> dict[Direction2, tuple[int, int]]:
+        """Robot r's nearest robot per primitive direction (r's view is built)."""
+        near = self._near[r]
+        if near is None:
+            sx, sy, ids = self._raw[r]
+            g = np.gcd(sx, sy)
+            near = self._near[r] = dict(
+                zip(
+                    zip((sx // g).tolist(), (sy // g).tolist(), strict=True),
+                    zip(g.tolist(), ids, strict=True),
+                    strict=True,
+                )
+            )
+            self._raw[r] = None
+        return near
 
     # ------------------------------------------------------------------ patching
     def moved(self, movers: Sequence[int], old: Sequence[Point]) -> None:
@@ -110,7 +132,7 @@ class Views:
         # did not move (the movers' new points are not yet occupied).
         for m, (ox, oy) in zip(movers, old, strict=True):
             for r, d, g in _directions(observers, here, ox, oy):
-                near = self._near[r]
+                near = self._index(r)
                 if near.get(d) != (g, m):
                     continue  # m was hidden from r: nothing r sees changes
                 self._drop(r, m, g * d[0], g * d[1])
@@ -126,7 +148,7 @@ class Views:
         for m in movers:
             nx, ny = P[m].tolist()
             for r, d, g in _directions(observers, here, nx, ny):
-                near = self._near[r]
+                near = self._index(r)
                 cur = near.get(d)
                 if cur is not None and cur[0] < g:
                     continue  # m is behind a robot r already sees
@@ -155,6 +177,8 @@ class Views:
         points, flips, nears = self.points, self._flip, self._near
         for (r, d0, g0), (_, d1, g1) in zip(before, after, strict=True):
             near = nears[r]
+            if near is None:
+                near = self._index(r)
             flip = flips[r]
             entries = self._entries[r]
             seen_before = near.get(d0) == (g0, m)
@@ -196,7 +220,7 @@ class Views:
             return
         mx, my = self._P[m].tolist()
         for r, d, g in _directions(observers, self._P[np.asarray(observers)], mx, my):
-            if self._near[r].get(d) != (g, m):
+            if self._index(r).get(d) != (g, m):
                 continue
             entries = self._entries[r]
             lx, ly = g * d[0], g * d[1] * self._flip[r]
@@ -209,7 +233,7 @@ class Views:
         """Stop keeping robot r's view (the engine watches r another way); it is rebuilt on r's next Look."""
         if r in self._built:
             self._built.discard(r)
-            self._near[r] = None
+            self._near[r] = self._raw[r] = None
             self._cached[r] = None
             self._entries[r] = []
             self._ids[r] = []
@@ -218,7 +242,7 @@ class Views:
         """A robot that moved sees everything shifted: its view is rebuilt on its next Look."""
         if m in self._built:
             self._built.discard(m)
-            self._near[m] = None
+            self._near[m] = self._raw[m] = None
             self._cached[m] = None
             self.changed.add(m)
 

@@ -78,8 +78,8 @@ def follower_frame(view: Snapshot, leader: Seen) -> LeaderFrame:
     if ly != 0:
         s = 1 if ly < 0 else -1
     else:
-        off_row = [r for r in view.robots if r.dy != ly]
-        s = (1 if off_row[0].dy > ly else -1) if off_row else 1
+        first = next((r for r in view.robots if r.dy != ly), None)
+        s = (1 if first.dy > ly else -1) if first is not None else 1
     # frame(p) = (p.dx − lx, s·(p.dy − ly) − 1) = (p.dx − ox, s·(p.dy − oy)) with oy = ly + s.
     return LeaderFrame((lx, ly + s), s)
 
@@ -187,12 +187,13 @@ def pattern_formation_off(
         # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
         leftmost = leftmost_on_own_row(view, ev)
         if leftmost and not robots_between(view, frame, ev):
-            placed = [(frame.of(s), s) for s in view.robots if s is not leader]
-            line = sorted(p[0] for p, _ in placed if p[1] == -1)
+            # Row −1 of the leader's frame is the leader's own row, and frame x is dx − the leader's dx.
+            lx, ly = leader.dx, leader.dy
+            line = sorted(s.dx - lx for s in view.robots if s.dy == ly and s is not leader)
             i = len(line)
             ev.test("robots on the line", i, "robots I see on row −1 of the leader's frame")
             if i == 0:
-                done_seen = any(s.light == "done" for _, s in placed)
+                done_seen = "done" in map(_light, view.robots)
                 ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
                 if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
                     return _to_target(
@@ -221,7 +222,9 @@ def pattern_formation_off(
     # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
     # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
     p3 = P3 in res
-    above = [s for s in view.robots if s is not leader and frame.of(s)[1] > -1]
+    # Frame y > −1 is s·(dy − the leader's dy) ≥ 1 (frame y = s·(dy − ly) − 1): off the leader's row.
+    side, ly = frame.s, leader.dy
+    above = [s for s in view.robots if side * (s.dy - ly) > 0]
     waiting_for = [s for s in above if (s.light != "done" if p3 else s.light == "off")]
     if p3 and any(s.light not in ("off", "done") for s in above):
         deviation(ev, P3, True)
@@ -237,15 +240,17 @@ def pattern_formation_off(
 
 
 def _turn_witness(view: Snapshot, frame: LeaderFrame, leftmost: bool) -> Seen:
-    """Why it is not r's turn: the nearest robot on r's row to its left, or (r leftmost) a robot strictly
-    between r's row and the leader's, a done one if any (it will not move away)."""
+    """Why it is not r's turn: the nearest robot on r's row to its left, or a robot strictly between r's
+    row and the leader's; of all that qualify, the one a move is least likely to disturb."""
     robots = view.robots
-    if not leftmost:
-        return max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0))
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    between = [s for s in robots if lo <= s.dy <= hi]
-    return next((s for s in between if s.light == "done"), between[0])
+    witnesses = [s for s in robots if lo <= s.dy <= hi]
+    if not leftmost:
+        witnesses.append(
+            max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0))
+        )
+    return watches.sparsest(witnesses)
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:

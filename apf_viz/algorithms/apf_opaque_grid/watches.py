@@ -7,12 +7,17 @@ inside the watch's regions and shows no new robot with a watched light, :func:`d
 every step of many runs against a decision on the view computed from scratch. A wait not listed here has
 no watch (None): the engine asks again after any change of the robot's view.
 
-The regions are the robot's own: segments to a *witness* (a robot whose presence decided the wait; a
-``done`` robot is preferred where one serves, since it never moves or changes light again) and boxes
-bounded by vertical lines (L_I, L_V).
+The regions are the robot's own: segments to a *witness* (a robot whose presence decided the wait) and
+boxes bounded by vertical lines (L_I, L_V). Where several robots could witness, the one whose segment
+holds the fewest lattice points is taken (gcd(|dx|, |dy|) + 1 of them: a move can only touch a segment
+on one of those), then a ``done`` one (it never moves or changes light again).
 """
 
 from __future__ import annotations
+
+from bisect import bisect_left
+from collections.abc import Iterable
+from math import gcd
 
 from apf_viz.algorithms.apf_opaque_grid.predicates import left_neighbour_line
 from apf_viz.core.algorithm import Box, Watch
@@ -27,6 +32,13 @@ def _offset(s: Seen) -> tuple[int, int]:
     return (s.dx, s.dy)
 
 
+def sparsest(candidates: Iterable[Seen], far: bool = False) -> Seen:
+    """The witness whose segment a move is least likely to touch (see the module's docstring); among
+    equals the nearest, or with ``far`` the farthest."""
+    sign = -1 if far else 1
+    return min(candidates, key=lambda s: (gcd(s.dx, s.dy), s.light != "done", sign * (abs(s.dx) + abs(s.dy))))
+
+
 def _to_my_line_from_left_line(view: Snapshot) -> Box:
     """The columns from L_I(r) (or, with none, everything to the left) to r's own: L_I, L_V and the
     empty columns between, i.e. everything that decides L_I, L_V and H_L^O."""
@@ -38,7 +50,14 @@ def phase1_wait(view: Snapshot) -> Watch:
     """A1.off.wait under G1: r is off and sees only off/terminal1 robots. While no robot of a later light
     comes into sight, G1 stays false, no leader/done or decider is seen (so neither Phase 3 nor Phase 2
     applies), and "no leader1 on R_I" holds; the rest of Algorithm 1's off rules read only L_V, H_L^O and
-    L_I (their lights and K), all inside the box from L_I to L_V."""
+    L_I (their lights and K), all inside the box from L_I to L_V.
+
+    Tighter when r sees no terminal1 robot and some robot w to its left: with w kept H_L^O is not empty,
+    so the terminal rule cannot fire, and with no terminal1 robot coming into sight L_I cannot hold two;
+    nothing else is read."""
+    left = view.robots[: bisect_left(view.robots, (0,))]
+    if left and not any(s.light == "terminal1" for s in view.robots):
+        return Watch(segments=(_offset(sparsest(left)),), lights=LATER_LIGHTS | {"terminal1"})
     return Watch(boxes=(_to_my_line_from_left_line(view),), lights=LATER_LIGHTS)
 
 
@@ -47,7 +66,7 @@ def g1_wait(view: Snapshot) -> Watch:
     light. With w kept (a segment) G1 holds; with no leader/done coming into sight Phase 3 does not
     apply; and two deciders on L_I cannot appear: either no decider is in sight and none comes into
     sight, or L_I is kept (a box)."""
-    w = next(s for s in view.robots if s.light not in PHASE1_LIGHTS)
+    w = sparsest(s for s in view.robots if s.light not in PHASE1_LIGHTS)
     if any(s.light == "decider" for s in view.robots):
         return Watch(
             boxes=(_to_my_line_from_left_line(view),), segments=(_offset(w),), lights=_LEADER | {"done"}
@@ -58,7 +77,7 @@ def g1_wait(view: Snapshot) -> Watch:
 def no_leader(view: Snapshot) -> Watch:
     """A3.off.no-leader: r is off, sees a done robot d and no leader. With d kept Phase 3 still applies;
     with no leader coming into sight Algorithm 3 still finds none."""
-    d = min((s for s in view.robots if s.light == "done"), key=lambda s: abs(s.dx) + abs(s.dy))
+    d = sparsest(s for s in view.robots if s.light == "done")
     return Watch(segments=(_offset(d),), lights=_LEADER)
 
 
@@ -75,7 +94,5 @@ def not_my_turn(view: Snapshot, leader: Seen, witness: Seen) -> Watch | None:
 
 def leader_waits(pending: list[Seen]) -> Watch:
     """A3.leader.wait: the leader sees a robot still forming. With that robot kept (its light too) the
-    leader still waits; the one farthest from the leader's row is taken, since the robot travelling
-    to the line or to a target is usually near it."""
-    w = max(pending, key=lambda s: abs(s.dy))
-    return Watch(segments=(_offset(w),))
+    leader still waits. Among equals the farthest: the robots leave the crowd nearest the line first."""
+    return Watch(segments=(_offset(sparsest(pending, far=True)),))
