@@ -5,9 +5,13 @@
   many frames the page drew (a frame drawn before the next update arrives shows nothing new);
 - click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event;
 - with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
-  watching (wall time, and the page's update rate meanwhile).
+  watching (wall time, and the page's update rate meanwhile);
+- with ``--stage pattern``: the same measures in pattern formation, not leader election: the run is first
+  stepped (no browser yet) until the leader is elected and ``--line`` robots have travelled to the line,
+  so the scene holds the leader's frame, the line and all k targets.
 
-Run: python benchmarks/bench_ui.py [--robots 1000]; python benchmarks/bench_ui.py --robots 100 --to-formed
+Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern];
+python benchmarks/bench_ui.py --robots 100 --to-formed
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from __future__ import annotations
 import argparse
 import random
 import statistics
+import sys
 import time
 
 from playwright.sync_api import sync_playwright
@@ -64,11 +69,15 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--robots", type=int, default=1000)
     ap.add_argument("--to-formed", action="store_true", help="play at top speed until the run ends")
+    ap.add_argument("--stage", choices=("election", "pattern"), default="election")
+    ap.add_argument("--line", type=int, default=20, help="with --stage pattern: robots on the line first")
     args = ap.parse_args()
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
     pattern = random_pattern(args.robots, rng)
     session = Session(start, pattern, seed=1)
+    if args.stage == "pattern":
+        reach_pattern_formation(session, args.line)
     app = App(session, port=free_port(), verbose=False)
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
@@ -90,7 +99,8 @@ def main() -> None:
         sent = (app.frames - frames_before) / 5.0
         session.pause()
         server_fps = app.frames
-        print(f"| scene updates/s in the browser while playing, {args.robots} robots | {rate:.1f} |")
+        where = f"{args.robots} robots, {args.stage}"
+        print(f"| scene updates/s in the browser while playing, {where} | {rate:.1f} |")
         print(f"| frames/s the server sent meanwhile (one atomic update each) | {sent:.1f} |")
         print(f"| frames/s the page drew meanwhile (some show no new update) | {page_fps:.1f} |")
         session.set_scheduler("manual")
@@ -105,13 +115,29 @@ def main() -> None:
             app.request_render()
             latencies.append(handle.json_value())
             _ = t0
-        print(
-            f"| click-to-update latency (median of 10), {args.robots} robots | "
-            f"{statistics.median(latencies):.0f} ms |"
-        )
+        print(f"| click-to-update latency (median of 10), {where} | {statistics.median(latencies):.0f} ms |")
         print(f"(server rendered {server_fps} frames in all)")
         browser.close()
     app.stop()
+
+
+def reach_pattern_formation(session: Session, line: int) -> None:
+    """Step the run without a browser until a leader exists and ``line`` robots have been sent to the line
+    (progress on stderr)."""
+    engine = session.engine
+    t0 = time.perf_counter()
+    while engine.outcome is None and "leader" not in engine.state.lights:
+        session.run.step()
+    moved_in = 0
+    while engine.outcome is None and moved_in < line:
+        session.run.step()
+        events = engine.history.steps[engine.step_index - 1].events
+        moved_in += sum(1 for e in events if (e.rule_id or "").endswith("LineMove.into-line"))
+    print(
+        f"(stepped to pattern formation in {time.perf_counter() - t0:.0f} s: {engine.state.moves:,} moves, "
+        f"{moved_in} robots sent into the line)",
+        file=sys.stderr,
+    )
 
 
 def to_formed(app: App, session: Session, page) -> None:

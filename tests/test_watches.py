@@ -165,3 +165,17 @@ def test_a_relit_robot_concerns_only_the_watchers_that_see_it():
     lights[2] = "done"
     assert w.relit(2, "done", lambda: [1, 3]) == [3]  # 0 does not see 2 (1 is between)
     assert w.relit(1, "call", lambda: [0, 2, 3]) == []  # nobody watches call
+
+
+def test_a_long_segment_is_tested_by_direction_and_length():
+    from apf_viz.core.watches import SHORT
+
+    far = 2 * SHORT + 2
+    P, _, w = watches_on([(0, 0), (far, far), (3, 4)], y_up=[False, True, True])
+    assert w.register(0, Watch(segments=((far, -far),)))  # local +y is global −y: to (far, far) globally
+    assert move(P, w, 2, (far + 1, far + 1)) == []  # beyond its end
+    assert move(P, w, 2, (3, 4)) == []
+    assert move(P, w, 2, (3, 3)) == [0]
+    P[2] = (5, 9)
+    w.register(0, Watch(segments=((far, -far),)))
+    assert move(P, w, 1, (far, far + 1)) == [0]  # the far end itself leaves

@@ -41,6 +41,7 @@ class Views:
     def __init__(self, positions: np.ndarray, lights: list[str], y_up: Sequence[bool]) -> None:
         self._P = positions
         self._lights = lights
+        self._light_of = np.array(lights, dtype=object)  # the same, for picking many at once
         self._flip = [1 if up else -1 for up in y_up]
         k = positions.shape[0]
         self.points: list[Point] = [(int(x), int(y)) for x, y in positions.tolist()]
@@ -73,12 +74,10 @@ class Views:
         order = nearest_per_direction(offsets, r)
         seen = offsets[order]
         sx, sy = seen[:, 0], seen[:, 1]
-        ids = order.tolist()
-        self._raw[r] = (sx, sy, ids)
+        self._raw[r] = (sx, sy, order.tolist())
         self._near[r] = None
         ly = sy if self._flip[r] == 1 else -sy
         by_offset = np.lexsort((ly, sx))  # the view's order: by dx, then dy in r's own frame
-        lights = self._lights
         # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
         self._entries[r] = list(
             map(
@@ -87,12 +86,12 @@ class Views:
                 zip(
                     sx[by_offset].tolist(),
                     ly[by_offset].tolist(),
-                    [lights[i] for i in order[by_offset].tolist()],
+                    self._light_of[order[by_offset]].tolist(),
                     strict=True,
                 ),
             )
         )
-        self._ids[r] = sorted(ids)
+        self._ids[r] = np.sort(order).tolist()
         self._built.add(r)
 
     def _index(self, r: int) -> dict[Direction2, tuple[int, int]]:
@@ -214,7 +213,7 @@ class Views:
 
     def relit(self, m: int) -> None:
         """Robot m's light changed (the engine's ``lights`` list already holds the new one)."""
-        light = self._lights[m]
+        light = self._light_of[m] = self._lights[m]
         observers = [r for r in self._built if r != m]
         if not observers:
             return

@@ -21,6 +21,7 @@ the configuration's span allows it, else every robot watching a light is asked a
 from __future__ import annotations
 
 from collections.abc import Callable, Container, Iterable, Sequence
+from math import gcd
 
 import numpy as np
 
@@ -29,6 +30,7 @@ from apf_viz.core.grid import Point
 
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
+SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
 _PACKED_SPAN_LIMIT = 1 << 20
 
@@ -57,11 +59,17 @@ class Watches:
         self._bx1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
         self._by0 = np.full((k, BOXES), _BIG, dtype=np.int64)
         self._by1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
+        # Segments of at most SHORT lattice steps are kept point by point (an event looks its points up);
+        # longer ones as a direction and a length, tested in one numpy pass.
+        self._watchers_at: dict[Point, set[int]] = {}
+        self._points_of: list[list[Point]] = [[] for _ in range(k)]
         self._sdx = np.zeros((k, SEGMENTS), dtype=np.int64)  # primitive direction, global frame
         self._sdy = np.zeros((k, SEGMENTS), dtype=np.int64)
         self._sg = np.zeros((k, SEGMENTS), dtype=np.int64)  # length in lattice steps
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
         self.count = 0  # robots with a watch
+        self._arrays = np.zeros(k, dtype=bool)  # robots with a box or a long segment
+        self._with_arrays = 0
 
     # ------------------------------------------------------------------ registering
     def register(self, r: int, watch: Watch) -> bool:
@@ -71,6 +79,7 @@ class Watches:
             return False
         x, y = (int(v) for v in self._P[r])
         s = self._flip[r]
+        arrays = bool(watch.boxes)
         for i, (x0, x1, y0, y1) in enumerate(watch.boxes):
             if s == -1:  # the robot's +y is the global −y: its box flips about its own row
                 y0, y1 = (None if y1 is None else -y1), (None if y0 is None else -y0)
@@ -80,14 +89,26 @@ class Watches:
             self._by1[r, i] = _BIG if y1 is None else y + y1
         for i, (dx, dy) in enumerate(watch.segments):
             dy *= s
-            g = np.gcd(dx, dy)
-            self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
+            g = gcd(dx, dy)
+            ux, uy = dx // g, dy // g
+            if g <= SHORT:
+                points = self._points_of[r]
+                for t in range(1, g + 1):  # not t = 0: nothing moves onto a watching robot
+                    p = (x + t * ux, y + t * uy)
+                    points.append(p)
+                    self._watchers_at.setdefault(p, set()).add(r)
+            else:
+                self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = ux, uy, g
+                arrays = True
         mask = 0
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
         self._mask[r] = mask
         self.active[r] = True
         self.count += 1
+        if arrays:
+            self._arrays[r] = True
+            self._with_arrays += 1
         return True
 
     def clear(self, r: int) -> None:
@@ -96,12 +117,24 @@ class Watches:
             return
         self.active[r] = False
         self.count -= 1
-        self._bx0[r] = _BIG
-        self._bx1[r] = -_BIG
-        self._by0[r] = _BIG
-        self._by1[r] = -_BIG
-        self._sg[r] = 0
         self._mask[r] = 0
+        points = self._points_of[r]
+        if points:
+            at = self._watchers_at
+            for p in points:
+                watchers = at[p]
+                watchers.discard(r)
+                if not watchers:
+                    del at[p]
+            self._points_of[r] = []
+        if self._arrays[r]:
+            self._arrays[r] = False
+            self._with_arrays -= 1
+            self._bx0[r] = _BIG
+            self._bx1[r] = -_BIG
+            self._by0[r] = _BIG
+            self._by1[r] = -_BIG
+            self._sg[r] = 0
 
     # ------------------------------------------------------------------ events
     def moved(
@@ -149,6 +182,13 @@ class Watches:
         """Robots with a box or a segment containing one of these points."""
         P = self._P
         hit = np.zeros(P.shape[0], dtype=bool)
+        at = self._watchers_at
+        for p in points:
+            watchers = at.get(p)
+            if watchers:
+                hit[list(watchers)] = True
+        if not self._with_arrays:
+            return hit
         for px, py in points:
             inside = (self._bx0 <= px) & (px <= self._bx1) & (self._by0 <= py) & (py <= self._by1)
             hit |= inside.any(axis=1)

@@ -150,7 +150,9 @@ def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENC
     strip is convex). In the leader frame that is −1 < y′ < y; in r's frame, y′ − y = s·dy."""
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    value = any(lo <= dy <= hi for dy in map(_dy, view.robots))
+    rows = sorted(set(map(_dy, view.robots)))  # in C: this runs on every decision of the traveller
+    i = bisect_left(rows, lo)
+    value = i < len(rows) and rows[i] <= hi
     if ev.active:
         if lo <= hi:
             ev.region(Band("y", lo, hi, "H_B^O(r) ∩ H_U^O(r₀)"))
@@ -224,12 +226,18 @@ def pattern_formation_off(
     p3 = P3 in res
     # Frame y > −1 is s·(dy − the leader's dy) ≥ 1 (frame y = s·(dy − ly) − 1): off the leader's row.
     side, ly = frame.s, leader.dy
-    above = [s for s in view.robots if side * (s.dy - ly) > 0]
-    waiting_for = [s for s in above if (s.light != "done" if p3 else s.light == "off")]
-    if p3 and any(s.light not in ("off", "done") for s in above):
+    if p3:  # one pass that stops at the first robot still on its way: line robots ask this often
+        waiting = any(s.light != "done" and side * (s.dy - ly) > 0 for s in view.robots)
+    else:
+        waiting = any(s.light == "off" and side * (s.dy - ly) > 0 for s in view.robots)
+    if (
+        p3
+        and ev.active
+        and any(s.light not in ("off", "done") and side * (s.dy - ly) > 0 for s in view.robots)
+    ):
         deviation(ev, P3, True)
     blockers = "not done" if p3 else "off"
-    if not ev.test(f"a robot above the line is {blockers}", bool(waiting_for), "a robot is still on its way"):
+    if not ev.test(f"a robot above the line is {blockers}", waiting, "a robot is still on its way"):
         return Decision(
             "off",
             frame.local_move(0, 1),
@@ -282,7 +290,7 @@ def pattern_formation_leader(
     n = len(targets)
     p3 = P3 in res
     pending = [s for s in view.robots if (s.light != "done" if p3 else s.light == "off")]
-    if p3 and any(s.light not in ("off", "done") for s in view.robots):
+    if p3 and ev.active and any(s.light not in ("off", "done") for s in view.robots):
         deviation(ev, P3, True)
     if ev.test("a robot still forming", bool(pending), "a robot I see is not done"):
         return stay(
