@@ -36,13 +36,19 @@ class Watch:
         boxes: closed axis-aligned boxes (:data:`Box`), each containing the origin.
         segments: closed segments from the robot (the origin) to these offsets, e.g. to the robot whose
             presence the decision relied on (a witness).
+        any_of: segments of which any one suffices: the later view need agree with this one inside one
+            of them (the witnesses of a fact any of several robots shows, e.g. "a robot still forming").
         lights: a robot showing one of these lights coming into sight (by moving, by no longer being
             hidden, or by taking the light) may change the answer.
+        seen_at: offsets where a robot of a watched light already was in sight: one seen there again is
+            not news (e.g. the leader, hidden for a while by a passing robot, then revealed).
     """
 
     boxes: tuple[Box, ...] = ()
     segments: tuple[Point, ...] = ()
+    any_of: tuple[Point, ...] = ()
     lights: frozenset[str] = frozenset()
+    seen_at: tuple[Point, ...] = ()
 
 
 NOTHING = Watch()

@@ -66,7 +66,13 @@ class Watches:
         self._sdx = np.zeros((k, SEGMENTS), dtype=np.int64)  # primitive direction, global frame
         self._sdy = np.zeros((k, SEGMENTS), dtype=np.int64)
         self._sg = np.zeros((k, SEGMENTS), dtype=np.int64)  # length in lattice steps
+        # Any-of segments (short ones only): point → (robot, segment) pairs; a robot is asked again when
+        # every one of its any-of segments has been touched.
+        self._any_at: dict[Point, set[tuple[int, int]]] = {}
+        self._any_points: list[list[tuple[Point, int]]] = [[] for _ in range(k)]
+        self._intact: list[set[int]] = [set() for _ in range(k)]
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
+        self._seen_at: list[frozenset[Point]] = [frozenset()] * k  # global points; see Watch.seen_at
         self.count = 0  # robots with a watch
         self._arrays = np.zeros(k, dtype=bool)  # robots with a box or a long segment
         self._with_arrays = 0
@@ -75,10 +81,24 @@ class Watches:
     def register(self, r: int, watch: Watch) -> bool:
         """Watch robot r (idle, at its current position) until an event touches ``watch``; False if the
         watch has more regions than the slots (the caller keeps observing r fully)."""
-        if len(watch.boxes) > BOXES or len(watch.segments) > SEGMENTS:
-            return False
         x, y = (int(v) for v in self._P[r])
         s = self._flip[r]
+        segments = watch.segments
+        short = [(i, d) for i, d in enumerate(watch.any_of) if gcd(*d) <= SHORT]
+        if watch.any_of and not short:  # every one long: the first must stay, as a plain segment
+            segments = (*segments, watch.any_of[0])
+        if len(watch.boxes) > BOXES or len(segments) > SEGMENTS:
+            return False
+        if short:
+            self._intact[r] = {i for i, _ in short}
+            mine = self._any_points[r]
+            for i, (dx, dy) in short:
+                dy *= s
+                g = gcd(dx, dy)
+                for t in range(1, g + 1):
+                    p = (x + t * dx // g, y + t * dy // g)
+                    mine.append((p, i))
+                    self._any_at.setdefault(p, set()).add((r, i))
         arrays = bool(watch.boxes)
         for i, (x0, x1, y0, y1) in enumerate(watch.boxes):
             if s == -1:  # the robot's +y is the global −y: its box flips about its own row
@@ -87,7 +107,7 @@ class Watches:
             self._bx1[r, i] = _BIG if x1 is None else x + x1
             self._by0[r, i] = -_BIG if y0 is None else y + y0
             self._by1[r, i] = _BIG if y1 is None else y + y1
-        for i, (dx, dy) in enumerate(watch.segments):
+        for i, (dx, dy) in enumerate(segments):
             dy *= s
             g = gcd(dx, dy)
             ux, uy = dx // g, dy // g
@@ -104,6 +124,8 @@ class Watches:
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
         self._mask[r] = mask
+        if watch.seen_at:
+            self._seen_at[r] = frozenset((x + dx, y + s * dy) for dx, dy in watch.seen_at)
         self.active[r] = True
         self.count += 1
         if arrays:
@@ -118,6 +140,7 @@ class Watches:
         self.active[r] = False
         self.count -= 1
         self._mask[r] = 0
+        self._seen_at[r] = frozenset()
         points = self._points_of[r]
         if points:
             at = self._watchers_at
@@ -127,6 +150,16 @@ class Watches:
                 if not watchers:
                     del at[p]
             self._points_of[r] = []
+        mine = self._any_points[r]
+        if mine:
+            at = self._any_at
+            for p, i in mine:
+                pairs = at[p]
+                pairs.discard((r, i))
+                if not pairs:
+                    del at[p]
+            self._any_points[r] = []
+            self._intact[r] = set()
         if self._arrays[r]:
             self._arrays[r] = False
             self._with_arrays -= 1
@@ -152,7 +185,7 @@ class Watches:
         if self._mask.any():
             for p in old:
                 if p not in occupied:  # a point another mover entered hides as much as before
-                    hit |= self._revealed_through(p)
+                    self._revealed_through(p, hit)
         return self._take(hit)
 
     def relit(self, m: int, light: str, seen_by: Callable[[], Iterable[int]]) -> list[int]:
@@ -161,14 +194,17 @@ class Watches:
         self.bits[m] = self._bit.get(light, 0)
         if not self.count:
             return []
-        hit = self._touching([tuple(int(v) for v in self._P[m])])
+        at = tuple(int(v) for v in self._P[m])
+        hit = self._touching([at])
         bit = int(self.bits[m])
         if bit:
             watching = np.flatnonzero((self._mask & bit) != 0)
             if watching.size:
                 sees = np.zeros_like(hit)
                 sees[np.fromiter(seen_by(), dtype=np.intp)] = True
-                hit[watching] |= sees[watching]
+                for r in watching[sees[watching]].tolist():
+                    if at not in self._seen_at[r]:
+                        hit[r] = True
         return self._take(hit)
 
     def _take(self, hit: np.ndarray) -> list[int]:
@@ -187,6 +223,13 @@ class Watches:
             watchers = at.get(p)
             if watchers:
                 hit[list(watchers)] = True
+        if self._any_at:
+            for p in points:
+                for r, i in self._any_at.get(p, ()):
+                    intact = self._intact[r]
+                    intact.discard(i)
+                    if not intact:
+                        hit[r] = True
         if not self._with_arrays:
             return hit
         for px, py in points:
@@ -201,16 +244,17 @@ class Watches:
             hit |= on.any(axis=1)
         return hit
 
-    def _revealed_through(self, p: Point) -> np.ndarray:
-        """Watchers to which a robot with a watched light is revealed now that p is empty: along each
-        line through p, the nearest robots on the two sides see each other now."""
+    def _revealed_through(self, p: Point, hit: np.ndarray) -> None:
+        """Mark the watchers to which a robot with a watched light is revealed now that p is empty
+        (unless they saw one at that point before): along each line through p, the nearest robots on
+        the two sides see each other now."""
         P = self._P
-        hit = np.zeros(P.shape[0], dtype=bool)
         dx = P[:, 0] - p[0]
         dy = P[:, 1] - p[1]
         span = int(max(np.abs(dx).max(), np.abs(dy).max())) + 1
         if span >= _PACKED_SPAN_LIMIT:
-            return (self._mask & np.bitwise_or.reduce(self.bits)) != 0  # exact by excess
+            hit |= (self._mask & np.bitwise_or.reduce(self.bits)) != 0  # exact by excess
+            return
         g = np.gcd(dx, dy)
         key = (dx // g) * (2 * span + 1) + dy // g  # one per primitive direction; −key is the opposite
         order = np.lexsort((g, key))
@@ -223,5 +267,8 @@ class Watches:
         j[j >= nkey.size] = 0
         paired = nkey[j] == -nkey
         a, b = nearest[paired], nearest[j[paired]]  # a and b face each other across p
-        hit[a] |= (self._mask[a] & self.bits[b]) != 0
-        return hit
+        news = (self._mask[a] & self.bits[b]) != 0
+        points = self._P
+        for r, q in zip(a[news].tolist(), b[news].tolist(), strict=True):
+            if (int(points[q, 0]), int(points[q, 1])) not in self._seen_at[r]:
+                hit[r] = True

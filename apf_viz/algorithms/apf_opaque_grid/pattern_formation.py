@@ -219,7 +219,7 @@ def pattern_formation_off(
             view,
             "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
             "A3.off.not-my-turn",
-            watches.not_my_turn(view, leader, _turn_witness(view, frame, leftmost)),
+            watches.not_my_turn(view, leader, *_turn_witnesses(view, frame, leftmost)),
         )
     # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
     # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
@@ -247,18 +247,16 @@ def pattern_formation_off(
     return stay(view, "Phase 3 (off): on the line, robots above are not done → wait", "A3.off.line-wait")
 
 
-def _turn_witness(view: Snapshot, frame: LeaderFrame, leftmost: bool) -> Seen:
-    """Why it is not r's turn: the nearest robot on r's row to its left, or a robot strictly between r's
-    row and the leader's; of all that qualify, the one a move is least likely to disturb."""
+def _turn_witnesses(view: Snapshot, frame: LeaderFrame, leftmost: bool) -> tuple[Seen | None, list[Seen]]:
+    """Why it is not r's turn: the nearest robot on r's row to its left (None if r is leftmost), and the
+    robots strictly between r's row and the leader's."""
     robots = view.robots
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    witnesses = [s for s in robots if lo <= s.dy <= hi]
-    if not leftmost:
-        witnesses.append(
-            max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0))
-        )
-    return watches.sparsest(witnesses)
+    between = [s for s in robots if lo <= s.dy <= hi]
+    if leftmost:
+        return None, between
+    return max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0)), between
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:

@@ -26,17 +26,29 @@ from apf_viz.core.view import Seen, Snapshot
 PHASE1_LIGHTS = frozenset({"off", "terminal1"})
 LATER_LIGHTS = frozenset({"symmetric", "decider", "call", "leader1", "leader", "done"})
 _LEADER = frozenset({"leader"})
+WITNESSES = 8  # a fact that any of several robots shows is watched through this many of them
 
 
 def _offset(s: Seen) -> tuple[int, int]:
     return (s.dx, s.dy)
 
 
+def _sparsity(s: Seen, sign: int = 1) -> tuple[int, bool, int]:
+    return (gcd(s.dx, s.dy), s.light != "done", sign * (abs(s.dx) + abs(s.dy)))
+
+
 def sparsest(candidates: Iterable[Seen], far: bool = False) -> Seen:
     """The witness whose segment a move is least likely to touch (see the module's docstring); among
     equals the nearest, or with ``far`` the farthest."""
     sign = -1 if far else 1
-    return min(candidates, key=lambda s: (gcd(s.dx, s.dy), s.light != "done", sign * (abs(s.dx) + abs(s.dy))))
+    return min(candidates, key=lambda s: _sparsity(s, sign))
+
+
+def some_witnesses(candidates: Iterable[Seen], far: bool = False) -> tuple[tuple[int, int], ...]:
+    """Up to :data:`WITNESSES` of the candidates, sparsest first: any one of them suffices (``any_of``)."""
+    sign = -1 if far else 1
+    chosen = sorted(candidates, key=lambda s: _sparsity(s, sign))[:WITNESSES]
+    return tuple(map(_offset, chosen))
 
 
 def _to_my_line_from_left_line(view: Snapshot) -> Box:
@@ -81,18 +93,35 @@ def no_leader(view: Snapshot) -> Watch:
     return Watch(segments=(_offset(d),), lights=_LEADER)
 
 
-def not_my_turn(view: Snapshot, leader: Seen, witness: Seen) -> Watch | None:
-    """A3.off.not-my-turn: r is off above the line and sees one leader; ``witness`` is the robot on r's
-    row to its left, or one strictly between r's row and the leader's. With the leader kept (and no
-    second one coming into sight) the leader's frame is the same (it depends on the leader's offset
-    alone off its row); with the witness kept r is still not the leftmost of its row, or a robot is still
-    between. With two leaders in sight the first in the view's order is taken: no watch."""
+def not_my_turn(view: Snapshot, leader: Seen, row_left: Seen | None, between: list[Seen]) -> Watch | None:
+    """A3.off.not-my-turn: r is off above the line and sees one leader; ``row_left`` is the robot on r's
+    row to its left (None if r is leftmost) and ``between`` the robots strictly between r's row and the
+    leader's. A robot of a watched light coming into sight, or a watched region touched, asks again.
+
+    While the leader stays in sight at the same offset (and no second one comes into sight) the frame is
+    the same; then any one of the witnesses kept keeps it not r's turn. The leader need not be watched
+    when a robot w to r's left is kept and no terminal1, decider or leader robot comes into sight
+    (except this leader at its offset, ``seen_at``: seen there again, the view agrees with this one). If
+    the leader is hidden, r either sees a done robot (Phase 3 without a leader: wait) or runs Phases
+    1–2, where no decider means no Phase 2, G1 at most waits, and Algorithm 1's off rules need H_L^O
+    empty (w is there) or two terminal1 robots on L_I (none in sight). With two leaders in sight the
+    first in the view's order is taken: no watch."""
     if sum(1 for s in view.robots if s.light == "leader") != 1:
         return None
-    return Watch(segments=(_offset(leader), _offset(witness)), lights=_LEADER)
+    witnesses = [*between, row_left] if row_left is not None else between
+    left = view.robots[: bisect_left(view.robots, (0,))]
+    if left and not any(s.light in ("terminal1", "decider") for s in view.robots):
+        return Watch(
+            segments=(_offset(sparsest(left)),),
+            any_of=some_witnesses(witnesses),
+            lights=frozenset({"leader", "terminal1", "decider"}),
+            seen_at=(_offset(leader),),
+        )
+    return Watch(segments=(_offset(leader),), any_of=some_witnesses(witnesses), lights=_LEADER)
 
 
 def leader_waits(pending: list[Seen]) -> Watch:
-    """A3.leader.wait: the leader sees a robot still forming. With that robot kept (its light too) the
-    leader still waits. Among equals the farthest: the robots leave the crowd nearest the line first."""
-    return Watch(segments=(_offset(sparsest(pending, far=True)),))
+    """A3.leader.wait: the leader sees robots still forming. With any one of them kept (its light too)
+    the leader still waits. Among equals the farthest first: the robots leave the crowd nearest the
+    line first."""
+    return Watch(any_of=some_witnesses(pending, far=True))
