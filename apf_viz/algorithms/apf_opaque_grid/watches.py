@@ -8,9 +8,10 @@ every step of many runs against a decision on the view computed from scratch. A 
 no watch (None): the engine asks again after any change of the robot's view.
 
 The regions are the robot's own: segments to a *witness* (a robot whose presence decided the wait) and
-boxes bounded by vertical lines (L_I, L_V). Where several robots could witness, the one whose segment
+boxes bounded by vertical lines (L_I, L_V). Where several robots could witness, one whose segment
 holds the fewest lattice points is taken (gcd(|dx|, |dy|) + 1 of them: a move can only touch a segment
-on one of those), then a ``done`` one (it never moves or changes light again).
+on one of those; a single point, the witness itself, is best), and where any of several witnesses
+would do, up to :data:`WITNESSES` are watched (``any_of``).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from __future__ import annotations
 from bisect import bisect_left
 from collections.abc import Iterable
 from math import gcd
+from operator import itemgetter
 
 from apf_viz.algorithms.apf_opaque_grid.predicates import left_neighbour_line
 from apf_viz.core.algorithm import Box, Watch
@@ -37,15 +39,24 @@ def _sparsity(s: Seen, sign: int = 1) -> tuple[int, bool, int]:
     return (gcd(s.dx, s.dy), s.light != "done", sign * (abs(s.dx) + abs(s.dy)))
 
 
-def sparsest(candidates: Iterable[Seen], far: bool = False) -> Seen:
-    """The witness whose segment a move is least likely to touch (see the module's docstring); among
-    equals the nearest, or with ``far`` the farthest."""
-    sign = -1 if far else 1
-    return min(candidates, key=lambda s: _sparsity(s, sign))
+def sparsest(candidates: Iterable[Seen]) -> Seen:
+    """A witness whose segment a move is least likely to touch (see the module's docstring): the first
+    whose segment is a single point, else the one with the fewest points (then done, then nearest).
+    Not a full search when a single point is found early: a large view has hundreds of candidates."""
+    candidates = list(candidates)
+    for s in candidates:
+        if gcd(s.dx, s.dy) == 1:
+            return s
+    return min(candidates, key=_sparsity)
 
 
 def some_witnesses(candidates: Iterable[Seen], far: bool = False) -> tuple[tuple[int, int], ...]:
     """Up to :data:`WITNESSES` of the candidates, sparsest first: any one of them suffices (``any_of``)."""
+    candidates = list(candidates)
+    if not far:  # the usual case, cheaply: enough witnesses whose segment is a single point
+        single = [s for s in candidates if gcd(s.dx, s.dy) == 1]
+        if len(single) >= WITNESSES:
+            return tuple(map(_offset, single[:WITNESSES]))
     sign = -1 if far else 1
     chosen = sorted(candidates, key=lambda s: _sparsity(s, sign))[:WITNESSES]
     return tuple(map(_offset, chosen))
@@ -106,18 +117,29 @@ def not_my_turn(view: Snapshot, leader: Seen, row_left: Seen | None, between: li
     1–2, where no decider means no Phase 2, G1 at most waits, and Algorithm 1's off rules need H_L^O
     empty (w is there) or two terminal1 robots on L_I (none in sight). With two leaders in sight the
     first in the view's order is taken: no watch."""
-    if sum(1 for s in view.robots if s.light == "leader") != 1:
+    lights = list(map(itemgetter(2), view.robots))
+    if lights.count("leader") != 1:
         return None
     witnesses = [*between, row_left] if row_left is not None else between
     left = view.robots[: bisect_left(view.robots, (0,))]
-    if left and not any(s.light in ("terminal1", "decider") for s in view.robots):
+    if left and "terminal1" not in lights and "decider" not in lights:
         return Watch(
-            segments=(_offset(sparsest(left)),),
+            segments=(_offset(_left_witness(left)),),
             any_of=some_witnesses(witnesses),
             lights=frozenset({"leader", "terminal1", "decider"}),
             seen_at=(_offset(leader),),
         )
     return Watch(segments=(_offset(leader),), any_of=some_witnesses(witnesses), lights=_LEADER)
+
+
+def _left_witness(left: tuple[Seen, ...]) -> Seen:
+    """A robot to r's left whose segment is a single point, found from the far left (there, in Phase 3,
+    are the leader and the first robots done; the leader is skipped, since watching it is what this
+    avoids); any robot to the left if none is such. Not a full search: a large view has hundreds."""
+    for s in left:
+        if s.light != "leader" and gcd(s.dx, s.dy) == 1:
+            return s
+    return left[-1]
 
 
 def leader_waits(pending: list[Seen]) -> Watch:
