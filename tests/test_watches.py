@@ -179,3 +179,19 @@ def test_a_long_segment_is_tested_by_direction_and_length():
     P[2] = (5, 9)
     w.register(0, Watch(segments=((far, -far),)))
     assert move(P, w, 1, (far, far + 1)) == [0]  # the far end itself leaves
+
+
+def test_a_mover_of_a_watched_light_concerns_only_the_watchers_that_see_it_where_it_stops():
+    # 0 and 3 watch leader1; 1 (leader1) moves from behind 2 (hidden from 0) to a point 0 sees.
+    P, lights, w = watches_on([(0, 0), (3, 0), (2, 0), (3, 5)], ["off", "leader1", "off", "off"])
+    w.bits[1] = 1 << LIGHTS.index("leader1")
+    w.register(0, Watch(lights=frozenset({"leader1"})))
+    w.register(3, Watch(lights=frozenset({"leader1"}), seen_at=((0, -4),)))
+    assert move(P, w, 1, (3, 1)) == [0]  # 3 saw it at (3, 1) before: not news
+    w.register(0, Watch(lights=frozenset({"leader1"})))
+    P[2] = (2, 2)  # between 0 and (4, 4)
+    assert move(P, w, 1, (4, 1)) == [0, 3]
+    w.register(0, Watch(lights=frozenset({"leader1"})))
+    w.register(3, Watch(lights=frozenset({"leader1"})))
+    P[3] = (4, 6)
+    assert move(P, w, 1, (4, 4)) == [3]  # hidden from 0 behind (2, 2)

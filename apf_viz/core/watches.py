@@ -3,15 +3,14 @@
 An idle robot whose decision on its current view is "same light, stay" need not be asked again until
 something it depends on changes. Without a watch that is "anything in its view", so every observer of a
 move is re-decided and every built view patched: O(k) Python work per move, most of a large run's time
-(docs/PERFORMANCE.md). With a watch the robot's view is dropped, and per move or light change one numpy
-pass over all watched robots finds the few whose watch the event touches:
+(docs/PERFORMANCE.md). With a watch the robot's view is dropped, and per move or light change a few numpy
+passes and dictionary look-ups find the few watches the event touches:
 
 - a point of a box or a segment is vacated, entered or relit (regions are convex and contain their robot,
   so what the robot sees inside one depends on nothing outside it);
-- a robot showing a watched light comes into sight: it moves (conservatively: every robot watching its
-  light is asked again), it is revealed (the vacated point was the only robot between it and the
-  watcher: the two nearest robots on either side of the vacated point along one line), or it takes the
-  light while the watcher sees it.
+- a robot showing a watched light comes into sight: it moves to a point the watcher sees, it is
+  revealed (the vacated point was the only robot between it and the watcher: the two nearest robots on
+  either side of the vacated point along one line), or it takes the light while the watcher sees it.
 
 The watches are kept in the global frame, so a test costs the same for every robot. Coordinates are far
 below 2^62 (``COORD_LIMIT``), so the sentinel bounds never overflow; direction keys are packed only when
@@ -26,7 +25,7 @@ from math import gcd
 import numpy as np
 
 from apf_viz.core.algorithm import Watch
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, visible_from
 
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
@@ -178,11 +177,15 @@ class Watches:
         if not self.count:
             return []
         hit = self._touching(list(old) + list(new))
-        mover_bits = 0
-        for m in movers:
-            mover_bits |= int(self.bits[m])
-        hit |= (self._mask & mover_bits) != 0
         if self._mask.any():
+            P = self._P
+            for m, p in zip(movers, new, strict=True):
+                bit = int(self.bits[m])
+                if bit and (self._mask & bit).any():  # it may come into sight where it now stands
+                    seen_by = visible_from(P, m)
+                    for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
+                        if p not in self._seen_at[r]:
+                            hit[r] = True
             for p in old:
                 if p not in occupied:  # a point another mover entered hides as much as before
                     self._revealed_through(p, hit)

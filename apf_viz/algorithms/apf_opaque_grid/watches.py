@@ -27,6 +27,7 @@ from apf_viz.core.view import Seen, Snapshot
 
 PHASE1_LIGHTS = frozenset({"off", "terminal1"})
 LATER_LIGHTS = frozenset({"symmetric", "decider", "call", "leader1", "leader", "done"})
+PHASES_2_3 = frozenset({"decider", "leader", "done"})  # the lights that take an off robot out of Phase 1
 _LEADER = frozenset({"leader"})
 WITNESSES = 8  # a fact that any of several robots shows is watched through this many of them
 
@@ -70,18 +71,20 @@ def _to_my_line_from_left_line(view: Snapshot) -> Box:
 
 
 def phase1_wait(view: Snapshot) -> Watch:
-    """A1.off.wait under G1: r is off and sees only off/terminal1 robots. While no robot of a later light
-    comes into sight, G1 stays false, no leader/done or decider is seen (so neither Phase 3 nor Phase 2
-    applies), and "no leader1 on R_I" holds; the rest of Algorithm 1's off rules read only L_V, H_L^O and
-    L_I (their lights and K), all inside the box from L_I to L_V.
+    """A1.off.wait under G1: r is off and sees only off/terminal1 robots. A robot of a later light coming
+    into sight changes nothing unless it is a leader or done robot (Phase 3 would apply) or a decider
+    (two on L_I start Phase 2): any other makes G1 true, and r waits (G1-wait). So with no leader, done
+    or decider robot coming into sight, Algorithm 1's off rules decide, and they read only L_V, H_L^O
+    and L_I (their lights and K), all inside the box from L_I to L_V; "no leader1 on R_I" only matters
+    while G1 is false, i.e. while no leader1 is in sight.
 
     Tighter when r sees no terminal1 robot and some robot w to its left: with w kept H_L^O is not empty,
     so the terminal rule cannot fire, and with no terminal1 robot coming into sight L_I cannot hold two;
     nothing else is read."""
     left = view.robots[: bisect_left(view.robots, (0,))]
-    if left and not any(s.light == "terminal1" for s in view.robots):
-        return Watch(segments=(_offset(sparsest(left)),), lights=LATER_LIGHTS | {"terminal1"})
-    return Watch(boxes=(_to_my_line_from_left_line(view),), lights=LATER_LIGHTS)
+    if left and "terminal1" not in map(itemgetter(2), view.robots):
+        return Watch(segments=(_offset(sparsest(left)),), lights=PHASES_2_3 | {"terminal1"})
+    return Watch(boxes=(_to_my_line_from_left_line(view),), lights=PHASES_2_3)
 
 
 def g1_wait(view: Snapshot) -> Watch:
