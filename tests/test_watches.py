@@ -74,6 +74,19 @@ def test_every_watched_robot_would_still_stay(algorithm, scheduler, semantics, k
     assert watched > 0  # the promises were put to the test
 
 
+def test_promises_hold_in_a_larger_run_where_views_hold_dozens_of_robots():
+    """k = 30, every third step: the line, the crowd, the done robots and the leader all in sight."""
+    start, pattern, y_up = case(30, 7)
+    e = Engine(start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up)
+    sched, checked = make_scheduler("async"), 0
+    while not e.finished:
+        advance(e, sched, 7, steps=3)
+        e.eligible()
+        assert not broken_promises(e), (e.step_index, broken_promises(e))
+        checked += int(e._watches.active.sum())
+    assert e.outcome == "formed" and checked > 10_000
+
+
 @pytest.mark.parametrize("scheduler", ["async", "stale-first", "fsync"])
 def test_watching_changes_nothing_in_the_run(scheduler):
     """Watches only spare work: the same steps, events and outcome as asking after every view change."""
