@@ -41,14 +41,19 @@ def _sparsity(s: Seen, sign: int = 1) -> tuple[int, bool, int]:
 
 
 def sparsest(candidates: Iterable[Seen]) -> Seen:
-    """A witness whose segment a move is least likely to touch (see the module's docstring): the first
-    whose segment is a single point, else the one with the fewest points (then done, then nearest).
-    Not a full search when a single point is found early: a large view has hundreds of candidates."""
+    """A witness whose segment a move is least likely to touch (see the module's docstring): a done robot
+    whose segment is a single point, else the nearest such robot, else the one with the fewest points.
+    One pass without sorting: a large view has hundreds of candidates."""
     candidates = list(candidates)
+    best, nearest = None, 0
     for s in candidates:
         if gcd(s.dx, s.dy) == 1:
-            return s
-    return min(candidates, key=_sparsity)
+            if s.light == "done":
+                return s
+            d = abs(s.dx) + abs(s.dy)
+            if best is None or d < nearest:
+                best, nearest = s, d
+    return best if best is not None else min(candidates, key=_sparsity)
 
 
 def some_witnesses(candidates: Iterable[Seen], far: bool = False) -> tuple[tuple[int, int], ...]:
@@ -136,13 +141,10 @@ def not_my_turn(view: Snapshot, leader: Seen, row_left: Seen | None, between: li
 
 
 def _left_witness(left: tuple[Seen, ...]) -> Seen:
-    """A robot to r's left whose segment is a single point, found from the far left (there, in Phase 3,
-    are the leader and the first robots done; the leader is skipped, since watching it is what this
-    avoids); any robot to the left if none is such. Not a full search: a large view has hundreds."""
-    for s in left:
-        if s.light != "leader" and gcd(s.dx, s.dy) == 1:
-            return s
-    return left[-1]
+    """A robot to r's left to keep H_L^O non-empty: not the leader (watching it is what this avoids),
+    unless it is the only one."""
+    others = [s for s in left if s.light != "leader"]
+    return sparsest(others) if others else left[0]
 
 
 def leader_waits(pending: list[Seen]) -> Watch:
