@@ -176,8 +176,8 @@ def test_a_relit_robot_concerns_only_the_watchers_that_see_it():
     for r in (0, 3):
         w.register(r, Watch(lights=frozenset({"done"})))
     lights[2] = "done"
-    assert w.relit(2, "done", lambda: [1, 3]) == [3]  # 0 does not see 2 (1 is between)
-    assert w.relit(1, "call", lambda: [0, 2, 3]) == []  # nobody watches call
+    assert w.relit(2, "done") == [3]  # 0 does not see 2 (1 is between)
+    assert w.relit(1, "call") == []  # nobody watches call
 
 
 def test_a_long_segment_is_tested_by_direction_and_length():

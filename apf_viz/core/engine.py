@@ -26,7 +26,7 @@ import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point, coordinate_problem, visible_from
+from apf_viz.core.grid import Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
@@ -389,7 +389,7 @@ class Engine:
             st.version += 1
             self._views.relit(r)
             # Always told, watched or not: it keeps every robot's light bit for later reveals.
-            self._dirty.update(self._watches.relit(r, decision.light, lambda: visible_from(st.positions, r)))
+            self._dirty.update(self._watches.relit(r, decision.light))
         gmove = move_to_global(decision.move, self.y_up[r])
         rule_id = decision.rule_id or None
         return _new(
@@ -424,12 +424,11 @@ class Engine:
             st.positions[r] = targets[r]
         if movers:
             self._views.moved(movers, [here[r] for r in movers])
-            if self._watches.count:
-                self._dirty.update(
-                    self._watches.moved(
-                        [here[r] for r in movers], [targets[r] for r in movers], movers, self._views.occupied
-                    )
+            self._dirty.update(
+                self._watches.moved(
+                    [here[r] for r in movers], [targets[r] for r in movers], movers, self._views.occupied
                 )
+            )
             st.moves += len(movers)
             st.version += 1
         for r in robots:
@@ -451,8 +450,7 @@ class Engine:
             return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
         st.positions[r] = to
         self._views.moved((r,), (here,))
-        if self._watches.count:
-            self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
+        self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
         st.moves += 1
         st.version += 1
         self._finish_cycle(r)

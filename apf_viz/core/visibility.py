@@ -240,9 +240,7 @@ class Views:
     def _forget(self, m: int) -> None:
         """A robot that moved sees everything shifted: its view is rebuilt on its next Look."""
         if m in self._built:
-            self._built.discard(m)
-            self._near[m] = self._raw[m] = None
-            self._cached[m] = None
+            self.release(m)
             self.changed.add(m)
 
     def _drop(self, r: int, j: int, gx: int, gy: int) -> None:

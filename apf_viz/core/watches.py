@@ -19,7 +19,7 @@ the configuration's span allows it, else every robot watching a light is asked a
 
 from __future__ import annotations
 
-from collections.abc import Callable, Container, Iterable, Sequence
+from collections.abc import Container, Sequence
 from math import gcd
 
 import numpy as np
@@ -32,6 +32,14 @@ SEGMENTS = 2
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
 _PACKED_SPAN_LIMIT = 1 << 20
+
+
+def _lattice_points(x: int, y: int, dx: int, dy: int) -> list[Point]:
+    """The lattice points of the segment from (x, y) to (x + dx, y + dy), without (x, y) itself: nothing
+    moves onto a watching robot."""
+    g = gcd(dx, dy)
+    ux, uy = dx // g, dy // g
+    return [(x + t * ux, y + t * uy) for t in range(1, g + 1)]
 
 
 class Watches:
@@ -92,10 +100,7 @@ class Watches:
             self._intact[r] = {i for i, _ in short}
             mine = self._any_points[r]
             for i, (dx, dy) in short:
-                dy *= s
-                g = gcd(dx, dy)
-                for t in range(1, g + 1):
-                    p = (x + t * dx // g, y + t * dy // g)
+                for p in _lattice_points(x, y, dx, s * dy):
                     mine.append((p, i))
                     self._any_at.setdefault(p, set()).add((r, i))
         arrays = bool(watch.boxes)
@@ -109,15 +114,13 @@ class Watches:
         for i, (dx, dy) in enumerate(segments):
             dy *= s
             g = gcd(dx, dy)
-            ux, uy = dx // g, dy // g
             if g <= SHORT:
                 points = self._points_of[r]
-                for t in range(1, g + 1):  # not t = 0: nothing moves onto a watching robot
-                    p = (x + t * ux, y + t * uy)
+                for p in _lattice_points(x, y, dx, dy):
                     points.append(p)
                     self._watchers_at.setdefault(p, set()).add(r)
             else:
-                self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = ux, uy, g
+                self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
                 arrays = True
         mask = 0
         for light in watch.lights:
@@ -178,37 +181,33 @@ class Watches:
             return []
         hit = self._touching(list(old) + list(new))
         if self._mask.any():
-            P = self._P
             for m, p in zip(movers, new, strict=True):
-                bit = int(self.bits[m])
-                if bit and (self._mask & bit).any():  # it may come into sight where it now stands
-                    seen_by = visible_from(P, m)
-                    for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
-                        if p not in self._seen_at[r]:
-                            hit[r] = True
+                self._in_sight(m, p, hit)  # it may come into sight where it now stands
             for p in old:
                 if p not in occupied:  # a point another mover entered hides as much as before
                     self._revealed_through(p, hit)
         return self._take(hit)
 
-    def relit(self, m: int, light: str, seen_by: Callable[[], Iterable[int]]) -> list[int]:
-        """Watched robots robot m's new light concerns (``seen_by()``: the robots that see m, asked only
-        when someone watches the light)."""
+    def relit(self, m: int, light: str) -> list[int]:
+        """Watched robots robot m's new light concerns."""
         self.bits[m] = self._bit.get(light, 0)
         if not self.count:
             return []
-        at = tuple(int(v) for v in self._P[m])
+        at = (int(self._P[m, 0]), int(self._P[m, 1]))
         hit = self._touching([at])
-        bit = int(self.bits[m])
-        if bit:
-            watching = np.flatnonzero((self._mask & bit) != 0)
-            if watching.size:
-                sees = np.zeros_like(hit)
-                sees[np.fromiter(seen_by(), dtype=np.intp)] = True
-                for r in watching[sees[watching]].tolist():
-                    if at not in self._seen_at[r]:
-                        hit[r] = True
+        self._in_sight(m, at, hit)
         return self._take(hit)
+
+    def _in_sight(self, m: int, at: Point, hit: np.ndarray) -> None:
+        """Mark the watchers of robot m's light that see m, at ``at``, unless they saw one there before.
+        (Who sees m is computed only when someone watches its light.)"""
+        bit = int(self.bits[m])
+        if not bit or not (self._mask & bit).any():
+            return
+        seen_by = visible_from(self._P, m)
+        for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
+            if at not in self._seen_at[r]:
+                hit[r] = True
 
     def _take(self, hit: np.ndarray) -> list[int]:
         hit &= self.active
