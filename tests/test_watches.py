@@ -208,3 +208,18 @@ def test_a_mover_of_a_watched_light_concerns_only_the_watchers_that_see_it_where
     w.register(3, Watch(lights=frozenset({"leader1"})))
     P[3] = (4, 6)
     assert move(P, w, 1, (4, 4)) == [3]  # hidden from 0 behind (2, 2)
+
+
+def test_an_occupied_box_wakes_its_watcher_only_when_its_last_robot_leaves():
+    # 0 (flipped) waits while a robot stands in local rows 1..3 (global −3..−1) or on its row to its left.
+    P, _, w = watches_on([(0, 0), (2, -1), (5, -2), (9, 9)], y_up=[False, True, True, True])
+    assert w.register(0, Watch(occupied=((None, None, 1, 3), (None, -1, 0, 0))))
+    assert move(P, w, 1, (3, -1)) == [] and move(P, w, 2, (5, -3)) == []  # walking about inside
+    assert move(P, w, 1, (3, 0)) == []  # 2 is still inside
+    assert move(P, w, 3, (-4, 0)) == []  # a robot arrives on 0's row to its left
+    assert move(P, w, 2, (5, -4)) == []  # the band is empty, the row to the left is not
+    assert move(P, w, 3, (-4, 1)) == [0]  # every box empty: asked again
+    assert not w.active[0]
+    P2, _, w2 = watches_on([(0, 0), (1, 1)])
+    assert w2.register(0, Watch(occupied=((None, None, 1, 1),)))
+    assert move(P2, w2, 1, (1, 2)) == [0]  # the unflipped robot's rows are global rows

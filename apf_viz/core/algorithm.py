@@ -42,6 +42,11 @@ class Watch:
             hidden, or by taking the light) may change the answer.
         seen_at: offsets where a robot of a watched light already was in sight: one seen there again is
             not news (e.g. the leader, hidden for a while by a passing robot, then revealed).
+        occupied: boxes (:data:`Box`) of which at least one must keep holding a robot, whoever it is and
+            however it moves inside (e.g. "some robot is between my row and the leader's"). The engine
+            counts robots, not visible ones: the algorithm uses such a box only where the two agree,
+            i.e. where every segment from the robot to a point of the box runs inside the box (a robot
+            in it is then visible, or hidden behind another robot in it).
     """
 
     boxes: tuple[Box, ...] = ()
@@ -49,6 +54,7 @@ class Watch:
     any_of: tuple[Point, ...] = ()
     lights: frozenset[str] = frozenset()
     seen_at: tuple[Point, ...] = ()
+    occupied: tuple[Box, ...] = ()
 
 
 NOTHING = Watch()

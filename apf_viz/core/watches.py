@@ -10,7 +10,9 @@ passes and dictionary look-ups find the few watches the event touches:
   so what the robot sees inside one depends on nothing outside it);
 - a robot showing a watched light comes into sight: it moves to a point the watcher sees, it is
   revealed (the vacated point was the only robot between it and the watcher: the two nearest robots on
-  either side of the vacated point along one line), or it takes the light while the watcher sees it.
+  either side of the vacated point along one line), or it takes the light while the watcher sees it;
+- the last robot leaves the ``occupied`` boxes of a watch (a count per box, kept move by move: a robot
+  walking about inside one costs a few numpy comparisons and wakes nobody).
 
 The watches are kept in the global frame, so a test costs the same for every robot. Coordinates are far
 below 2^62 (``COORD_LIMIT``), so the sentinel bounds never overflow; direction keys are packed only when
@@ -24,11 +26,12 @@ from math import gcd
 
 import numpy as np
 
-from apf_viz.core.algorithm import Watch
+from apf_viz.core.algorithm import Box, Watch
 from apf_viz.core.grid import Point, visible_from
 
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
+OCCUPIED = 2
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
 _PACKED_SPAN_LIMIT = 1 << 20
@@ -78,6 +81,14 @@ class Watches:
         self._any_at: dict[Point, set[tuple[int, int]]] = {}
         self._any_points: list[list[tuple[Point, int]]] = [[] for _ in range(k)]
         self._intact: list[set[int]] = [set() for _ in range(k)]
+        # Occupied boxes: bounds and the number of robots inside, per slot (unused slots: empty, count 0).
+        self._ox0 = np.full((k, OCCUPIED), _BIG, dtype=np.int64)
+        self._ox1 = np.full((k, OCCUPIED), -_BIG, dtype=np.int64)
+        self._oy0 = np.full((k, OCCUPIED), _BIG, dtype=np.int64)
+        self._oy1 = np.full((k, OCCUPIED), -_BIG, dtype=np.int64)
+        self._count = np.zeros((k, OCCUPIED), dtype=np.int64)
+        self._counting = np.zeros(k, dtype=bool)
+        self._with_counts = 0
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
         self._seen_at: list[frozenset[Point]] = [frozenset()] * k  # global points; see Watch.seen_at
         self.count = 0  # robots with a watch
@@ -94,7 +105,7 @@ class Watches:
         short = [(i, d) for i, d in enumerate(watch.any_of) if gcd(*d) <= SHORT]
         if watch.any_of and not short:  # every one long: the first must stay, as a plain segment
             segments = (*segments, watch.any_of[0])
-        if len(watch.boxes) > BOXES or len(segments) > SEGMENTS:
+        if len(watch.boxes) > BOXES or len(segments) > SEGMENTS or len(watch.occupied) > OCCUPIED:
             return False
         if short:
             self._intact[r] = {i for i, _ in short}
@@ -104,13 +115,18 @@ class Watches:
                     mine.append((p, i))
                     self._any_at.setdefault(p, set()).add((r, i))
         arrays = bool(watch.boxes)
-        for i, (x0, x1, y0, y1) in enumerate(watch.boxes):
-            if s == -1:  # the robot's +y is the global −y: its box flips about its own row
-                y0, y1 = (None if y1 is None else -y1), (None if y0 is None else -y0)
-            self._bx0[r, i] = -_BIG if x0 is None else x + x0
-            self._bx1[r, i] = _BIG if x1 is None else x + x1
-            self._by0[r, i] = -_BIG if y0 is None else y + y0
-            self._by1[r, i] = _BIG if y1 is None else y + y1
+        for i, box in enumerate(watch.boxes):
+            self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = _global_box(x, y, s, box)
+        if watch.occupied:
+            P = self._P
+            for i, box in enumerate(watch.occupied):
+                x0, x1, y0, y1 = self._ox0[r, i], self._ox1[r, i], self._oy0[r, i], self._oy1[r, i] = (
+                    _global_box(x, y, s, box)
+                )
+                inside = (x0 <= P[:, 0]) & (P[:, 0] <= x1) & (y0 <= P[:, 1]) & (P[:, 1] <= y1)
+                self._count[r, i] = int(np.count_nonzero(inside)) - bool(inside[r])
+            self._counting[r] = True
+            self._with_counts += 1
         for i, (dx, dy) in enumerate(segments):
             dy *= s
             g = gcd(dx, dy)
@@ -162,6 +178,14 @@ class Watches:
                     del at[p]
             self._any_points[r] = []
             self._intact[r] = set()
+        if self._counting[r]:
+            self._counting[r] = False
+            self._with_counts -= 1
+            self._ox0[r] = _BIG
+            self._ox1[r] = -_BIG
+            self._oy0[r] = _BIG
+            self._oy1[r] = -_BIG
+            self._count[r] = 0
         if self._arrays[r]:
             self._arrays[r] = False
             self._with_arrays -= 1
@@ -180,6 +204,8 @@ class Watches:
         if not self.count:
             return []
         hit = self._touching(list(old) + list(new))
+        if self._with_counts:
+            self._recount(old, new, hit)
         if self._mask.any():
             for m, p in zip(movers, new, strict=True):
                 self._in_sight(m, p, hit)  # it may come into sight where it now stands
@@ -208,6 +234,14 @@ class Watches:
         for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
             if at not in self._seen_at[r]:
                 hit[r] = True
+
+    def _recount(self, old: Sequence[Point], new: Sequence[Point], hit: np.ndarray) -> None:
+        """Update the robots counted in occupied boxes, and mark the watches whose boxes are all empty."""
+        count, x0, x1, y0, y1 = self._count, self._ox0, self._ox1, self._oy0, self._oy1
+        for points, sign in ((old, -1), (new, 1)):
+            for px, py in points:
+                count += sign * ((x0 <= px) & (px <= x1) & (y0 <= py) & (py <= y1))
+        hit |= self._counting & ~count.any(axis=1)
 
     def _take(self, hit: np.ndarray) -> list[int]:
         hit &= self.active
@@ -274,3 +308,16 @@ class Watches:
         for r, q in zip(a[news].tolist(), b[news].tolist(), strict=True):
             if (int(points[q, 0]), int(points[q, 1])) not in self._seen_at[r]:
                 hit[r] = True
+
+
+def _global_box(x: int, y: int, s: int, box: Box) -> tuple[int, int, int, int]:
+    """A box of the robot at (x, y) whose local +y is the global s·y, as global bounds (±2^62 for None)."""
+    x0, x1, y0, y1 = box
+    if s == -1:  # the robot's +y is the global −y: its box flips about its own row
+        y0, y1 = (None if y1 is None else -y1), (None if y0 is None else -y0)
+    return (
+        -_BIG if x0 is None else x + x0,
+        _BIG if x1 is None else x + x1,
+        -_BIG if y0 is None else y + y0,
+        _BIG if y1 is None else y + y1,
+    )

@@ -21,7 +21,7 @@ from operator import itemgetter
 from apf_viz.algorithms.apf_opaque_grid import watches
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
 from apf_viz.algorithms.apf_opaque_grid.resolutions import LA, N2, P3, Resolutions, deviation
-from apf_viz.core.algorithm import Decision, Pattern
+from apf_viz.core.algorithm import Box, Decision, Pattern
 from apf_viz.core.grid import Direction, Point
 from apf_viz.core.portrayal import NO_EVIDENCE, Band, Evidence, Frame, Line
 from apf_viz.core.view import Seen, Snapshot
@@ -219,7 +219,7 @@ def pattern_formation_off(
             view,
             "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
             "A3.off.not-my-turn",
-            watches.not_my_turn(view, leader, *_turn_witnesses(view, frame, leftmost)),
+            watches.not_my_turn(view, leader, _between_rows(frame)),
         )
     # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
     # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
@@ -244,19 +244,24 @@ def pattern_formation_off(
             f"Phase 3 (off): left end of the line at ({x}, −1) → move to ({x}, 0)",
             "A3.off.leave-line",
         )
-    return stay(view, "Phase 3 (off): on the line, robots above are not done → wait", "A3.off.line-wait")
+    return stay(
+        view,
+        "Phase 3 (off): on the line, robots above are not done → wait",
+        "A3.off.line-wait",
+        watches.line_waits(view, side, [s for s in view.robots if _forming(s, p3) and side * s.dy > 0]),
+    )
 
 
-def _turn_witnesses(view: Snapshot, frame: LeaderFrame, leftmost: bool) -> tuple[Seen | None, list[Seen]]:
-    """Why it is not r's turn: the nearest robot on r's row to its left (None if r is leftmost), and the
-    robots strictly between r's row and the leader's."""
-    robots = view.robots
+def _forming(robot: Seen, p3: bool) -> bool:
+    """A robot the line waits for: not done (P3), or off (the paper)."""
+    return robot.light != "done" if p3 else robot.light == "off"
+
+
+def _between_rows(frame: LeaderFrame) -> Box | None:
+    """H_B^O(r) ∩ H_U^O(r₀) as a box of r's frame (the rows :func:`robots_between` reads); None if empty."""
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    between = [s for s in robots if lo <= s.dy <= hi]
-    if leftmost:
-        return None, between
-    return max((s for s in robots[: bisect_left(robots, (0,))] if s.dy == 0), key=itemgetter(0)), between
+    return (None, None, lo, hi) if lo <= hi else None
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:

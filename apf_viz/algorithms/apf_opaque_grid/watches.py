@@ -29,6 +29,7 @@ PHASE1_LIGHTS = frozenset({"off", "terminal1"})
 LATER_LIGHTS = frozenset({"symmetric", "decider", "call", "leader1", "leader", "done"})
 PHASES_2_3 = frozenset({"decider", "leader", "done"})  # the lights that take an off robot out of Phase 1
 _LEADER = frozenset({"leader"})
+ROW_LEFT: Box = (None, -1, 0, 0)  # r's row, to its left
 WITNESSES = 8  # a fact that any of several robots shows is watched through this many of them
 
 
@@ -112,32 +113,34 @@ def no_leader(view: Snapshot) -> Watch:
     return Watch(segments=(_offset(d),), lights=_LEADER)
 
 
-def not_my_turn(view: Snapshot, leader: Seen, row_left: Seen | None, between: list[Seen]) -> Watch | None:
-    """A3.off.not-my-turn: r is off above the line and sees one leader; ``row_left`` is the robot on r's
-    row to its left (None if r is leftmost) and ``between`` the robots strictly between r's row and the
-    leader's. A robot of a watched light coming into sight, or a watched region touched, asks again.
+def not_my_turn(view: Snapshot, leader: Seen, between: Box | None) -> Watch | None:
+    """A3.off.not-my-turn: r is off above the line and sees one leader; ``between`` is the box of the rows
+    strictly between r's row and the leader's (None when r's row is next to it). A robot of a watched
+    light coming into sight, or a watched region touched, asks again.
 
     While the leader stays in sight at the same offset (and no second one comes into sight) the frame is
-    the same; then any one of the witnesses kept keeps it not r's turn. The leader need not be watched
-    when a robot w to r's left is kept and no terminal1, decider or leader robot comes into sight
-    (except this leader at its offset, ``seen_at``: seen there again, the view agrees with this one). If
-    the leader is hidden, r either sees a done robot (Phase 3 without a leader: wait) or runs Phases
-    1–2, where no decider means no Phase 2, G1 at most waits, and Algorithm 1's off rules need H_L^O
-    empty (w is there) or two terminal1 robots on L_I (none in sight). With two leaders in sight the
-    first in the view's order is taken: no watch."""
+    the same, and it stays not r's turn while a robot stands on r's row to its left or between the rows
+    (``occupied``: whoever it is, and however it moves about there, as the traveller does). A robot there
+    is visible or hidden behind another one there: a segment from r into either box runs inside it. The
+    leader need not be watched when a robot w to r's left is kept and no terminal1, decider or leader
+    robot comes into sight (except this leader at its offset, ``seen_at``: seen there again, the view
+    agrees with this one). If the leader is hidden, r either sees a done robot (Phase 3 without a
+    leader: wait) or runs Phases 1–2, where no decider means no Phase 2, G1 at most waits, and
+    Algorithm 1's off rules need H_L^O empty (w is there) or two terminal1 robots on L_I (none in
+    sight). With two leaders in sight the first in the view's order is taken: no watch."""
     lights = list(map(itemgetter(2), view.robots))
     if lights.count("leader") != 1:
         return None
-    witnesses = [*between, row_left] if row_left is not None else between
+    occupied = (ROW_LEFT, between) if between is not None else (ROW_LEFT,)
     left = view.robots[: bisect_left(view.robots, (0,))]
     if left and "terminal1" not in lights and "decider" not in lights:
         return Watch(
             segments=(_offset(_left_witness(left)),),
-            any_of=some_witnesses(witnesses),
+            occupied=occupied,
             lights=frozenset({"leader", "terminal1", "decider"}),
             seen_at=(_offset(leader),),
         )
-    return Watch(segments=(_offset(leader),), any_of=some_witnesses(witnesses), lights=_LEADER)
+    return Watch(segments=(_offset(leader),), occupied=occupied, lights=_LEADER)
 
 
 def _left_witness(left: tuple[Seen, ...]) -> Seen:
@@ -145,6 +148,21 @@ def _left_witness(left: tuple[Seen, ...]) -> Seen:
     unless it is the only one."""
     others = [s for s in left if s.light != "leader"]
     return sparsest(others) if others else left[0]
+
+
+def line_waits(view: Snapshot, side: int, waiting: list[Seen]) -> Watch | None:
+    """A3.off.line-wait: r is on the leader's row (the line), sees the leader there, and ``waiting`` are the
+    robots on the frame's upper side (local ``side``·dy > 0) still forming. The side is read off the
+    first robot off r's row in the view's order; when no robot stands on the other side, any robot off
+    the row gives the same side. So with the box of r's row and the other side kept (it holds the
+    leader: the frame's origin), no second leader coming into sight (the first in the view's order is
+    taken), and any one of the waiting robots kept (its light too), r still waits. The traveller walking
+    above the line touches none of this; it enters the box once, when it joins the line. With a robot
+    on the other side (not a leader configuration) there is no watch."""
+    if any(side * s.dy < 0 for s in view.robots):
+        return None
+    other_side: Box = (None, None, None, 0) if side == 1 else (None, None, 0, None)
+    return Watch(boxes=(other_side,), any_of=some_witnesses(waiting, far=True), lights=_LEADER)
 
 
 def leader_waits(pending: list[Seen]) -> Watch:
