@@ -223,3 +223,40 @@ def test_an_occupied_box_wakes_its_watcher_only_when_its_last_robot_leaves():
     P2, _, w2 = watches_on([(0, 0), (1, 1)])
     assert w2.register(0, Watch(occupied=((None, None, 1, 1),)))
     assert move(P2, w2, 1, (1, 2)) == [0]  # the unflipped robot's rows are global rows
+
+
+def test_an_any_of_witness_is_followed_while_it_stays_in_sight_inside_within():
+    P = np.array([(0, 0), (2, 3), (9, 9), (-5, 1)], dtype=np.int64)
+    at = {(int(x), int(y)): i for i, (x, y) in enumerate(P.tolist())}
+    w = Watches(P, ["off"] * 4, LIGHTS, [True] * 4, at)
+    upper = (None, None, 1, None)
+
+    def step(m, to):
+        old = tuple(int(v) for v in P[m])
+        del at[old]
+        P[m] = to
+        at[to] = m
+        return w.moved([old], [to], [m], at)
+
+    assert w.register(0, Watch(any_of=((2, 3),), within=upper))
+    assert step(1, (3, 3)) == [] and step(1, (3, 4)) == [] and step(1, (-2, 4)) == []  # walks in sight
+    assert step(2, (-1, 2)) == [0]  # steps onto the segment to where the witness is now
+    step(2, (7, 7))
+    assert w.register(0, Watch(any_of=((-2, 4),), within=upper))
+    assert step(1, (-2, 2)) == [] and step(2, (-3, 3)) == []  # a robot behind the witness: no matter
+    assert step(1, (-2, 1)) == [] and step(1, (-2, 0)) == [0]  # out of ``within``
+    assert w.register(0, Watch(any_of=((-5, 1), (-3, 3)), within=upper))
+    assert step(3, (-4, 1)) == [] and step(2, (-4, 2)) == []  # (−4, 2) is in sight: gcd 2, (−2, 1) free
+    assert step(3, (-4, 0)) == []  # out of ``within``: the other witness still suffices
+    assert step(3, (-4, 1)) == []  # no longer followed: coming back changes nothing
+    assert step(1, (-2, 1)) == [0]  # hides the last witness, at (−4, 2)
+
+
+def test_a_followed_witness_that_changes_its_light_no_longer_counts():
+    P, lights, w = watches_on([(0, 0), (1, 2), (3, 3)])
+    assert w.register(0, Watch(any_of=((1, 2), (3, 3))))
+    lights[1] = "done"
+    assert w.relit(1, "done") == []  # the other witness still suffices
+    assert move(P, w, 1, (1, 3)) == []  # and the relit one is not followed any more
+    lights[2] = "done"
+    assert w.relit(2, "done") == [0]

@@ -36,8 +36,9 @@ class Watch:
         boxes: closed axis-aligned boxes (:data:`Box`), each containing the origin.
         segments: closed segments from the robot (the origin) to these offsets, e.g. to the robot whose
             presence the decision relied on (a witness).
-        any_of: segments of which any one suffices: the later view need agree with this one inside one
-            of them (the witnesses of a fact any of several robots shows, e.g. "a robot still forming").
+        any_of: witnesses of a fact any of several robots shows (e.g. "a robot still forming"), by
+            offset: the answer stays while any one of them stays in sight with its light, inside
+            ``within``, wherever it moves (the engine follows each witness, and its segment, by robot).
         lights: a robot showing one of these lights coming into sight (by moving, by no longer being
             hidden, or by taking the light) may change the answer.
         seen_at: offsets where a robot of a watched light already was in sight: one seen there again is
@@ -55,6 +56,7 @@ class Watch:
     lights: frozenset[str] = frozenset()
     seen_at: tuple[Point, ...] = ()
     occupied: tuple[Box, ...] = ()
+    within: Box | None = None  # where an any-of witness may move and still count (None: anywhere)
 
 
 NOTHING = Watch()

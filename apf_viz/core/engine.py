@@ -290,7 +290,9 @@ class Engine:
         return self._eligible
 
     def _new_watches(self) -> Watches:
-        return Watches(self.state.positions, self.state.lights, self.algorithm.lights, self.y_up)
+        return Watches(
+            self.state.positions, self.state.lights, self.algorithm.lights, self.y_up, self._views.occupied
+        )
 
     # ------------------------------------------------------------------ stepping
     def step(self, robots: Sequence[int], *, round: int | None = None) -> list[Event]:

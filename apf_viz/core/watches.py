@@ -21,7 +21,7 @@ the configuration's span allows it, else every robot watching a light is asked a
 
 from __future__ import annotations
 
-from collections.abc import Container, Sequence
+from collections.abc import Container, Mapping, Sequence
 from math import gcd
 
 import numpy as np
@@ -56,10 +56,20 @@ class Watches:
     """
 
     def __init__(
-        self, positions: np.ndarray, lights: list[str], light_names: Sequence[str], y_up: Sequence[bool]
+        self,
+        positions: np.ndarray,
+        lights: list[str],
+        light_names: Sequence[str],
+        y_up: Sequence[bool],
+        robot_at: Mapping[Point, int] | None = None,
     ) -> None:
         k = positions.shape[0]
         self._P = positions
+        # Which robot stands where (the engine's own map, kept current by its views): any-of witnesses are
+        # followed by robot, not by point.
+        self._robot_at = (
+            robot_at if robot_at is not None else {(x, y): i for i, (x, y) in enumerate(positions.tolist())}
+        )
         self._bit = {name: 1 << i for i, name in enumerate(light_names)}
         self._flip = [1 if up else -1 for up in y_up]
         self.bits = np.array([self._bit.get(light, 0) for light in lights], dtype=np.int64)
@@ -81,6 +91,9 @@ class Watches:
         self._any_at: dict[Point, set[tuple[int, int]]] = {}
         self._any_points: list[list[tuple[Point, int]]] = [[] for _ in range(k)]
         self._intact: list[set[int]] = [set() for _ in range(k)]
+        self._witness_of: list[dict[int, int]] = [{} for _ in range(k)]  # watcher → {segment: witness}
+        self._followed: dict[int, set[tuple[int, int]]] = {}  # witness → {(watcher, segment)}
+        self._within: list[tuple[int, int, int, int] | None] = [None] * k  # global box, see Watch.within
         # Occupied boxes: bounds and the number of robots inside, per slot (unused slots: empty, count 0).
         self._ox0 = np.full((k, OCCUPIED), _BIG, dtype=np.int64)
         self._ox1 = np.full((k, OCCUPIED), -_BIG, dtype=np.int64)
@@ -109,11 +122,15 @@ class Watches:
             return False
         if short:
             self._intact[r] = {i for i, _ in short}
-            mine = self._any_points[r]
+            witnesses = self._witness_of[r]
             for i, (dx, dy) in short:
-                for p in _lattice_points(x, y, dx, s * dy):
-                    mine.append((p, i))
-                    self._any_at.setdefault(p, set()).add((r, i))
+                self._link(r, i, _lattice_points(x, y, dx, s * dy))
+                j = self._robot_at.get((x + dx, y + s * dy))
+                if j is not None:
+                    witnesses[i] = j
+                    self._followed.setdefault(j, set()).add((r, i))
+            if watch.within is not None:
+                self._within[r] = _global_box(x, y, s, watch.within)
         arrays = bool(watch.boxes)
         for i, box in enumerate(watch.boxes):
             self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = _global_box(x, y, s, box)
@@ -168,16 +185,17 @@ class Watches:
                 if not watchers:
                     del at[p]
             self._points_of[r] = []
-        mine = self._any_points[r]
-        if mine:
-            at = self._any_at
-            for p, i in mine:
-                pairs = at[p]
-                pairs.discard((r, i))
-                if not pairs:
-                    del at[p]
-            self._any_points[r] = []
+        if self._intact[r] or self._any_points[r] or self._witness_of[r]:
+            self._unlink(r)
             self._intact[r] = set()
+            followed = self._followed
+            for i, j in self._witness_of[r].items():
+                slots = followed[j]
+                slots.discard((r, i))
+                if not slots:
+                    del followed[j]
+            self._witness_of[r] = {}
+            self._within[r] = None
         if self._counting[r]:
             self._counting[r] = False
             self._with_counts -= 1
@@ -203,7 +221,17 @@ class Watches:
         new points)."""
         if not self.count:
             return []
+        # A moving witness takes its segment along: the old one is not watched, the new one is if the
+        # witness is still in sight (after every point the moves touch has been marked).
+        following = [
+            (m, p, self._followed[m]) for m, p in zip(movers, new, strict=True) if m in self._followed
+        ]
+        for _, _, slots in following:
+            for r, i in slots:
+                self._unlink(r, i)
         hit = self._touching(list(old) + list(new))
+        for m, p, slots in following:
+            self._follow(m, p, slots, occupied, hit)
         if self._with_counts:
             self._recount(old, new, hit)
         if self._mask.any():
@@ -234,6 +262,52 @@ class Watches:
         for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
             if at not in self._seen_at[r]:
                 hit[r] = True
+
+    def _follow(
+        self, m: int, p: Point, slots: set[tuple[int, int]], occupied: Container[Point], hit: np.ndarray
+    ) -> None:
+        """Witness m moved to p: each watcher it still suffices for (in sight, inside the watch's
+        ``within``) watches the segment to p; for the others it is touched."""
+        P = self._P
+        for r, i in list(slots):
+            intact = self._intact[r]
+            if i not in intact:
+                continue
+            x, y = int(P[r, 0]), int(P[r, 1])
+            points = _lattice_points(x, y, p[0] - x, p[1] - y)
+            within = self._within[r]
+            if len(points) <= SHORT and not any(q in occupied for q in points[:-1]) and _inside(p, within):
+                self._link(r, i, points)
+                continue
+            slots.discard((r, i))
+            del self._witness_of[r][i]
+            intact.discard(i)
+            if not intact:
+                hit[r] = True
+        if not slots:
+            del self._followed[m]
+
+    def _link(self, r: int, i: int, points: list[Point]) -> None:
+        """Robot r's any-of segment i runs over these points."""
+        mine = self._any_points[r]
+        at = self._any_at
+        for p in points:
+            mine.append((p, i))
+            at.setdefault(p, set()).add((r, i))
+
+    def _unlink(self, r: int, i: int | None = None) -> None:
+        """Forget the points of robot r's any-of segment i (every segment if None)."""
+        at = self._any_at
+        keep = []
+        for p, j in self._any_points[r]:
+            if i is not None and j != i:
+                keep.append((p, j))
+                continue
+            pairs = at[p]
+            pairs.discard((r, j))
+            if not pairs:
+                del at[p]
+        self._any_points[r] = keep
 
     def _recount(self, old: Sequence[Point], new: Sequence[Point], hit: np.ndarray) -> None:
         """Update the robots counted in occupied boxes, and mark the watches whose boxes are all empty."""
@@ -308,6 +382,10 @@ class Watches:
         for r, q in zip(a[news].tolist(), b[news].tolist(), strict=True):
             if (int(points[q, 0]), int(points[q, 1])) not in self._seen_at[r]:
                 hit[r] = True
+
+
+def _inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:
+    return box is None or (box[0] <= p[0] <= box[1] and box[2] <= p[1] <= box[3])
 
 
 def _global_box(x: int, y: int, s: int, box: Box) -> tuple[int, int, int, int]:

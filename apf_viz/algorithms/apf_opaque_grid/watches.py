@@ -156,17 +156,21 @@ def line_waits(view: Snapshot, side: int, waiting: list[Seen]) -> Watch | None:
     first robot off r's row in the view's order; when no robot stands on the other side, any robot off
     the row gives the same side. So with the box of r's row and the other side kept (it holds the
     leader: the frame's origin), no second leader coming into sight (the first in the view's order is
-    taken), and any one of the waiting robots kept (its light too), r still waits. The traveller walking
-    above the line touches none of this; it enters the box once, when it joins the line. With a robot
-    on the other side (not a leader configuration) there is no watch."""
+    taken), and any one of the waiting robots still in sight on the upper side with its light (wherever
+    it walks there: ``within``), r still waits. The traveller walking above the line touches none of
+    this; it enters the box once, when it joins the line. With a robot on the other side (not a leader
+    configuration) there is no watch."""
     if any(side * s.dy < 0 for s in view.robots):
         return None
     other_side: Box = (None, None, None, 0) if side == 1 else (None, None, 0, None)
-    return Watch(boxes=(other_side,), any_of=some_witnesses(waiting, far=True), lights=_LEADER)
+    upper_side: Box = (None, None, 1, None) if side == 1 else (None, None, None, -1)
+    return Watch(
+        boxes=(other_side,), any_of=some_witnesses(waiting, far=True), within=upper_side, lights=_LEADER
+    )
 
 
 def leader_waits(pending: list[Seen]) -> Watch:
-    """A3.leader.wait: the leader sees robots still forming. With any one of them kept (its light too)
-    the leader still waits. Among equals the farthest first: the robots leave the crowd nearest the
-    line first."""
+    """A3.leader.wait: the leader sees robots still forming. With any one of them still in sight with its
+    light, wherever it has moved, the leader still waits. Among equals the farthest first: the robots
+    leave the crowd nearest the line first."""
     return Watch(any_of=some_witnesses(pending, far=True))
