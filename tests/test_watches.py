@@ -260,3 +260,21 @@ def test_a_followed_witness_that_changes_its_light_no_longer_counts():
     assert move(P, w, 1, (1, 3)) == []  # and the relit one is not followed any more
     lights[2] = "done"
     assert w.relit(2, "done") == [0]
+
+
+def test_a_reveal_is_found_the_same_from_each_shown_robot_as_in_one_pass_over_all():
+    rng = random.Random(5)
+    for _ in range(200):
+        k = rng.randint(3, 25)
+        points = rng.sample([(x, y) for x in range(7) for y in range(7)], k + 1)
+        p, rest = points[0], points[1:]  # p: the point just vacated
+        P, lights, w = watches_on(rest, [rng.choice(LIGHTS) for _ in rest])
+        for r in range(k):
+            w.bits[r] = 1 << LIGHTS.index(lights[r])
+            w._mask[r] = rng.getrandbits(len(LIGHTS))
+        one_pass = np.zeros(k, dtype=bool)
+        w._revealed_through(p, one_pass)
+        each = np.zeros(k, dtype=bool)
+        for q in np.flatnonzero(w.bits & np.bitwise_or.reduce(w._mask)).tolist():
+            w._revealed_from(q, p, each)
+        assert one_pass.tolist() == each.tolist()

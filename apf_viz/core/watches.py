@@ -32,6 +32,7 @@ from apf_viz.core.grid import Point, visible_from
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
 OCCUPIED = 2
+FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
 _PACKED_SPAN_LIMIT = 1 << 20
@@ -107,6 +108,8 @@ class Watches:
         self.count = 0  # robots with a watch
         self._arrays = np.zeros(k, dtype=bool)  # robots with a box or a long segment
         self._with_arrays = 0
+        self._long = np.zeros(k, dtype=bool)  # robots with a long segment
+        self._with_long = 0
 
     # ------------------------------------------------------------------ registering
     def register(self, r: int, watch: Watch) -> bool:
@@ -155,6 +158,9 @@ class Watches:
             else:
                 self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
                 arrays = True
+                if not self._long[r]:
+                    self._long[r] = True
+                    self._with_long += 1
         mask = 0
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
@@ -212,6 +218,9 @@ class Watches:
             self._by0[r] = _BIG
             self._by1[r] = -_BIG
             self._sg[r] = 0
+            if self._long[r]:
+                self._long[r] = False
+                self._with_long -= 1
 
     # ------------------------------------------------------------------ events
     def moved(
@@ -237,9 +246,15 @@ class Watches:
         if self._mask.any():
             for m, p in zip(movers, new, strict=True):
                 self._in_sight(m, p, hit)  # it may come into sight where it now stands
-            for p in old:
-                if p not in occupied:  # a point another mover entered hides as much as before
-                    self._revealed_through(p, hit)
+            vacated = [p for p in old if p not in occupied]  # a point another mover entered hides as before
+            if vacated:
+                shown = np.flatnonzero(self.bits & np.bitwise_or.reduce(self._mask))
+                for p in vacated:
+                    if shown.size <= FEW_SHOWN:
+                        for q in shown.tolist():
+                            self._revealed_from(q, p, hit)
+                    else:
+                        self._revealed_through(p, hit)
         return self._take(hit)
 
     def relit(self, m: int, light: str) -> list[int]:
@@ -342,9 +357,18 @@ class Watches:
                         hit[r] = True
         if not self._with_arrays:
             return hit
+        xs = np.array([p[0] for p in points], dtype=np.int64)
+        ys = np.array([p[1] for p in points], dtype=np.int64)
+        inside = (
+            (self._bx0[..., None] <= xs)
+            & (xs <= self._bx1[..., None])
+            & (self._by0[..., None] <= ys)
+            & (ys <= self._by1[..., None])
+        )
+        hit |= inside.any(axis=(1, 2))
+        if not self._with_long:
+            return hit
         for px, py in points:
-            inside = (self._bx0 <= px) & (px <= self._bx1) & (self._by0 <= py) & (py <= self._by1)
-            hit |= inside.any(axis=1)
             dx = px - P[:, 0]
             dy = py - P[:, 1]
             g = np.gcd(dx, dy)
@@ -353,6 +377,17 @@ class Watches:
             on = (qx == self._sdx) & (qy == self._sdy) & (g[:, None] <= self._sg)
             hit |= on.any(axis=1)
         return hit
+
+    def _revealed_from(self, q: int, p: Point, hit: np.ndarray) -> None:
+        """:meth:`_revealed_through` for one robot q of a watched light: if q saw the vacated point p (no
+        robot between), the nearest robot beyond p on the line from q sees q now."""
+        P = self._P
+        qx, qy = int(P[q, 0]), int(P[q, 1])
+        dx, dy = p[0] - qx, p[1] - qy
+        g = gcd(dx, dy)
+        r, d = _nearest_along(P, q, dx // g, dy // g)
+        if r != -1 and d > g and self._mask[r] & self.bits[q] and (qx, qy) not in self._seen_at[r]:
+            hit[r] = True
 
     def _revealed_through(self, p: Point, hit: np.ndarray) -> None:
         """Mark the watchers to which a robot with a watched light is revealed now that p is empty
@@ -382,6 +417,19 @@ class Watches:
         for r, q in zip(a[news].tolist(), b[news].tolist(), strict=True):
             if (int(points[q, 0]), int(points[q, 1])) not in self._seen_at[r]:
                 hit[r] = True
+
+
+def _nearest_along(P: np.ndarray, q: int, ux: int, uy: int) -> tuple[int, int]:
+    """The robot nearest to robot q along the primitive direction (ux, uy), and its distance in lattice
+    steps; (−1, 0) if there is none. Products of a direction and a gcd only: nothing can overflow."""
+    ox = P[:, 0] - P[q, 0]
+    oy = P[:, 1] - P[q, 1]
+    g = np.gcd(ox, oy)
+    on = np.flatnonzero((ox == ux * g) & (oy == uy * g) & (g > 0))
+    if not on.size:
+        return -1, 0
+    i = int(on[np.argmin(g[on])])
+    return i, int(g[i])
 
 
 def _inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:
