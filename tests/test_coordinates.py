@@ -197,4 +197,4 @@ def test_patched_views_far_apart_equal_views_from_scratch(points, data):
         views.moved([m], [current[m]])
         now = [tuple(p) for p in positions.tolist()]
         for r in range(k):
-            assert views.view(r) == view_from_scratch(now, lights, y_up, r)
+            assert views.seen(r) == view_from_scratch(now, lights, y_up, r)

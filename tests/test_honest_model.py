@@ -63,7 +63,12 @@ def test_the_algorithm_receives_nothing_but_a_snapshot_and_the_pattern():
     assert spy.calls
     for view, pattern in spy.calls:
         assert type(view) is Snapshot
-        assert set(view._fields) == {"light", "robots"}
+        assert set(Snapshot.__slots__) == {"light", "_robots", "_columns"}
+        # Its arrays are the same robots, in the same order, with lights named from the algorithm's own.
+        c = view.columns
+        assert c.dx.tolist() == [s.dx for s in view.robots] and c.dy.tolist() == [s.dy for s in view.robots]
+        assert [c.palette[i] for i in c.code.tolist()] == [s.light for s in view.robots]
+        assert set(c.palette) <= set(Spy.lights)
         assert all(type(s) is Seen and set(s._fields) == {"dx", "dy", "light"} for s in view.robots)
         assert all(isinstance(s.dx, int) and isinstance(s.dy, int) for s in view.robots)
         assert pattern == tuple(PATTERN)

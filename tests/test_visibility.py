@@ -75,7 +75,7 @@ def test_patched_views_equal_views_from_scratch(scenario):
                 views.moved(moved, [current[m] for m in moved])
         now = [tuple(p) for p in positions.tolist()]
         for r in range(len(pts)):
-            assert views.view(r) == scratch_view(now, lights, y_up, r), (kind, r)
+            assert views.seen(r) == scratch_view(now, lights, y_up, r), (kind, r)
         assert views.occupied == {p: i for i, p in enumerate(now)}
 
 
@@ -101,6 +101,6 @@ def test_an_unchanged_view_returns_the_same_objects():
     positions[2] = (6, 5)
     views.moved([2], [(5, 5)])
     assert views.view(0) is not None
-    assert views.view(1)[1] is views.view(1)[1]
-    assert views.view(1)[0][0] == Seen(-3, 1, "a")  # robot 1's y is flipped
-    assert first[0][0] == views.view(1)[0][0]
+    assert views.view(1)[1] is views.view(1)[1] and views.view(1)[0] is views.view(1)[0]
+    assert views.seen(1)[0][0] == Seen(-3, 1, "a")  # robot 1's y is flipped
+    assert first[0].entries()[0] == views.seen(1)[0][0]  # built as arrays, patched as entries

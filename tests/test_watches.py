@@ -33,7 +33,7 @@ def case(k: int, seed: int):
 def fresh_view(e: Engine, r: int) -> Snapshot:
     """Robot r's view built from nothing but the current positions and lights."""
     views = Views(e.state.positions.copy(), list(e.state.lights), e.y_up)
-    return Snapshot(e.state.lights[r], views.view(r)[0])
+    return Snapshot(e.state.lights[r], views.seen(r)[0])
 
 
 def broken_promises(e: Engine) -> list[tuple[int, str]]:

@@ -180,9 +180,10 @@ class Engine:
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
         self.state = self._initial_state()
         self.history = History(self.state.copy())
-        self._views = Views(self.state.positions, self.state.lights, self.y_up)
+        self._views = self._new_views()
         self._watches = self._new_watches()
-        self._snaps: list[Snapshot | None] = [None] * k  # each robot's last snapshot, reused if unchanged
+        # Each robot's last snapshot and what it was made of, reused while its view is unchanged.
+        self._snaps: list[tuple[object, Snapshot] | None] = [None] * k
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
         self._probe_hint = 0
         self._busy: tuple[int, int, int] = (-1, -1, -1)  # (robot, version, its last act) found active
@@ -228,7 +229,7 @@ class Engine:
         """The algorithm's decision on a view, memoised: the algorithm is pure, so a view seen before
         (by any robot, at any time) costs a dictionary look-up, not a recompute (views of up to
         ``_MEMO_MAX_ROBOTS`` robots; larger ones hardly ever recur)."""
-        memo = len(view.robots) <= _MEMO_MAX_ROBOTS
+        memo = len(view) <= _MEMO_MAX_ROBOTS
         if memo:
             hit = self._decisions.get(view)
             if hit is not None:
@@ -239,10 +240,10 @@ class Engine:
             raise EngineError(f"algorithm {self.algorithm.name!r} set unknown light {decision.light!r}")
         if not memo:
             return decision
-        self._memo_robots += len(view.robots) + 1
+        self._memo_robots += len(view) + 1
         if self._memo_robots > _DECISION_CACHE_ROBOTS:
             self._decisions.clear()
-            self._memo_robots = len(view.robots) + 1
+            self._memo_robots = len(view) + 1
         self._decisions[view] = decision
         return decision
 
@@ -288,6 +289,9 @@ class Engine:
                     views.release(r)  # no need to keep its view: the watch says when to look again
             self._dirty = set()
         return self._eligible
+
+    def _new_views(self) -> Views:
+        return Views(self.state.positions, self.state.lights, self.y_up, self.algorithm.lights)
 
     def _new_watches(self) -> Watches:
         return Watches(
@@ -372,9 +376,11 @@ class Engine:
         order) and the sorted indices of the robots in it, read off the patched views."""
         robots, ids = self._views.view(r)
         light = self.state.lights[r]
-        snap = self._snaps[r]
-        if snap is None or snap.robots is not robots or snap.light != light:
-            snap = self._snaps[r] = Snapshot(light, robots)
+        held = self._snaps[r]
+        if held is not None and held[0] is robots and held[1].light == light:
+            return held[1], ids
+        snap = Snapshot(light, robots) if isinstance(robots, tuple) else Snapshot(light, columns=robots)
+        self._snaps[r] = (robots, snap)
         return snap, ids
 
     def _compute(self, r: int, round: int | None) -> Event:
@@ -558,7 +564,7 @@ class Engine:
             raise EngineError(f"step {step} is outside the recorded history 0..{self.history.length}")
         base, state = self.history.checkpoint_before(step)
         self.state = state.copy()
-        self._views = Views(self.state.positions, self.state.lights, self.y_up)
+        self._views = self._new_views()
         self._watches = self._new_watches()
         self._probe = [(-1, False)] * self.k
         self._busy = (-1, -1, -1)

@@ -7,7 +7,9 @@ a move changes an observer's view in at most four places: the mover leaves one d
 along it, if any, comes into sight) and enters another (hiding the robot that was nearest there, if the
 mover is now nearer). :class:`Views` keeps, per observer, the nearest robot of every direction and the
 view's entries sorted by offset, and patches them on each move or light change; a Look then costs a
-``tuple()`` of a list, and identical views share their ``Seen`` objects.
+``tuple()`` of a list, and identical views share their ``Seen`` objects. A view built and read before
+any patch is handed over as arrays (:class:`~apf_viz.core.view.Columns`): the entries are made from them
+only if a patch comes first.
 
 An observer's index is built on its first Look (one sort, :func:`~apf_viz.core.grid.nearest_per_direction`)
 and dropped when the observer itself moves (everything it sees shifts), so robots that never look cost
@@ -18,12 +20,11 @@ from __future__ import annotations
 
 from bisect import bisect_left, insort
 from collections.abc import Sequence
-from itertools import repeat
 
 import numpy as np
 
 from apf_viz.core.grid import Point, nearest_per_direction
-from apf_viz.core.view import Seen
+from apf_viz.core.view import Columns, Seen
 
 Direction2 = tuple[int, int]  # a primitive direction (dx, dy)/gcd, global frame
 
@@ -36,12 +37,21 @@ class Views:
             :meth:`moved`.
         lights: the engine's list of lights; the engine changes an entry, then calls :meth:`relit`.
         y_up: per robot, whether its local +y is the global +y.
+        palette: every light the algorithm may show (a view's arrays name lights by their index in it);
+            the lights present at the start if None.
     """
 
-    def __init__(self, positions: np.ndarray, lights: list[str], y_up: Sequence[bool]) -> None:
+    def __init__(
+        self,
+        positions: np.ndarray,
+        lights: list[str],
+        y_up: Sequence[bool],
+        palette: Sequence[str] | None = None,
+    ) -> None:
         self._P = positions
         self._lights = lights
-        self._light_of = np.array(lights, dtype=object)  # the same, for picking many at once
+        self._palette: tuple[str, ...] = tuple(palette) if palette is not None else tuple(sorted(set(lights)))
+        self._code_of = np.array([self._code(light) for light in lights], dtype=np.uint8)
         self._flip = [1 if up else -1 for up in y_up]
         k = positions.shape[0]
         self.points: list[Point] = [(int(x), int(y)) for x, y in positions.tolist()]
@@ -50,23 +60,41 @@ class Views:
         # What a built view's index is made from, until a patch first needs it: most views are read once
         # (a robot about to move, or one the engine then watches another way) and never patched.
         self._raw: list[tuple[np.ndarray, np.ndarray, list[int]] | None] = [None] * k
-        self._entries: list[list[Seen]] = [[] for _ in range(k)]  # sorted by (dx, dy), observer's frame
+        # A built view is either its arrays (``_columns``) or, once patched, its entries sorted by (dx, dy)
+        # in the observer's frame (``_entries``); the other is None.
+        self._columns: list[Columns | None] = [None] * k
+        self._entries: list[list[Seen] | None] = [[] for _ in range(k)]
         self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
-        self._cached: list[tuple[tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
+        self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
         # Robots whose view changed since the engine last drained this set (it re-decides only them).
         self.changed: set[int] = set()
 
     # ------------------------------------------------------------------ reading
-    def view(self, r: int) -> tuple[tuple[Seen, ...], tuple[int, ...]]:
-        """What robot r sees now: its entries (sorted by offset in its own frame) and their robots'
-        indices (sorted). Unchanged views return the same tuples."""
+    def view(self, r: int) -> tuple[Columns | tuple[Seen, ...], tuple[int, ...]]:
+        """What robot r sees now: its robots sorted by offset in its own frame (as arrays if the view is
+        fresh, else as entries), and their robots' indices (sorted). Unchanged views return the same
+        objects."""
         cached = self._cached[r]
         if cached is None:
             if r not in self._built:
                 self._build(r)
-            cached = self._cached[r] = (tuple(self._entries[r]), tuple(self._ids[r]))
+            entries = self._entries[r]
+            robots = self._columns[r] if entries is None else tuple(entries)
+            cached = self._cached[r] = (robots, tuple(self._ids[r]))
         return cached
+
+    def seen(self, r: int) -> tuple[tuple[Seen, ...], tuple[int, ...]]:
+        """:meth:`view` with the robots as :class:`~apf_viz.core.view.Seen` tuples."""
+        robots, ids = self.view(r)
+        return (robots if isinstance(robots, tuple) else tuple(robots.entries())), ids
+
+    def _code(self, light: str) -> int:
+        try:
+            return self._palette.index(light)
+        except ValueError:  # a light the palette lacks (no palette given): named from now on
+            self._palette = (*self._palette, light)
+            return len(self._palette) - 1
 
     def _build(self, r: int) -> None:
         P = self._P
@@ -78,21 +106,19 @@ class Views:
         self._near[r] = None
         ly = sy if self._flip[r] == 1 else -sy
         by_offset = np.lexsort((ly, sx))  # the view's order: by dx, then dy in r's own frame
-        # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
-        self._entries[r] = list(
-            map(
-                tuple.__new__,
-                repeat(Seen),
-                zip(
-                    sx[by_offset].tolist(),
-                    ly[by_offset].tolist(),
-                    self._light_of[order[by_offset]].tolist(),
-                    strict=True,
-                ),
-            )
-        )
+        codes = self._code_of[order[by_offset]]
+        self._columns[r] = Columns(sx[by_offset], ly[by_offset], codes, self._palette)
+        self._entries[r] = None
         self._ids[r] = np.sort(order).tolist()
         self._built.add(r)
+
+    def _entries_of(self, r: int) -> list[Seen]:
+        """Robot r's entries (its view is built), made from its arrays when a patch first needs them."""
+        entries = self._entries[r]
+        if entries is None:
+            entries = self._entries[r] = self._columns[r].entries()
+            self._columns[r] = None
+        return entries
 
     def _index(self, r: int) -> dict[Direction2, tuple[int, int]]:
         """Robot r's nearest robot per primitive direction (r's view is built)."""
@@ -179,7 +205,7 @@ class Views:
             if near is None:
                 near = self._index(r)
             flip = flips[r]
-            entries = self._entries[r]
+            entries = self._entries_of(r)
             seen_before = near.get(d0) == (g0, m)
             if seen_before:
                 del entries[bisect_left(entries, (g0 * d0[0], g0 * d0[1] * flip))]
@@ -213,7 +239,8 @@ class Views:
 
     def relit(self, m: int) -> None:
         """Robot m's light changed (the engine's ``lights`` list already holds the new one)."""
-        light = self._light_of[m] = self._lights[m]
+        light = self._lights[m]
+        self._code_of[m] = self._code(light)
         observers = [r for r in self._built if r != m]
         if not observers:
             return
@@ -221,7 +248,7 @@ class Views:
         for r, d, g in _directions(observers, self._P[np.asarray(observers)], mx, my):
             if self._index(r).get(d) != (g, m):
                 continue
-            entries = self._entries[r]
+            entries = self._entries_of(r)
             lx, ly = g * d[0], g * d[1] * self._flip[r]
             i = bisect_left(entries, (lx, ly))
             entries[i] = Seen(lx, ly, light)
@@ -235,6 +262,7 @@ class Views:
             self._near[r] = self._raw[r] = None
             self._cached[r] = None
             self._entries[r] = []
+            self._columns[r] = None
             self._ids[r] = []
 
     def _forget(self, m: int) -> None:
@@ -244,7 +272,7 @@ class Views:
             self.changed.add(m)
 
     def _drop(self, r: int, j: int, gx: int, gy: int) -> None:
-        entries = self._entries[r]
+        entries = self._entries_of(r)
         del entries[bisect_left(entries, (gx, gy * self._flip[r]))]
         ids = self._ids[r]
         del ids[bisect_left(ids, j)]
@@ -252,7 +280,7 @@ class Views:
         self.changed.add(r)
 
     def _add(self, r: int, j: int, gx: int, gy: int) -> None:
-        insort(self._entries[r], Seen(gx, gy * self._flip[r], self._lights[j]))
+        insort(self._entries_of(r), Seen(gx, gy * self._flip[r], self._lights[j]))
         insort(self._ids[r], j)
         self._cached[r] = None
         self.changed.add(r)
