@@ -278,3 +278,32 @@ def test_a_reveal_is_found_the_same_from_each_shown_robot_as_in_one_pass_over_al
         for q in np.flatnonzero(w.bits & np.bitwise_or.reduce(w._mask)).tolist():
             w._revealed_from(q, p, each)
         assert one_pass.tolist() == each.tolist()
+
+
+def test_boxes_and_long_segments_are_found_the_same_one_by_one_as_in_one_numpy_pass(monkeypatch):
+    import apf_viz.core.watches as watches_module
+
+    rng = random.Random(11)
+    far = watches_module.SHORT + 5
+    hits = 0
+    for _ in range(40):
+        k = 30
+        points = rng.sample([(x, y) for x in range(-far, far) for y in range(-far, far)], k)
+        P, _, w = watches_on(points, y_up=[rng.random() < 0.5 for _ in range(k)])
+        for r in range(k):
+
+            def bound():
+                return rng.choice([None, rng.randint(-far, far)])
+
+            boxes = tuple((bound(), bound(), bound(), bound()) for _ in range(rng.randint(0, 2)))
+            segments = (
+                ((rng.choice([-1, 1]) * far, rng.choice([-1, 0, 1]) * far),) if rng.random() < 0.5 else ()
+            )
+            w.register(r, Watch(boxes=boxes, segments=segments))
+        probes = [tuple(rng.randint(-2 * far, 2 * far) for _ in range(2)) for _ in range(3)]
+        monkeypatch.setattr(watches_module, "FEW_REGIONS", 0)
+        one_pass = w._touching(probes).tolist()
+        monkeypatch.setattr(watches_module, "FEW_REGIONS", 10**9)
+        assert w._touching(probes).tolist() == one_pass
+        hits += sum(one_pass)
+    assert 100 < hits < 40 * 30  # both answers occur

@@ -32,6 +32,7 @@ from apf_viz.core.grid import Point, visible_from
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
 OCCUPIED = 2
+FEW_REGIONS = 16  # up to this many robots with boxes or long segments, they are tested one by one
 FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
@@ -106,8 +107,9 @@ class Watches:
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
         self._seen_at: list[frozenset[Point]] = [frozenset()] * k  # global points; see Watch.seen_at
         self.count = 0  # robots with a watch
-        self._arrays = np.zeros(k, dtype=bool)  # robots with a box or a long segment
-        self._with_arrays = 0
+        # Robots with a box or a long segment, and those regions as Python tuples (global frame): a few
+        # are tested one by one, many in one numpy pass over the arrays above.
+        self._boxed: dict[int, tuple[list[tuple[int, int, int, int]], list[tuple[int, int, int]]]] = {}
         self._long = np.zeros(k, dtype=bool)  # robots with a long segment
         self._with_long = 0
 
@@ -134,9 +136,10 @@ class Watches:
                     self._followed.setdefault(j, set()).add((r, i))
             if watch.within is not None:
                 self._within[r] = _global_box(x, y, s, watch.within)
-        arrays = bool(watch.boxes)
-        for i, box in enumerate(watch.boxes):
-            self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = _global_box(x, y, s, box)
+        boxes = [_global_box(x, y, s, box) for box in watch.boxes]
+        longs: list[tuple[int, int, int]] = []
+        for i, box in enumerate(boxes):
+            self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = box
         if watch.occupied:
             P = self._P
             for i, box in enumerate(watch.occupied):
@@ -157,7 +160,7 @@ class Watches:
                     self._watchers_at.setdefault(p, set()).add(r)
             else:
                 self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
-                arrays = True
+                longs.append((dx // g, dy // g, g))
                 if not self._long[r]:
                     self._long[r] = True
                     self._with_long += 1
@@ -169,9 +172,8 @@ class Watches:
             self._seen_at[r] = frozenset((x + dx, y + s * dy) for dx, dy in watch.seen_at)
         self.active[r] = True
         self.count += 1
-        if arrays:
-            self._arrays[r] = True
-            self._with_arrays += 1
+        if boxes or longs:
+            self._boxed[r] = (boxes, longs)
         return True
 
     def clear(self, r: int) -> None:
@@ -210,9 +212,7 @@ class Watches:
             self._oy0[r] = _BIG
             self._oy1[r] = -_BIG
             self._count[r] = 0
-        if self._arrays[r]:
-            self._arrays[r] = False
-            self._with_arrays -= 1
+        if self._boxed.pop(r, None) is not None:
             self._bx0[r] = _BIG
             self._bx1[r] = -_BIG
             self._by0[r] = _BIG
@@ -355,7 +355,12 @@ class Watches:
                     intact.discard(i)
                     if not intact:
                         hit[r] = True
-        if not self._with_arrays:
+        if not self._boxed:
+            return hit
+        if len(self._boxed) <= FEW_REGIONS:
+            for r, (boxes, longs) in self._boxed.items():
+                if _touches(P, r, boxes, longs, points):
+                    hit[r] = True
             return hit
         xs = np.array([p[0] for p in points], dtype=np.int64)
         ys = np.array([p[1] for p in points], dtype=np.int64)
@@ -430,6 +435,26 @@ def _nearest_along(P: np.ndarray, q: int, ux: int, uy: int) -> tuple[int, int]:
         return -1, 0
     i = int(on[np.argmin(g[on])])
     return i, int(g[i])
+
+
+def _touches(
+    P: np.ndarray,
+    r: int,
+    boxes: list[tuple[int, int, int, int]],
+    longs: list[tuple[int, int, int]],
+    points: Sequence[Point],
+) -> bool:
+    """Whether one of these points lies in one of robot r's boxes or long segments (global frame)."""
+    for px, py in points:
+        for x0, x1, y0, y1 in boxes:
+            if x0 <= px <= x1 and y0 <= py <= y1:
+                return True
+        if longs:
+            dx, dy = px - int(P[r, 0]), py - int(P[r, 1])
+            g = gcd(dx, dy)
+            if g and any(dx == ux * g and dy == uy * g and g <= length for ux, uy, length in longs):
+                return True
+    return False
 
 
 def _inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:

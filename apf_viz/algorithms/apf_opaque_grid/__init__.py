@@ -22,7 +22,6 @@ from apf_viz.algorithms.apf_opaque_grid.phase2 import (
     phase2_off,
     two_deciders_on_left_line,
 )
-from apf_viz.algorithms.apf_opaque_grid.predicates import lights_of
 from apf_viz.algorithms.apf_opaque_grid.resolutions import (
     ALL,
     G1,
@@ -51,7 +50,7 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     light = view.light
     if light == "done":
         return stay(view, "done: stay", "done", NOTHING)
-    seen = lights_of(view.robots)
+    seen = view.lights()
     if light == "leader":
         return pattern_formation_leader(view, pattern, res, ev)
     if light == "leader1":

@@ -13,10 +13,11 @@ robot already done.
 
 from __future__ import annotations
 
-from bisect import bisect_left
 from dataclasses import dataclass
 from functools import lru_cache
 from operator import itemgetter
+
+import numpy as np
 
 from apf_viz.algorithms.apf_opaque_grid import watches
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
@@ -72,14 +73,16 @@ class LeaderFrame:
 
 def follower_frame(view: Snapshot, leader: Seen) -> LeaderFrame:
     """The frame of a robot that sees the leader at local (lx, ly): r₀ ↦ (0, −1), +y away from r₀'s row
-    towards the other robots. On r₀'s own row the side is read off any visible robot off that row; with
-    none (the line is complete) the robot takes its own +y: the pattern may then form mirrored."""
+    towards the other robots. On r₀'s own row the side is read off the first visible robot (in the
+    view's order) off that row; with none (the line is complete) the robot takes its own +y: the pattern
+    may then form mirrored."""
     lx, ly = leader.dx, leader.dy
     if ly != 0:
         s = 1 if ly < 0 else -1
     else:
-        first = next((r for r in view.robots if r.dy != ly), None)
-        s = (1 if first.dy > ly else -1) if first is not None else 1
+        dy = view.columns.dy
+        off_row = np.flatnonzero(dy != ly)
+        s = (1 if dy[off_row[0]] > ly else -1) if off_row.size else 1
     # frame(p) = (p.dx − lx, s·(p.dy − ly) − 1) = (p.dx − ox, s·(p.dy − oy)) with oy = ly + s.
     return LeaderFrame((lx, ly + s), s)
 
@@ -138,7 +141,8 @@ _light = itemgetter(2)
 def leftmost_on_own_row(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """r is leftmost on L_H(r): no visible robot on r's row to its left (exact: the nearest one there
     would be visible). The snapshot is sorted by dx, so the robots left of r are a prefix."""
-    value = 0 not in map(_dy, view.robots[: bisect_left(view.robots, (0,))])
+    c = view.columns
+    value = not (c.dy[: np.searchsorted(c.dx, 0)] == 0).any()
     if ev.active:
         ev.region(Line("y", 0, "L_H(r)"))
         ev.test("r leftmost on L_H(r)", value, "no robot on my row to my left")
@@ -150,9 +154,8 @@ def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENC
     strip is convex). In the leader frame that is −1 < y′ < y; in r's frame, y′ − y = s·dy."""
     y = frame.me[1]
     lo, hi = (-y, -1) if frame.s == 1 else (1, y)
-    rows = sorted(set(map(_dy, view.robots)))  # in C: this runs on every decision of the traveller
-    i = bisect_left(rows, lo)
-    value = i < len(rows) and rows[i] <= hi
+    dy = view.columns.dy
+    value = bool(((lo <= dy) & (dy <= hi)).any())
     if ev.active:
         if lo <= hi:
             ev.region(Band("y", lo, hi, "H_B^O(r) ∩ H_U^O(r₀)"))
@@ -167,10 +170,13 @@ def _frame_region(ev: Evidence, frame: LeaderFrame) -> None:
 def pattern_formation_off(
     view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = NO_EVIDENCE
 ) -> Decision:
-    """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader."""
-    try:
-        leader = view.robots[list(map(_light, view.robots)).index("leader")]
-    except ValueError:
+    """Algorithm 3, r.light = off (lines 4–22), for a robot that sees the leader.
+
+    It reads the view's arrays (:class:`~apf_viz.core.view.Columns`): the traveller decides on a view of
+    hundreds of robots at each of its steps."""
+    c = view.columns
+    leaders = np.flatnonzero(c.showing("leader"))
+    if not leaders.size:
         ev.test("the leader in sight", False, "I see the robot with light leader")
         return stay(
             view,
@@ -179,6 +185,7 @@ def pattern_formation_off(
             watches.no_leader(view),
         )
     ev.test("the leader in sight", True, "I see the robot with light leader")
+    leader = c.seen(int(leaders[0]))  # the first in the view's order
     targets = embedded_targets(pattern)
     n = len(targets)
     frame = follower_frame(view, leader)
@@ -190,23 +197,24 @@ def pattern_formation_off(
         leftmost = leftmost_on_own_row(view, ev)
         if leftmost and not robots_between(view, frame, ev):
             # Row −1 of the leader's frame is the leader's own row, and frame x is dx − the leader's dx.
-            lx, ly = leader.dx, leader.dy
-            line = sorted(s.dx - lx for s in view.robots if s.dy == ly and s is not leader)
-            i = len(line)
+            on_row = c.dy == leader.dy
+            on_row[leaders[0]] = False
+            line = c.dx[on_row] - leader.dx  # sorted: the view is sorted by dx
+            i = int(line.size)
             ev.test("robots on the line", i, "robots I see on row −1 of the leader's frame")
             if i == 0:
-                done_seen = "done" in map(_light, view.robots)
+                done_seen = bool(c.showing("done").any())
                 ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
                 if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
                     return _to_target(
                         frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
                     )
                 return _compose(line_move(frame, 1, "off"), "A3.off.start-line")
-            if ev.test("the line is (1..i, −1)", line == list(range(1, i + 1)), "the line is still growing"):
+            growing = bool(line[0] == 1 and line[-1] == i)  # distinct and sorted: exactly 1..i
+            if ev.test("the line is (1..i, −1)", growing, "the line is still growing"):
                 return _compose(line_move(frame, i + 1, "off"), "A3.off.grow-line")
-            if ev.test(
-                f"the line is ({n - i}..{n - 1}, −1)", line == list(range(n - i, n)), "it is emptying"
-            ):
+            emptying = bool(line[0] == n - i and line[-1] == n - 1)
+            if ev.test(f"the line is ({n - i}..{n - 1}, −1)", emptying, "it is emptying"):
                 return _to_target(
                     frame, n - i - 2, targets, f"{i} robots left on the line", "A3.off.next-target"
                 )
@@ -226,15 +234,10 @@ def pattern_formation_off(
     p3 = P3 in res
     # Frame y > −1 is s·(dy − the leader's dy) ≥ 1 (frame y = s·(dy − ly) − 1): off the leader's row.
     side, ly = frame.s, leader.dy
-    if p3:  # one pass that stops at the first robot still on its way: line robots ask this often
-        waiting = any(s.light != "done" and side * (s.dy - ly) > 0 for s in view.robots)
-    else:
-        waiting = any(s.light == "off" and side * (s.dy - ly) > 0 for s in view.robots)
-    if (
-        p3
-        and ev.active
-        and any(s.light not in ("off", "done") and side * (s.dy - ly) > 0 for s in view.robots)
-    ):
+    above = side * (c.dy - ly) > 0
+    done, off = c.showing("done"), c.showing("off")
+    waiting = bool((above & ~done).any()) if p3 else bool((above & off).any())
+    if p3 and ev.active and (above & ~done & ~off).any():
         deviation(ev, P3, True)
     blockers = "not done" if p3 else "off"
     if not ev.test(f"a robot above the line is {blockers}", waiting, "a robot is still on its way"):
