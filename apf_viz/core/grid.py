@@ -74,7 +74,7 @@ _DELTAS: dict[Direction, Point] = {
 }
 
 # Below this offset span one packed int64 sort key per robot is exact; above it, a three-key sort.
-_PACKED_SPAN_LIMIT = 1 << 20
+PACKED_SPAN_LIMIT = 1 << 20
 
 
 def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
@@ -102,7 +102,7 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
     ddx, ddy = dx // g, dy // g  # the primitive direction of each robot
     span = int(np.abs(offsets).max()) + 1
-    if span < _PACKED_SPAN_LIMIT:
+    if span < PACKED_SPAN_LIMIT:
         # One packed key (direction, then distance g) sorts fastest; below this span it cannot overflow:
         # |key| < (2·span + 1)², |packed| < (2·span + 1)² · span + span < 2^63.
         key = ddx * (2 * span + 1) + ddy  # unique per primitive direction

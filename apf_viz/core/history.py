@@ -84,7 +84,7 @@ def _pack_seen(seen: tuple[int, ...]) -> bytes:
     if not seen:
         return b""
     mask = np.zeros(seen[-1] + 1, dtype=bool)  # seen is sorted
-    mask[list(seen)] = True
+    mask[np.fromiter(seen, dtype=np.intp, count=len(seen))] = True
     return np.packbits(mask).tobytes()
 
 

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from apf_viz.core.grid import Point, nearest_per_direction
+from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, nearest_per_direction
 from apf_viz.core.view import Columns, Seen
 
 Direction2 = tuple[int, int]  # a primitive direction (dx, dy)/gcd, global frame
@@ -59,7 +59,7 @@ class Views:
         self._near: list[dict[Direction2, tuple[int, int]] | None] = [None] * k  # dir → (distance g, robot)
         # What a built view's index is made from, until a patch first needs it: most views are read once
         # (a robot about to move, or one the engine then watches another way) and never patched.
-        self._raw: list[tuple[np.ndarray, np.ndarray, list[int]] | None] = [None] * k
+        self._raw: list[tuple[np.ndarray, np.ndarray, np.ndarray] | None] = [None] * k
         # A built view is either its arrays (``_columns``) or, once patched, its entries sorted by (dx, dy)
         # in the observer's frame (``_entries``); the other is None.
         self._columns: list[Columns | None] = [None] * k
@@ -102,10 +102,14 @@ class Views:
         order = nearest_per_direction(offsets, r)
         seen = offsets[order]
         sx, sy = seen[:, 0], seen[:, 1]
-        self._raw[r] = (sx, sy, order.tolist())
+        self._raw[r] = (sx, sy, order)
         self._near[r] = None
         ly = sy if self._flip[r] == 1 else -sy
-        by_offset = np.lexsort((ly, sx))  # the view's order: by dx, then dy in r's own frame
+        # The view's order: by dx, then dy in r's own frame; one packed key sorts fastest where it cannot
+        # overflow (|sx|, |ly| < span: |key| < (2·span + 1)·span + span).
+        span = int(np.abs(seen).max(initial=0)) + 1
+        packed = span < PACKED_SPAN_LIMIT
+        by_offset = np.argsort(sx * (2 * span + 1) + ly) if packed else np.lexsort((ly, sx))
         codes = self._code_of[order[by_offset]]
         self._columns[r] = Columns(sx[by_offset], ly[by_offset], codes, self._palette)
         self._entries[r] = None
@@ -129,7 +133,7 @@ class Views:
             near = self._near[r] = dict(
                 zip(
                     zip((sx // g).tolist(), (sy // g).tolist(), strict=True),
-                    zip(g.tolist(), ids, strict=True),
+                    zip(g.tolist(), ids.tolist(), strict=True),
                     strict=True,
                 )
             )

@@ -27,7 +27,7 @@ from math import gcd
 import numpy as np
 
 from apf_viz.core.algorithm import Box, Watch
-from apf_viz.core.grid import Point, visible_from
+from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, visible_from
 
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
@@ -36,7 +36,6 @@ FEW_REGIONS = 16  # up to this many robots with boxes or long segments, they are
 FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
-_PACKED_SPAN_LIMIT = 1 << 20
 
 
 def _lattice_points(x: int, y: int, dx: int, dy: int) -> list[Point]:
@@ -402,7 +401,7 @@ class Watches:
         dx = P[:, 0] - p[0]
         dy = P[:, 1] - p[1]
         span = int(max(np.abs(dx).max(), np.abs(dy).max())) + 1
-        if span >= _PACKED_SPAN_LIMIT:
+        if span >= PACKED_SPAN_LIMIT:
             hit |= (self._mask & np.bitwise_or.reduce(self.bits)) != 0  # exact by excess
             return
         g = np.gcd(dx, dy)
