@@ -85,7 +85,8 @@ class EngineState:
     lights_used: set[str] = field(default_factory=set)
     # Bumped on every move or light change: a cached view older than this may be out of date.
     version: int = 0
-    starve_deadline: int = 0  # schedulers' cache: no robot is starved before this step
+    starve_deadline: int = 0  # schedulers' cache: no robot is starved before this step…
+    starve_key: int = -1  # …while Engine.eligible_gained is still this
     # Robot·steps passed over: at each step, the robots whose next cycle could change nothing (0 when
     # every activation is kept).
     skipped: int = 0
@@ -112,6 +113,7 @@ class EngineState:
             lights_used=set(self.lights_used),
             version=self.version,
             starve_deadline=self.starve_deadline,
+            starve_key=self.starve_key,
             skipped=self.skipped,
         )
 
@@ -191,6 +193,9 @@ class Engine:
         self._all = np.ones(k, dtype=bool)
         self._eligible = np.ones(k, dtype=bool)  # valid but for the robots in _dirty and _views.changed
         self._dirty: set[int] = set(range(k))
+        # Bumped whenever a robot becomes eligible (and on seek): until then the eligible robots only
+        # leave, so a fairness deadline computed over them stays valid (schedulers._most_starved).
+        self.eligible_gained = 0
         if skip_noops and self.state.outcome is None and not self.eligible().any():
             self._update_outcome()  # a start on which no robot can ever act: stuck (or formed) at once
 
@@ -277,17 +282,22 @@ class Engine:
             phase, lights, eligible = st.phase, st.lights, self._eligible
             watches = self._watches
             watch = self.use_watches
+            gained = False
             for r in dirty:
                 watches.clear(r)
                 if phase[r] != _IDLE:
+                    gained = gained or not eligible[r]
                     eligible[r] = True
                     continue
                 decision = self._decide(r, self.look(r))
                 noop = decision.is_noop(lights[r])
+                gained = gained or not (noop or eligible[r])
                 eligible[r] = not noop
                 if noop and watch and decision.watch is not None and watches.register(r, decision.watch):
                     views.release(r)  # no need to keep its view: the watch says when to look again
             self._dirty = set()
+            if gained:
+                self.eligible_gained += 1
         return self._eligible
 
     def _new_views(self) -> Views:
@@ -570,6 +580,7 @@ class Engine:
         self._busy = (-1, -1, -1)
         self._snaps = [None] * self.k
         self._dirty = set(range(self.k))
+        self.eligible_gained += 1
         for i in range(base, step):
             self._apply(self.history.steps.record(i))
 

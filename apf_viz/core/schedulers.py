@@ -56,15 +56,22 @@ def candidates(engine: Engine) -> np.ndarray:
 def _most_starved(engine: Engine, mask: np.ndarray) -> int | None:
     """The eligible robot waiting longest, if it has waited past the fairness bound.
 
-    ``last_act`` only grows, so nobody can be starved before min(last_act) + bound: that deadline is
-    kept on the state (a stale, earlier value after a seek only costs one more scan)."""
+    ``last_act`` only grows, and until a robot becomes eligible (``Engine.eligible_gained``) eligible
+    robots only leave the set, so no eligible robot can be starved before the least ``last_act`` among
+    them + bound: that deadline is kept on the state. (Watched robots never act: a minimum over all
+    robots would be far in the past, and every step would scan.)"""
     st = engine.state
-    if st.steps < st.starve_deadline:
+    if st.steps < st.starve_deadline and st.starve_key == engine.eligible_gained:
         return None
     bound = starve_bound(engine)
-    st.starve_deadline = int(st.last_act.min()) + bound
     r = int(np.argmin(np.where(mask, st.last_act, _NEVER)))  # ties: the lowest index
-    return r if mask[r] and st.steps - st.last_act[r] >= bound else None
+    if not mask[r]:
+        return None
+    if st.steps - st.last_act[r] >= bound:
+        return r
+    st.starve_deadline = int(st.last_act[r]) + bound
+    st.starve_key = engine.eligible_gained
+    return None
 
 
 class AsyncScheduler:
