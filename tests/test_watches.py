@@ -132,7 +132,7 @@ def watches_on(points, lights=None, y_up=None):
 def move(P, w, m, to, occupied=None):
     old = tuple(int(v) for v in P[m])
     P[m] = to
-    occupied = occupied if occupied is not None else {tuple(p) for p in P.tolist()}
+    occupied = occupied if occupied is not None else {tuple(p): i for i, p in enumerate(P.tolist())}
     return w.moved([old], [to], [m], occupied)
 
 
@@ -168,7 +168,7 @@ def test_a_watched_light_coming_into_sight_by_a_reveal():
     w2.register(0, Watch(lights=frozenset({"leader"})))
     old = [(1, 0), (2, 0)]
     P2[1], P2[2] = (1, 1), (1, 0)
-    assert w2.moved(old, [(1, 1), (1, 0)], [1, 2], {tuple(p) for p in P2.tolist()}) == []
+    assert w2.moved(old, [(1, 1), (1, 0)], [1, 2], {tuple(p): i for i, p in enumerate(P2.tolist())}) == []
 
 
 def test_a_relit_robot_concerns_only_the_watchers_that_see_it():
@@ -262,7 +262,11 @@ def test_a_followed_witness_that_changes_its_light_no_longer_counts():
     assert w.relit(2, "done") == [0]
 
 
-def test_a_reveal_is_found_the_same_from_each_shown_robot_as_in_one_pass_over_all():
+@pytest.mark.parametrize("walk", [0, 3, 32])
+def test_a_reveal_is_found_the_same_from_each_shown_robot_as_in_one_pass_over_all(walk, monkeypatch):
+    import apf_viz.core.watches as watches_module
+
+    monkeypatch.setattr(watches_module, "WALK", walk)  # 0: numpy only; 3: walks cut short
     rng = random.Random(5)
     for _ in range(200):
         k = rng.randint(3, 25)
@@ -276,7 +280,7 @@ def test_a_reveal_is_found_the_same_from_each_shown_robot_as_in_one_pass_over_al
         w._revealed_through(p, one_pass)
         each = np.zeros(k, dtype=bool)
         for q in np.flatnonzero(w.bits & np.bitwise_or.reduce(w._mask)).tolist():
-            w._revealed_from(q, p, each)
+            w._revealed_from(q, p, {tuple(x): i for i, x in enumerate(P.tolist())}, each)
         assert one_pass.tolist() == each.tolist()
 
 

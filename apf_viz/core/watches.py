@@ -33,6 +33,7 @@ BOXES = 2  # per robot; a watch with more regions is not registered (the robot s
 SEGMENTS = 2
 OCCUPIED = 2
 FEW_REGIONS = 16  # up to this many robots with boxes or long segments, they are tested one by one
+WALK = 32  # lattice points walked, looking for a robot, before one numpy pass over every robot
 FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
@@ -223,10 +224,11 @@ class Watches:
 
     # ------------------------------------------------------------------ events
     def moved(
-        self, old: Sequence[Point], new: Sequence[Point], movers: Sequence[int], occupied: Container[Point]
+        self, old: Sequence[Point], new: Sequence[Point], movers: Sequence[int], robot_at: Mapping[Point, int]
     ) -> list[int]:
-        """Watched robots these simultaneous moves concern (positions and ``occupied`` already hold the
-        new points)."""
+        """Watched robots these simultaneous moves concern (positions and ``robot_at``, who stands where,
+        already hold the new points)."""
+        self._robot_at = robot_at
         if not self.count:
             return []
         # A moving witness takes its segment along: the old one is not watched, the new one is if the
@@ -239,19 +241,19 @@ class Watches:
                 self._unlink(r, i)
         hit = self._touching(list(old) + list(new))
         for m, p, slots in following:
-            self._follow(m, p, slots, occupied, hit)
+            self._follow(m, p, slots, robot_at, hit)
         if self._with_counts:
             self._recount(old, new, hit)
         if self._mask.any():
             for m, p in zip(movers, new, strict=True):
                 self._in_sight(m, p, hit)  # it may come into sight where it now stands
-            vacated = [p for p in old if p not in occupied]  # a point another mover entered hides as before
+            vacated = [p for p in old if p not in robot_at]  # a point another mover entered hides as before
             if vacated:
                 shown = np.flatnonzero(self.bits & np.bitwise_or.reduce(self._mask))
                 for p in vacated:
                     if shown.size <= FEW_SHOWN:
                         for q in shown.tolist():
-                            self._revealed_from(q, p, hit)
+                            self._revealed_from(q, p, robot_at, hit)
                     else:
                         self._revealed_through(p, hit)
         return self._take(hit)
@@ -278,7 +280,7 @@ class Watches:
                 hit[r] = True
 
     def _follow(
-        self, m: int, p: Point, slots: set[tuple[int, int]], occupied: Container[Point], hit: np.ndarray
+        self, m: int, p: Point, slots: set[tuple[int, int]], robot_at: Container[Point], hit: np.ndarray
     ) -> None:
         """Witness m moved to p: each watcher it still suffices for (in sight, inside the watch's
         ``within``) watches the segment to p; for the others it is touched."""
@@ -290,7 +292,7 @@ class Watches:
             x, y = int(P[r, 0]), int(P[r, 1])
             points = _lattice_points(x, y, p[0] - x, p[1] - y)
             within = self._within[r]
-            if len(points) <= SHORT and not any(q in occupied for q in points[:-1]) and _inside(p, within):
+            if len(points) <= SHORT and not any(q in robot_at for q in points[:-1]) and _inside(p, within):
                 self._link(r, i, points)
                 continue
             slots.discard((r, i))
@@ -382,15 +384,31 @@ class Watches:
             hit |= on.any(axis=1)
         return hit
 
-    def _revealed_from(self, q: int, p: Point, hit: np.ndarray) -> None:
+    def _revealed_from(self, q: int, p: Point, robot_at: Mapping[Point, int], hit: np.ndarray) -> None:
         """:meth:`_revealed_through` for one robot q of a watched light: if q saw the vacated point p (no
-        robot between), the nearest robot beyond p on the line from q sees q now."""
+        robot between), the nearest robot beyond p on the line from q sees q now. Short ways are walked
+        point by point (a crowd hides p, or stands right behind it); a long one is one numpy pass."""
         P = self._P
         qx, qy = int(P[q, 0]), int(P[q, 1])
         dx, dy = p[0] - qx, p[1] - qy
         g = gcd(dx, dy)
-        r, d = _nearest_along(P, q, dx // g, dy // g)
-        if r != -1 and d > g and self._mask[r] & self.bits[q] and (qx, qy) not in self._seen_at[r]:
+        ux, uy = dx // g, dy // g
+        r = -1
+        if g <= WALK:
+            if any((qx + t * ux, qy + t * uy) in robot_at for t in range(1, g)):
+                return  # q did not see p
+            x, y = p
+            for _ in range(WALK):
+                x += ux
+                y += uy
+                r = robot_at.get((x, y), -1)
+                if r != -1:
+                    break
+        if r == -1:
+            r, d = _nearest_along(P, q, ux, uy)
+            if d < g:
+                return  # q did not see p
+        if r != -1 and self._mask[r] & self.bits[q] and (qx, qy) not in self._seen_at[r]:
             hit[r] = True
 
     def _revealed_through(self, p: Point, hit: np.ndarray) -> None:
