@@ -72,6 +72,9 @@ class Watches:
         self._robot_at = (
             robot_at if robot_at is not None else {(x, y): i for i, (x, y) in enumerate(positions.tolist())}
         )
+        # A box every robot has stayed in (it only grows): a walk that leaves it has nobody beyond.
+        lo, hi = positions.min(axis=0).tolist(), positions.max(axis=0).tolist()
+        self._reach: tuple[int, int, int, int] = (lo[0], lo[1], hi[0], hi[1])
         self._bit = {name: 1 << i for i, name in enumerate(light_names)}
         self._flip = [1 if up else -1 for up in y_up]
         self.bits = np.array([self._bit.get(light, 0) for light in lights], dtype=np.int64)
@@ -229,6 +232,10 @@ class Watches:
         """Watched robots these simultaneous moves concern (positions and ``robot_at``, who stands where,
         already hold the new points)."""
         self._robot_at = robot_at
+        x0, y0, x1, y1 = self._reach
+        for x, y in new:
+            x0, y0, x1, y1 = min(x0, x), min(y0, y), max(x1, x), max(y1, y)
+        self._reach = (x0, y0, x1, y1)
         if not self.count:
             return []
         # A moving witness takes its segment along: the old one is not watched, the new one is if the
@@ -393,18 +400,23 @@ class Watches:
         dx, dy = p[0] - qx, p[1] - qy
         g = gcd(dx, dy)
         ux, uy = dx // g, dy // g
-        r = -1
+        r, walked = -1, False
         if g <= WALK:
             if any((qx + t * ux, qy + t * uy) in robot_at for t in range(1, g)):
                 return  # q did not see p
+            x0, y0, x1, y1 = self._reach
             x, y = p
             for _ in range(WALK):
                 x += ux
                 y += uy
+                if not (x0 <= x <= x1 and y0 <= y <= y1):
+                    walked = True  # out of every robot's reach: nobody beyond p
+                    break
                 r = robot_at.get((x, y), -1)
                 if r != -1:
+                    walked = True
                     break
-        if r == -1:
+        if not walked:
             r, d = _nearest_along(P, q, ux, uy)
             if d < g:
                 return  # q did not see p
