@@ -223,6 +223,7 @@ def test_an_occupied_box_wakes_its_watcher_only_when_its_last_robot_leaves():
     P2, _, w2 = watches_on([(0, 0), (1, 1)])
     assert w2.register(0, Watch(occupied=((None, None, 1, 1),)))
     assert move(P2, w2, 1, (1, 2)) == [0]  # the unflipped robot's rows are global rows
+    assert not w2.register(0, Watch(occupied=((None, None, 1, 1),)))  # empty already: refused
 
 
 def test_an_any_of_witness_is_followed_while_it_stays_in_sight_inside_within():
@@ -311,3 +312,47 @@ def test_boxes_and_long_segments_are_found_the_same_one_by_one_as_in_one_numpy_p
         assert w._touching(probes).tolist() == one_pass
         hits += sum(one_pass)
     assert 100 < hits < 40 * 30  # both answers occur
+
+
+def test_occupied_counts_kept_move_by_move_equal_counts_from_scratch():
+    rng = random.Random(3)
+    k = 25
+    points = rng.sample([(x, y) for x in range(12) for y in range(12)], k)
+    P, _, w = watches_on(points, y_up=[rng.random() < 0.5 for _ in range(k)])
+
+    def box():
+        x0, y0 = rng.randint(-5, 5), rng.randint(-5, 5)
+        x1, y1 = x0 + rng.randint(0, 3), y0 + rng.randint(0, 3)
+        return (None if rng.random() < 0.2 else x0, x1, y0, None if rng.random() < 0.2 else y1)
+
+    def watch():
+        return Watch(occupied=tuple(box() for _ in range(rng.randint(1, 2))))
+
+    def register(r):
+        while not w.register(r, watch()):  # refused: every box is empty already
+            pass
+
+    watchers = list(range(12))  # robots 12… move, robots 0…11 watch
+    for r in watchers:
+        register(r)
+    woken = 0
+    for _ in range(1500):
+        m = rng.randrange(12, k)
+        dx, dy = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
+        to = (int(P[m, 0]) + dx, int(P[m, 1]) + dy)
+        if to in {tuple(p) for p in P.tolist()}:
+            continue
+        boxes_of = {r: w._occupied[r][0] for r in watchers}
+        hit = move(P, w, m, to)
+        for r in watchers:
+            fresh = [
+                sum(1 for j, (x, y) in enumerate(P.tolist()) if j != r and x0 <= x <= x1 and y0 <= y <= y1)
+                for x0, x1, y0, y1 in boxes_of[r]
+            ]
+            if r in hit:
+                assert not any(fresh)
+                woken += 1
+                register(r)
+            else:
+                assert w._occupied[r][1] == fresh and any(fresh)
+    assert woken >= 3

@@ -99,14 +99,11 @@ class Watches:
         self._witness_of: list[dict[int, int]] = [{} for _ in range(k)]  # watcher → {segment: witness}
         self._followed: dict[int, set[tuple[int, int]]] = {}  # witness → {(watcher, segment)}
         self._within: list[tuple[int, int, int, int] | None] = [None] * k  # global box, see Watch.within
-        # Occupied boxes: bounds and the number of robots inside, per slot (unused slots: empty, count 0).
-        self._ox0 = np.full((k, OCCUPIED), _BIG, dtype=np.int64)
-        self._ox1 = np.full((k, OCCUPIED), -_BIG, dtype=np.int64)
-        self._oy0 = np.full((k, OCCUPIED), _BIG, dtype=np.int64)
-        self._oy1 = np.full((k, OCCUPIED), -_BIG, dtype=np.int64)
-        self._count = np.zeros((k, OCCUPIED), dtype=np.int64)
-        self._counting = np.zeros(k, dtype=bool)
-        self._with_counts = 0
+        # Occupied boxes (global bounds) and how many robots stand in each. A move is one lattice step, so
+        # it can only enter or leave a box one of whose edges it crosses: the boxes are also filed by
+        # their finite edges (x0, x1, y0, y1: one dictionary each).
+        self._occupied: dict[int, tuple[list[tuple[int, int, int, int]], list[int]]] = {}
+        self._edges: tuple[dict[int, set[tuple[int, int]]], ...] = ({}, {}, {}, {})
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
         self._seen_at: list[frozenset[Point]] = [frozenset()] * k  # global points; see Watch.seen_at
         self.count = 0  # robots with a watch
@@ -128,6 +125,11 @@ class Watches:
             segments = (*segments, watch.any_of[0])
         if len(watch.boxes) > BOXES or len(segments) > SEGMENTS or len(watch.occupied) > OCCUPIED:
             return False
+        if watch.occupied:
+            occupied = [_global_box(x, y, s, box) for box in watch.occupied]
+            counts = [self._robots_in(box, r) for box in occupied]
+            if not any(counts):
+                return False  # the watch is broken already
         if short:
             self._intact[r] = {i for i, _ in short}
             witnesses = self._witness_of[r]
@@ -144,15 +146,11 @@ class Watches:
         for i, box in enumerate(boxes):
             self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = box
         if watch.occupied:
-            P = self._P
-            for i, box in enumerate(watch.occupied):
-                x0, x1, y0, y1 = self._ox0[r, i], self._ox1[r, i], self._oy0[r, i], self._oy1[r, i] = (
-                    _global_box(x, y, s, box)
-                )
-                inside = (x0 <= P[:, 0]) & (P[:, 0] <= x1) & (y0 <= P[:, 1]) & (P[:, 1] <= y1)
-                self._count[r, i] = int(np.count_nonzero(inside)) - bool(inside[r])
-            self._counting[r] = True
-            self._with_counts += 1
+            for i, (x0, x1, y0, y1) in enumerate(occupied):
+                for edges, edge in zip(self._edges, (x0, x1, y0, y1), strict=True):
+                    if abs(edge) != _BIG:
+                        edges.setdefault(edge, set()).add((r, i))
+            self._occupied[r] = (occupied, counts)
         for i, (dx, dy) in enumerate(segments):
             dy *= s
             g = gcd(dx, dy)
@@ -178,6 +176,13 @@ class Watches:
         if boxes or longs:
             self._boxed[r] = (boxes, longs)
         return True
+
+    def _robots_in(self, box: tuple[int, int, int, int], r: int) -> int:
+        """How many robots other than r stand in this box (global bounds)."""
+        P = self._P
+        x0, x1, y0, y1 = box
+        inside = (x0 <= P[:, 0]) & (P[:, 0] <= x1) & (y0 <= P[:, 1]) & (P[:, 1] <= y1)
+        return int(np.count_nonzero(inside)) - bool(inside[r])
 
     def clear(self, r: int) -> None:
         """Robot r is asked again (it acted, or an event touched its watch)."""
@@ -207,14 +212,15 @@ class Watches:
                     del followed[j]
             self._witness_of[r] = {}
             self._within[r] = None
-        if self._counting[r]:
-            self._counting[r] = False
-            self._with_counts -= 1
-            self._ox0[r] = _BIG
-            self._ox1[r] = -_BIG
-            self._oy0[r] = _BIG
-            self._oy1[r] = -_BIG
-            self._count[r] = 0
+        occupied = self._occupied.pop(r, None)
+        if occupied is not None:
+            for i, box in enumerate(occupied[0]):
+                for edges, edge in zip(self._edges, box, strict=True):
+                    if abs(edge) != _BIG:
+                        slots = edges[edge]
+                        slots.discard((r, i))
+                        if not slots:
+                            del edges[edge]
         if self._boxed.pop(r, None) is not None:
             self._bx0[r] = _BIG
             self._bx1[r] = -_BIG
@@ -249,7 +255,7 @@ class Watches:
         hit = self._touching(list(old) + list(new))
         for m, p, slots in following:
             self._follow(m, p, slots, robot_at, hit)
-        if self._with_counts:
+        if self._occupied:
             self._recount(old, new, hit)
         if self._mask.any():
             for m, p in zip(movers, new, strict=True):
@@ -333,12 +339,27 @@ class Watches:
         self._any_points[r] = keep
 
     def _recount(self, old: Sequence[Point], new: Sequence[Point], hit: np.ndarray) -> None:
-        """Update the robots counted in occupied boxes, and mark the watches whose boxes are all empty."""
-        count, x0, x1, y0, y1 = self._count, self._ox0, self._ox1, self._oy0, self._oy1
-        for points, sign in ((old, -1), (new, 1)):
-            for px, py in points:
-                count += sign * ((x0 <= px) & (px <= x1) & (y0 <= py) & (py <= y1))
-        hit |= self._counting & ~count.any(axis=1)
+        """Update the robots counted in occupied boxes, and mark the watches whose boxes are all empty
+        (after every move of the step: a robot may leave a box as another enters it)."""
+        x0s, x1s, y0s, y1s = self._edges
+        emptied = set()
+        for (ox, oy), (nx, ny) in zip(old, new, strict=True):
+            if oy == ny and abs(nx - ox) == 1:  # the boxes with a vertical edge between the two points
+                near = x1s.get(min(ox, nx), set()) | x0s.get(max(ox, nx), set())
+            elif ox == nx and abs(ny - oy) == 1:
+                near = y1s.get(min(oy, ny), set()) | y0s.get(max(oy, ny), set())
+            else:  # not one lattice step (the engine never moves a robot so): every box
+                near = {(r, i) for r, (boxes, _) in self._occupied.items() for i in range(len(boxes))}
+            for r, i in near:
+                boxes, counts = self._occupied[r]
+                x0, x1, y0, y1 = boxes[i]
+                change = (x0 <= nx <= x1 and y0 <= ny <= y1) - (x0 <= ox <= x1 and y0 <= oy <= y1)
+                if change:
+                    counts[i] += change
+                    emptied.add(r)
+        for r in emptied:
+            if not any(self._occupied[r][1]):
+                hit[r] = True
 
     def _take(self, hit: np.ndarray) -> list[int]:
         hit &= self.active
