@@ -55,3 +55,22 @@ def test_visibility_equals_oracle_beyond_the_packed_key_range(points):
     pts = sorted(points)
     for i in range(len(pts)):
         assert visible_from(np.array(pts), i).tolist() == visible_from_naive(pts, i)
+
+
+def test_the_direction_tables_give_the_same_visible_robots_as_gcds(monkeypatch):
+    import random
+
+    import apf_viz.core.grid as grid
+
+    rng = random.Random(4)
+    for _ in range(100):
+        side = rng.choice([3, 10, 90])
+        points = rng.sample(
+            [(x, y) for x in range(-side, side) for y in range(-side, side)],
+            rng.randint(2, min(40, 4 * side * side)),
+        )
+        offsets = np.array(points, dtype=np.int64) - np.array(points[0], dtype=np.int64)
+        tables = grid.nearest_per_direction(offsets, 0).tolist()
+        monkeypatch.setattr(grid, "TABLE_SPAN", 0)
+        assert grid.nearest_per_direction(offsets, 0).tolist() == tables
+        monkeypatch.undo()

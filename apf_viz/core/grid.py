@@ -9,6 +9,7 @@ points (:func:`visible_from_naive`, kept as the test oracle).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Iterable, Sequence
 from enum import Enum
@@ -75,6 +76,21 @@ _DELTAS: dict[Direction, Point] = {
 
 # Below this offset span one packed int64 sort key per robot is exact; above it, a three-key sort.
 PACKED_SPAN_LIMIT = 1 << 20
+# Offsets up to this size in both coordinates have their distance and direction in tables (two arrays of
+# (2·TABLE_SPAN + 1)² int64, 1 MiB each).
+TABLE_SPAN = 180
+
+
+@functools.cache
+def _direction_tables() -> tuple[np.ndarray, np.ndarray]:
+    """For every offset (dx, dy) with |dx|, |dy| ≤ TABLE_SPAN, flattened row by row from (−T, −T): its
+    lattice distance g = gcd(|dx|, |dy|) (1 for (0, 0)) and its primitive direction packed as one key
+    (dx/g)·(2T + 1) + dy/g, which orders directions by (dx/g, dy/g)."""
+    axis = np.arange(-TABLE_SPAN, TABLE_SPAN + 1, dtype=np.int64)
+    g = np.gcd.outer(axis, axis)
+    g[TABLE_SPAN, TABLE_SPAN] = 1
+    key = (axis[:, None] // g) * (2 * TABLE_SPAN + 1) + axis[None, :] // g
+    return g.ravel(), key.ravel()
 
 
 def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
@@ -98,10 +114,25 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     if k == 1:
         return np.empty(0, dtype=np.intp)
     dx, dy = offsets[:, 0], offsets[:, 1]
+    span = int(np.abs(offsets).max()) + 1
+    if span <= TABLE_SPAN:
+        # A crowd: every offset's distance and direction key looked up in tables made once, instead of a
+        # gcd and two divisions per robot (distance ≤ TABLE_SPAN, so the packed key cannot collide).
+        distance, direction = _direction_tables()
+        at = (dx + TABLE_SPAN) * (2 * TABLE_SPAN + 1) + (dy + TABLE_SPAN)
+        key = direction[at]
+        packed = key * (TABLE_SPAN + 1) + distance[at]
+        packed[i] = np.iinfo(np.int64).min
+        order = np.argsort(packed)  # the keys are distinct: no need for a stable sort
+        sorted_key = key[order]
+        first = np.empty(k, dtype=bool)
+        np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
+        first[0] = False  # the observer
+        first[1] = True
+        return order[first]
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
     ddx, ddy = dx // g, dy // g  # the primitive direction of each robot
-    span = int(np.abs(offsets).max()) + 1
     if span < PACKED_SPAN_LIMIT:
         # One packed key (direction, then distance g) sorts fastest; below this span it cannot overflow:
         # |key| < (2·span + 1)², |packed| < (2·span + 1)² · span + span < 2^63.
