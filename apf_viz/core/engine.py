@@ -534,9 +534,7 @@ class Engine:
         if self.skip_noops:
             eligible = self.eligible()
             phase = self.state.phase
-            return not any(
-                phase[r] == _IDLE or not self._robot_quiescent(r) for r in np.flatnonzero(eligible)
-            )
+            return not any(phase[r] == _IDLE or not self._robot_quiescent(r) for r in eligible.nonzero()[0])
         hint = self._probe_hint
         if self._busy == (hint, self.state.version, self.state.last_act[hint]):
             return False  # found active, and neither it nor the configuration has changed since

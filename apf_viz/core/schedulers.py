@@ -83,7 +83,7 @@ class AsyncScheduler:
         mask = candidates(engine)
         r = _most_starved(engine, mask)
         if r is None:  # with every robot eligible, the same draw as a scheduler that never skips
-            pool = np.flatnonzero(mask)
+            pool = mask.nonzero()[0]
             r = int(pool[rng.randrange(pool.size)])
         return _new(StepRecord, ((r,), None))
 
@@ -95,7 +95,7 @@ class RoundRobinScheduler:
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
-        busy = np.flatnonzero(st.phase)
+        busy = st.phase.nonzero()[0]
         if busy.size:
             return StepRecord((int(busy[0]),))
         mask = candidates(engine)
@@ -115,7 +115,7 @@ class StaleFirstScheduler:
         starved = _most_starved(engine, mask)
         if starved is not None:
             return StepRecord((starved,))
-        early = np.flatnonzero((st.phase != int(Phase.COMPUTED)) & mask)
+        early = ((st.phase != int(Phase.COMPUTED)) & mask).nonzero()[0]
         if early.size:
             return StepRecord((int(early[rng.randrange(early.size)]),))
         return StepRecord((int(np.argmin(st.look_step)),))
@@ -130,7 +130,7 @@ class _RoundScheduler:
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
         for phase in (int(Phase.LOOKED), int(Phase.COMPUTED)):
-            group = np.flatnonzero(st.phase == phase)
+            group = (st.phase == phase).nonzero()[0]
             if group.size:
                 return StepRecord(tuple(group.tolist()), round=st.round)
         return StepRecord(self.subset(engine, rng), round=st.round + 1)
@@ -145,7 +145,7 @@ class FsyncScheduler(_RoundScheduler):
     name = "fsync"
 
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
-        return tuple(np.flatnonzero(candidates(engine)).tolist())
+        return tuple(candidates(engine).nonzero()[0].tolist())
 
 
 class SsyncScheduler(_RoundScheduler):
@@ -157,7 +157,7 @@ class SsyncScheduler(_RoundScheduler):
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
         st = engine.state
         bound = starve_bound(engine)
-        pool = np.flatnonzero(candidates(engine)).tolist()
+        pool = candidates(engine).nonzero()[0].tolist()
         chosen = {r for r in pool if rng.random() < 0.5 or st.steps - st.last_act[r] >= bound}
         if not chosen:
             chosen = {pool[rng.randrange(len(pool))]}

@@ -136,4 +136,4 @@ class Snapshot:
             return {s.light for s in self._robots}
         c = self._columns
         counts = np.bincount(c.code, minlength=len(c.palette))
-        return {c.palette[i] for i in np.flatnonzero(counts).tolist()}
+        return {c.palette[i] for i in counts.nonzero()[0].tolist()}

@@ -262,7 +262,7 @@ class Watches:
                 self._in_sight(m, p, hit)  # it may come into sight where it now stands
             vacated = [p for p in old if p not in robot_at]  # a point another mover entered hides as before
             if vacated:
-                shown = np.flatnonzero(self.bits & np.bitwise_or.reduce(self._mask))
+                shown = (self.bits & np.bitwise_or.reduce(self._mask)).nonzero()[0]
                 for p in vacated:
                     if shown.size <= FEW_SHOWN:
                         for q in shown.tolist():
@@ -363,7 +363,7 @@ class Watches:
 
     def _take(self, hit: np.ndarray) -> list[int]:
         hit &= self.active
-        robots = np.flatnonzero(hit).tolist()
+        robots = hit.nonzero()[0].tolist()
         for r in robots:
             self.clear(r)
         return robots
@@ -480,7 +480,7 @@ def _nearest_along(P: np.ndarray, q: int, ux: int, uy: int) -> tuple[int, int]:
     ox = P[:, 0] - P[q, 0]
     oy = P[:, 1] - P[q, 1]
     g = np.gcd(ox, oy)
-    on = np.flatnonzero((ox == ux * g) & (oy == uy * g) & (g > 0))
+    on = ((ox == ux * g) & (oy == uy * g) & (g > 0)).nonzero()[0]
     if not on.size:
         return -1, 0
     i = int(on[np.argmin(g[on])])

@@ -81,7 +81,7 @@ def follower_frame(view: Snapshot, leader: Seen) -> LeaderFrame:
         s = 1 if ly < 0 else -1
     else:
         dy = view.columns.dy
-        off_row = np.flatnonzero(dy != ly)
+        off_row = (dy != ly).nonzero()[0]
         s = (1 if dy[off_row[0]] > ly else -1) if off_row.size else 1
     # frame(p) = (p.dx − lx, s·(p.dy − ly) − 1) = (p.dx − ox, s·(p.dy − oy)) with oy = ly + s.
     return LeaderFrame((lx, ly + s), s)
@@ -175,7 +175,7 @@ def pattern_formation_off(
     It reads the view's arrays (:class:`~apf_viz.core.view.Columns`): the traveller decides on a view of
     hundreds of robots at each of its steps."""
     c = view.columns
-    leaders = np.flatnonzero(c.showing("leader"))
+    leaders = c.showing("leader").nonzero()[0]
     if not leaders.size:
         ev.test("the leader in sight", False, "I see the robot with light leader")
         return stay(
