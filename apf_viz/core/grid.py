@@ -103,6 +103,34 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
     return np.sort(nearest_per_direction(positions - positions[i], i))
 
 
+_FAR = np.iinfo(np.int64).max
+
+
+def table_scratch() -> np.ndarray:
+    """A caller's own work array for :func:`visible_in_crowd` (1 MiB; every entry ``_FAR`` between calls)."""
+    return np.full((2 * TABLE_SPAN + 1) ** 2, _FAR, dtype=np.int64)
+
+
+def visible_in_crowd(offsets: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
+    """The robots visible from robot i, in increasing index order, when every offset is at most
+    TABLE_SPAN in both coordinates (the caller checks): "nearest robot per primitive direction" without a
+    sort. Each robot's direction and distance come from the tables; ``np.minimum.at`` leaves, per
+    direction, the least (distance, index) in ``scratch``, and a robot is visible iff it is that least
+    one. ``scratch`` (from :func:`table_scratch`) is restored before returning."""
+    k = offsets.shape[0]
+    distance, direction = _direction_tables()
+    width = 2 * TABLE_SPAN + 1
+    at = (offsets[:, 0] + TABLE_SPAN) * width + (offsets[:, 1] + TABLE_SPAN)
+    slot = direction[at] + TABLE_SPAN * width + TABLE_SPAN  # the direction key, made non-negative
+    rank = distance[at] * k + np.arange(k)  # by distance, then index: distinct
+    rank[i] = _FAR  # the observer is nobody's nearest
+    np.minimum.at(scratch, slot, rank)
+    nearest = rank == scratch[slot]
+    scratch[slot] = _FAR
+    nearest[i] = False
+    return nearest.nonzero()[0]
+
+
 def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     """The visible robots, given every robot's offset from observer ``i`` (shape (k, 2); row i is 0).
 

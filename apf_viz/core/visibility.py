@@ -23,7 +23,14 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, nearest_per_direction
+from apf_viz.core.grid import (
+    PACKED_SPAN_LIMIT,
+    TABLE_SPAN,
+    Point,
+    nearest_per_direction,
+    table_scratch,
+    visible_in_crowd,
+)
 from apf_viz.core.view import Columns, Seen
 
 Direction2 = tuple[int, int]  # a primitive direction (dx, dy)/gcd, global frame
@@ -67,6 +74,7 @@ class Views:
         self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
         self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
+        self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
         # Robots whose view changed since the engine last drained this set (it re-decides only them).
         self.changed: set[int] = set()
 
@@ -99,7 +107,12 @@ class Views:
     def _build(self, r: int) -> None:
         P = self._P
         offsets = P - P[r]
-        order = nearest_per_direction(offsets, r)
+        if int(np.abs(offsets).max()) < TABLE_SPAN:
+            if self._scratch is None:
+                self._scratch = table_scratch()
+            order = visible_in_crowd(offsets, r, self._scratch)  # sorted by index
+        else:
+            order = np.sort(nearest_per_direction(offsets, r))
         seen = offsets[order]
         sx, sy = seen[:, 0], seen[:, 1]
         self._raw[r] = (sx, sy, order)
@@ -113,7 +126,7 @@ class Views:
         codes = self._code_of[order[by_offset]]
         self._columns[r] = Columns(sx[by_offset], ly[by_offset], codes, self._palette)
         self._entries[r] = None
-        self._ids[r] = np.sort(order).tolist()
+        self._ids[r] = order.tolist()
         self._built.add(r)
 
     def _entries_of(self, r: int) -> list[Seen]:

@@ -105,6 +105,8 @@ class Watches:
         self._occupied: dict[int, tuple[list[tuple[int, int, int, int]], list[int]]] = {}
         self._edges: tuple[dict[int, set[tuple[int, int]]], ...] = ({}, {}, {}, {})
         self._mask = np.zeros(k, dtype=np.int64)  # watched lights
+        self._watchers_of_light = [0] * len(light_names)
+        self._watched = 0  # the lights any watch has (a bit each)
         self._seen_at: list[frozenset[Point]] = [frozenset()] * k  # global points; see Watch.seen_at
         self.count = 0  # robots with a watch
         # Robots with a box or a long segment, and those regions as Python tuples (global frame): a few
@@ -169,6 +171,7 @@ class Watches:
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
         self._mask[r] = mask
+        self._count_watchers(mask, 1)
         if watch.seen_at:
             self._seen_at[r] = frozenset((x + dx, y + s * dy) for dx, dy in watch.seen_at)
         self.active[r] = True
@@ -176,6 +179,16 @@ class Watches:
         if boxes or longs:
             self._boxed[r] = (boxes, longs)
         return True
+
+    def _count_watchers(self, mask: int, change: int) -> None:
+        """Keep ``_watched``, the lights some watch has, from a count of watchers per light."""
+        if not mask:
+            return
+        counts = self._watchers_of_light
+        for i in range(len(counts)):
+            if mask >> i & 1:
+                counts[i] += change
+        self._watched = sum(1 << i for i, n in enumerate(counts) if n)
 
     def _robots_in(self, box: tuple[int, int, int, int], r: int) -> int:
         """How many robots other than r stand in this box (global bounds)."""
@@ -190,6 +203,7 @@ class Watches:
             return
         self.active[r] = False
         self.count -= 1
+        self._count_watchers(int(self._mask[r]), -1)
         self._mask[r] = 0
         self._seen_at[r] = frozenset()
         points = self._points_of[r]
@@ -257,12 +271,12 @@ class Watches:
             self._follow(m, p, slots, robot_at, hit)
         if self._occupied:
             self._recount(old, new, hit)
-        if self._mask.any():
+        if self._watched:
             for m, p in zip(movers, new, strict=True):
                 self._in_sight(m, p, hit)  # it may come into sight where it now stands
             vacated = [p for p in old if p not in robot_at]  # a point another mover entered hides as before
             if vacated:
-                shown = (self.bits & np.bitwise_or.reduce(self._mask)).nonzero()[0]
+                shown = (self.bits & self._watched).nonzero()[0]
                 for p in vacated:
                     if shown.size <= FEW_SHOWN:
                         for q in shown.tolist():
@@ -285,7 +299,7 @@ class Watches:
         """Mark the watchers of robot m's light that see m, at ``at``, unless they saw one there before.
         (Who sees m is computed only when someone watches its light.)"""
         bit = int(self.bits[m])
-        if not bit or not (self._mask & bit).any():
+        if not bit & self._watched:
             return
         seen_by = visible_from(self._P, m)
         for r in seen_by[(self._mask[seen_by] & bit) != 0].tolist():
