@@ -79,10 +79,11 @@ def test_the_direction_tables_give_the_same_visible_robots_as_gcds(monkeypatch):
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.tuples(st.integers(-12, 12), st.integers(-12, 12)), min_size=1, max_size=40, unique=True))
 def test_visible_in_a_crowd_by_minimum_per_direction_equals_the_lattice_walk(points):
-    from apf_viz.core.grid import table_scratch, visible_in_crowd
+    from apf_viz.core.grid import table_index, table_scratch, visible_in_crowd
 
     scratch = table_scratch()
     arr = np.array(points, dtype=np.int64)
     for i in range(len(points)):
-        assert visible_in_crowd(arr - arr[i], i, scratch).tolist() == sorted(visible_from_naive(points, i))
+        visible = visible_in_crowd(table_index(arr - arr[i]), i, scratch)
+        assert visible.tolist() == sorted(visible_from_naive(points, i))
     assert (scratch == np.iinfo(np.int64).max).all()  # left as it was found

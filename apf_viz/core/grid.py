@@ -111,16 +111,22 @@ def table_scratch() -> np.ndarray:
     return np.full((2 * TABLE_SPAN + 1) ** 2, _FAR, dtype=np.int64)
 
 
-def visible_in_crowd(offsets: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
-    """The robots visible from robot i, in increasing index order, when every offset is at most
-    TABLE_SPAN in both coordinates (the caller checks): "nearest robot per primitive direction" without a
-    sort. Each robot's direction and distance come from the tables; ``np.minimum.at`` leaves, per
-    direction, the least (distance, index) in ``scratch``, and a robot is visible iff it is that least
-    one. ``scratch`` (from :func:`table_scratch`) is restored before returning."""
-    k = offsets.shape[0]
+def table_index(offsets: np.ndarray) -> np.ndarray:
+    """Where each offset (|dx|, |dy| ≤ TABLE_SPAN) sits in the direction tables."""
+    width = 2 * TABLE_SPAN + 1
+    return (offsets[:, 0] + TABLE_SPAN) * width + (offsets[:, 1] + TABLE_SPAN)
+
+
+def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
+    """The robots visible from robot i, in increasing index order, given where each robot's offset from
+    it sits in the direction tables (:func:`table_index`; every offset at most TABLE_SPAN in both
+    coordinates, the caller checks): "nearest robot per primitive direction" without a sort.
+    ``np.minimum.at`` leaves, per direction, the least (distance, index) in ``scratch``, and a robot is
+    visible iff it is that least one. ``scratch`` (from :func:`table_scratch`) is restored before
+    returning."""
+    k = at.shape[0]
     distance, direction = _direction_tables()
     width = 2 * TABLE_SPAN + 1
-    at = (offsets[:, 0] + TABLE_SPAN) * width + (offsets[:, 1] + TABLE_SPAN)
     slot = direction[at] + TABLE_SPAN * width + TABLE_SPAN  # the direction key, made non-negative
     rank = distance[at] * k + np.arange(k)  # by distance, then index: distinct
     rank[i] = _FAR  # the observer is nobody's nearest

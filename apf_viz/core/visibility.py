@@ -75,6 +75,11 @@ class Views:
         self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
         self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
+        self._flat: np.ndarray | None = None  # x·_WIDTH + y per robot, with the scratch
+        # A box every robot has stayed in (it only grows): while it is narrower than the tables, every
+        # offset is in them.
+        lo, hi = positions.min(axis=0).tolist(), positions.max(axis=0).tolist()
+        self._reach = (lo[0], lo[1], hi[0], hi[1])
         # Robots whose view changed since the engine last drained this set (it re-decides only them).
         self.changed: set[int] = set()
 
@@ -106,21 +111,27 @@ class Views:
 
     def _build(self, r: int) -> None:
         P = self._P
-        offsets = P - P[r]
-        if int(np.abs(offsets).max()) < TABLE_SPAN:
+        x0, y0, x1, y1 = self._reach
+        if x1 - x0 < TABLE_SPAN and y1 - y0 < TABLE_SPAN:  # a crowd: every offset is in the tables
             if self._scratch is None:
                 self._scratch = table_scratch()
-            order = visible_in_crowd(offsets, r, self._scratch)  # sorted by index
+                self._flat = P[:, 0] * _WIDTH + P[:, 1]
+            # The table index of r's offset to each robot, from the robots' own flat indices.
+            at = self._flat - (int(self._flat[r]) - _CENTRE)
+            order = visible_in_crowd(at, r, self._scratch)  # sorted by index
+            seen = P[order] - P[r]
+            span = TABLE_SPAN
         else:
+            offsets = P - P[r]
             order = np.sort(nearest_per_direction(offsets, r))
-        seen = offsets[order]
+            seen = offsets[order]
+            span = int(np.abs(seen).max(initial=0)) + 1
         sx, sy = seen[:, 0], seen[:, 1]
         self._raw[r] = (sx, sy, order)
         self._near[r] = None
         ly = sy if self._flip[r] == 1 else -sy
         # The view's order: by dx, then dy in r's own frame; one packed key sorts fastest where it cannot
         # overflow (|sx|, |ly| < span: |key| < (2·span + 1)·span + span).
-        span = int(np.abs(seen).max(initial=0)) + 1
         packed = span < PACKED_SPAN_LIMIT
         by_offset = np.argsort(sx * (2 * span + 1) + ly) if packed else np.lexsort((ly, sx))
         codes = self._code_of[order[by_offset]]
@@ -128,6 +139,14 @@ class Views:
         self._entries[r] = None
         self._ids[r] = order.tolist()
         self._built.add(r)
+
+    def _track(self, m: int) -> None:
+        """Robot m moved (``points`` holds its new point): its flat index and the reach box follow."""
+        x, y = self.points[m]
+        if self._flat is not None:
+            self._flat[m] = x * _WIDTH + y
+        x0, y0, x1, y1 = self._reach
+        self._reach = (min(x0, x), min(y0, y), max(x1, x), max(y1, y))
 
     def _entries_of(self, r: int) -> list[Seen]:
         """Robot r's entries (its view is built), made from its arrays when a patch first needs them."""
@@ -165,6 +184,7 @@ class Views:
             del occupied[p]
         for m in movers:
             self.points[m] = (int(P[m, 0]), int(P[m, 1]))
+            self._track(m)
         lo, hi = P.min(axis=0).tolist(), P.max(axis=0).tolist()
         for m in movers:
             self._forget(m)
@@ -205,6 +225,7 @@ class Views:
         robot that stays in sight keeps its place in the sorted ids."""
         P = self._P
         new = self.points[m] = (int(P[m, 0]), int(P[m, 1]))
+        self._track(m)
         occupied = self.occupied
         del occupied[old]
         occupied[new] = m
@@ -350,6 +371,10 @@ class Views:
             if occupied.get(points[j]) == j:
                 return int(dist[j]), j
         return None
+
+
+_WIDTH = 2 * TABLE_SPAN + 1
+_CENTRE = TABLE_SPAN * _WIDTH + TABLE_SPAN  # the table index of offset (0, 0)
 
 
 def _steps_inside(c: int, lo: int, hi: int, step: int) -> int:
