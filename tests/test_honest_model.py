@@ -98,3 +98,24 @@ def test_a_flipped_robot_sees_y_mirrored_and_its_up_is_global_down():
 def test_the_core_never_imports_viser(module):
     code = f"import sys, {module}; import apf_viz.core.run; sys.exit('viser' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code]).returncode == 0
+
+
+def test_a_snapshot_made_as_arrays_equals_the_same_snapshot_made_as_tuples():
+    import pickle
+
+    import numpy as np
+
+    from apf_viz.core.view import Columns
+
+    robots = (Seen(-2, 1, "done"), Seen(-2, 3, "off"), Seen(0, -1, "leader"), Seen(4, 0, "off"))
+    palette = ("off", "terminal1", "leader", "done")
+    columns = Columns(
+        np.array([-2, -2, 0, 4]), np.array([1, 3, -1, 0]), np.array([3, 0, 2, 0], dtype=np.uint8), palette
+    )
+    a, b = Snapshot("off", robots), Snapshot("off", columns=columns)
+    assert len(b) == 4 and b.lights() == a.lights() == {"done", "off", "leader"}
+    assert a == b and hash(a) == hash(b) and b.robots == robots  # one memo entry for both
+    assert a.columns.showing("leader").tolist() == [False, False, True, False]
+    assert not a.columns.showing("call").any()  # a light nobody shows
+    assert Snapshot("done", robots) != b
+    assert pickle.loads(pickle.dumps(b)) == a
