@@ -152,13 +152,12 @@ def leftmost_on_own_row(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
 def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_B^O(r) ∩ H_U^O(r₀) ≠ ∅: a robot strictly between r's row and the leader's row (exact by V1: the
     strip is convex). In the leader frame that is −1 < y′ < y; in r's frame, y′ − y = s·dy."""
-    y = frame.me[1]
-    lo, hi = (-y, -1) if frame.s == 1 else (1, y)
+    box = _between_rows(frame)
     dy = view.columns.dy
-    value = bool(((lo <= dy) & (dy <= hi)).any())
+    value = box is not None and bool(((box[2] <= dy) & (dy <= box[3])).any())
     if ev.active:
-        if lo <= hi:
-            ev.region(Band("y", lo, hi, "H_B^O(r) ∩ H_U^O(r₀)"))
+        if box is not None:
+            ev.region(Band("y", box[2], box[3], "H_B^O(r) ∩ H_U^O(r₀)"))
         ev.test("H_B^O(r) ∩ H_U^O(r₀) ≠ ∅", value, "a robot strictly between my row and the leader's")
     return value
 
@@ -236,7 +235,8 @@ def pattern_formation_off(
     side, ly = frame.s, leader.dy
     above = side * (c.dy - ly) > 0
     done, off = c.showing("done"), c.showing("off")
-    waiting = bool((above & ~done).any()) if p3 else bool((above & off).any())
+    forming = above & ~done if p3 else above & off  # the robots the line waits for
+    waiting = bool(forming.any())
     if p3 and ev.active and (above & ~done & ~off).any():
         deviation(ev, P3, True)
     blockers = "not done" if p3 else "off"
@@ -251,13 +251,8 @@ def pattern_formation_off(
         view,
         "Phase 3 (off): on the line, robots above are not done → wait",
         "A3.off.line-wait",
-        watches.line_waits(view, side, [s for s in view.robots if _forming(s, p3) and side * s.dy > 0]),
+        watches.line_waits(view, side, [c.seen(i) for i in forming.nonzero()[0].tolist()]),
     )
-
-
-def _forming(robot: Seen, p3: bool) -> bool:
-    """A robot the line waits for: not done (P3), or off (the paper)."""
-    return robot.light != "done" if p3 else robot.light == "off"
 
 
 def _between_rows(frame: LeaderFrame) -> Box | None:
