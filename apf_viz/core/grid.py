@@ -79,6 +79,8 @@ PACKED_SPAN_LIMIT = 1 << 20
 # Offsets up to this size in both coordinates have their distance and direction in tables (two arrays of
 # (2·TABLE_SPAN + 1)² int64, 1 MiB each).
 TABLE_SPAN = 180
+TABLE_WIDTH = 2 * TABLE_SPAN + 1
+TABLE_CENTRE = TABLE_SPAN * TABLE_WIDTH + TABLE_SPAN  # where offset (0, 0) sits in the tables
 
 
 @functools.cache
@@ -89,7 +91,7 @@ def _direction_tables() -> tuple[np.ndarray, np.ndarray]:
     axis = np.arange(-TABLE_SPAN, TABLE_SPAN + 1, dtype=np.int64)
     g = np.gcd.outer(axis, axis)
     g[TABLE_SPAN, TABLE_SPAN] = 1
-    key = (axis[:, None] // g) * (2 * TABLE_SPAN + 1) + axis[None, :] // g
+    key = (axis[:, None] // g) * TABLE_WIDTH + axis[None, :] // g
     return g.ravel(), key.ravel()
 
 
@@ -108,13 +110,12 @@ _FAR = np.iinfo(np.int64).max
 
 def table_scratch() -> np.ndarray:
     """A caller's own work array for :func:`visible_in_crowd` (1 MiB; every entry ``_FAR`` between calls)."""
-    return np.full((2 * TABLE_SPAN + 1) ** 2, _FAR, dtype=np.int64)
+    return np.full(TABLE_WIDTH**2, _FAR, dtype=np.int64)
 
 
 def table_index(offsets: np.ndarray) -> np.ndarray:
     """Where each offset (|dx|, |dy| ≤ TABLE_SPAN) sits in the direction tables."""
-    width = 2 * TABLE_SPAN + 1
-    return (offsets[:, 0] + TABLE_SPAN) * width + (offsets[:, 1] + TABLE_SPAN)
+    return offsets[:, 0] * TABLE_WIDTH + offsets[:, 1] + TABLE_CENTRE
 
 
 def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
@@ -126,8 +127,7 @@ def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
     returning."""
     k = at.shape[0]
     distance, direction = _direction_tables()
-    width = 2 * TABLE_SPAN + 1
-    slot = direction[at] + TABLE_SPAN * width + TABLE_SPAN  # the direction key, made non-negative
+    slot = direction[at] + TABLE_CENTRE  # the direction key, made non-negative
     rank = distance[at] * k + np.arange(k)  # by distance, then index: distinct
     rank[i] = _FAR  # the observer is nobody's nearest
     np.minimum.at(scratch, slot, rank)
@@ -153,7 +153,7 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
         # A crowd: every offset's distance and direction key looked up in tables made once, instead of a
         # gcd and two divisions per robot (distance ≤ TABLE_SPAN, so the packed key cannot collide).
         distance, direction = _direction_tables()
-        at = (dx + TABLE_SPAN) * (2 * TABLE_SPAN + 1) + (dy + TABLE_SPAN)
+        at = table_index(offsets)
         key = direction[at]
         packed = key * (TABLE_SPAN + 1) + distance[at]
         packed[i] = np.iinfo(np.int64).min

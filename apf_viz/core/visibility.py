@@ -25,7 +25,9 @@ import numpy as np
 
 from apf_viz.core.grid import (
     PACKED_SPAN_LIMIT,
+    TABLE_CENTRE,
     TABLE_SPAN,
+    TABLE_WIDTH,
     Point,
     nearest_per_direction,
     table_scratch,
@@ -75,7 +77,7 @@ class Views:
         self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
         self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
-        self._flat: np.ndarray | None = None  # x·_WIDTH + y per robot, with the scratch
+        self._flat: np.ndarray | None = None  # x·TABLE_WIDTH + y per robot, with the scratch
         # A box every robot has stayed in (it only grows): while it is narrower than the tables, every
         # offset is in them.
         lo, hi = positions.min(axis=0).tolist(), positions.max(axis=0).tolist()
@@ -115,9 +117,9 @@ class Views:
         if x1 - x0 < TABLE_SPAN and y1 - y0 < TABLE_SPAN:  # a crowd: every offset is in the tables
             if self._scratch is None:
                 self._scratch = table_scratch()
-                self._flat = P[:, 0] * _WIDTH + P[:, 1]
+                self._flat = P[:, 0] * TABLE_WIDTH + P[:, 1]
             # The table index of r's offset to each robot, from the robots' own flat indices.
-            at = self._flat - (int(self._flat[r]) - _CENTRE)
+            at = self._flat - (int(self._flat[r]) - TABLE_CENTRE)
             order = visible_in_crowd(at, r, self._scratch)  # sorted by index
             seen = P[order] - P[r]
             span = TABLE_SPAN
@@ -144,7 +146,7 @@ class Views:
         """Robot m moved (``points`` holds its new point): its flat index and the reach box follow."""
         x, y = self.points[m]
         if self._flat is not None:
-            self._flat[m] = x * _WIDTH + y
+            self._flat[m] = x * TABLE_WIDTH + y
         x0, y0, x1, y1 = self._reach
         self._reach = (min(x0, x), min(y0, y), max(x1, x), max(y1, y))
 
@@ -371,10 +373,6 @@ class Views:
             if occupied.get(points[j]) == j:
                 return int(dist[j]), j
         return None
-
-
-_WIDTH = 2 * TABLE_SPAN + 1
-_CENTRE = TABLE_SPAN * _WIDTH + TABLE_SPAN  # the table index of offset (0, 0)
 
 
 def _steps_inside(c: int, lo: int, hi: int, step: int) -> int:

@@ -112,8 +112,7 @@ class Watches:
         # Robots with a box or a long segment, and those regions as Python tuples (global frame): a few
         # are tested one by one, many in one numpy pass over the arrays above.
         self._boxed: dict[int, tuple[list[tuple[int, int, int, int]], list[tuple[int, int, int]]]] = {}
-        self._long = np.zeros(k, dtype=bool)  # robots with a long segment
-        self._with_long = 0
+        self._with_long = 0  # robots with a long segment
 
     # ------------------------------------------------------------------ registering
     def register(self, r: int, watch: Watch) -> bool:
@@ -164,9 +163,6 @@ class Watches:
             else:
                 self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
                 longs.append((dx // g, dy // g, g))
-                if not self._long[r]:
-                    self._long[r] = True
-                    self._with_long += 1
         mask = 0
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
@@ -178,6 +174,7 @@ class Watches:
         self.count += 1
         if boxes or longs:
             self._boxed[r] = (boxes, longs)
+            self._with_long += bool(longs)
         return True
 
     def _count_watchers(self, mask: int, change: int) -> None:
@@ -235,15 +232,14 @@ class Watches:
                         slots.discard((r, i))
                         if not slots:
                             del edges[edge]
-        if self._boxed.pop(r, None) is not None:
+        boxed = self._boxed.pop(r, None)
+        if boxed is not None:
             self._bx0[r] = _BIG
             self._bx1[r] = -_BIG
             self._by0[r] = _BIG
             self._by1[r] = -_BIG
             self._sg[r] = 0
-            if self._long[r]:
-                self._long[r] = False
-                self._with_long -= 1
+            self._with_long -= bool(boxed[1])
 
     # ------------------------------------------------------------------ events
     def moved(
