@@ -19,6 +19,7 @@ from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVE
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import (
     InputError,
+    RobotsFile,
     check_sizes,
     check_writable,
     load_pattern,
@@ -33,7 +34,9 @@ from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.random_configs import random_pattern, random_robots
 from apf_viz.core.run import RunSummary, advance, engine_for_trace, replay, trace_header
 from apf_viz.core.schedule import (
+    Schedule,
     ScheduleError,
+    adversary_flips,
     follow,
     load_schedule,
     schedule_of_steps,
@@ -47,6 +50,12 @@ EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
 
 
 class _Parser(argparse.ArgumentParser):
+    """One-line errors (exit 2), and no abbreviations: ``--robot`` is a typo, not ``--robots``."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
+
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see --help)\n")
 
@@ -72,6 +81,18 @@ def _int_within(low: int, high: float, what: str):
 
 
 _positive = _int_within(1, float("inf"), "a positive integer")
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not 0 < value < float("inf"):
+        raise argparse.ArgumentTypeError(f"{text} is not a positive number of seconds")
+    return value
+
+
 _port = _int_within(0, 65535, "a port (0 to 65535)")
 
 
@@ -108,22 +129,31 @@ def _problem(args: argparse.Namespace, output: Path | None):
 
 def _cmd_run(args: argparse.Namespace) -> int:
     robots, points, targets, algorithm = _problem(args, args.trace)
-    for out in (args.schedule_out,):
-        if out:
-            check_writable(out)
+    if args.schedule_out:
+        check_writable(args.schedule_out)
     if args.then and not args.schedule:
         _fail("--then continues after a --schedule: give one")
+    if args.flips and not args.schedule:
+        _fail("--flips chooses between a --schedule's flips and the robots file's: give a schedule")
+    if args.schedule and args.scheduler:
+        _fail(
+            f"--schedule is the adversary, so --scheduler {args.scheduler} would be ignored; to continue "
+            f"under a scheduler where the schedule ends, give --then {args.scheduler}"
+        )
     schedule = load_schedule(args.schedule) if args.schedule else None
+    y_up, semantics = robots.flips(args.seed), args.light_semantics or "compute"
+    if schedule is not None:
+        y_up, semantics = _schedule_adversary(args, robots, schedule)
     then = make_scheduler(args.then) if args.then else None
-    scheduler = make_scheduler(args.scheduler)
+    scheduler = make_scheduler(args.scheduler or "async")
     skip = not args.all_activations
     budget = run_budget(points, targets, skip)  # a cap given on the command line replaces its part
     engine = Engine(
         points,
         targets,
         algorithm,
-        y_up=robots.flips(args.seed),
-        light_semantics=args.light_semantics,
+        y_up=y_up,
+        light_semantics=semantics,
         max_events=args.max_events or budget.max_events,
         max_moves=args.max_moves or budget.max_moves,
         skip_noops=skip,
@@ -148,19 +178,47 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return EXIT_FORMED if summary.outcome == "formed" else EXIT_NOT_FORMED
 
 
+def _schedule_adversary(args: argparse.Namespace, robots: RobotsFile, schedule: Schedule):
+    """The flips and light semantics of a run that follows a schedule: the schedule's own, whatever
+    --seed says; a contradiction with the robots file or --light-semantics is refused."""
+    y_up, warning = adversary_flips(schedule, robots.y_up, args.flips, str(args.schedule), str(args.robots))
+    if warning:
+        print(f"apf-viz: warning: {warning}", file=sys.stderr)
+    semantics = schedule.light_semantics or args.light_semantics or "compute"
+    if args.light_semantics and schedule.light_semantics and args.light_semantics != semantics:
+        _fail(
+            f"--light-semantics {args.light_semantics} contradicts {args.schedule}, recorded under "
+            f"{schedule.light_semantics} (leave the option out to follow the schedule)"
+        )
+    return (list(y_up) if y_up is not None else robots.flips(args.seed)), semantics
+
+
 def _write_outputs(args: argparse.Namespace, engine: Engine, adversary: str) -> None:
     if args.trace:
         header = trace_header(engine, adversary, args.seed)
         write_atomic(args.trace, trace_text(header, engine.history.events()))
     if args.schedule_out:
-        write_atomic(args.schedule_out, schedule_text(engine.k, schedule_of_steps(engine.history.steps)))
+        lines = schedule_of_steps(engine.history.steps)
+        text = schedule_text(engine.k, lines, engine.y_up, engine.light_semantics)
+        write_atomic(args.schedule_out, text)
+
+
+def _need_extra(command: str, modules: Sequence[str]) -> None:
+    """Refuse in one line, before any work, a command whose optional packages are not installed."""
+    import importlib.util
+
+    missing = [m for m in modules if importlib.util.find_spec(m) is None]
+    if missing:
+        _fail(
+            f"apf-viz {command} needs the sweep extra ({', '.join(missing)} is not installed): "
+            "pip install 'apf-viz[sweep]' (or, in a checkout, pip install -e '.[sweep]')"
+        )
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
-    try:
-        from apf_viz import sweep
-    except ImportError as e:  # the sweep extra is not installed
-        _fail(f"apf-viz sweep needs Dask and pyarrow: pip install 'apf-viz[sweep]' ({e.name} is missing)")
+    _need_extra("sweep", ["dask", "distributed", "pyarrow"])
+    from apf_viz import sweep
+
     if args.out.suffix not in (".parquet", ".csv"):
         _fail(f"--out {args.out}: write .parquet or .csv")
     cells = sweep.grid(
@@ -180,6 +238,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             workers=args.workers,
             cluster=args.cluster,
             progress=sweep.report_progress,
+            run_timeout=args.run_timeout,
         )
     except KeyboardInterrupt:
         return 130
@@ -188,12 +247,9 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_plot(args: argparse.Namespace) -> int:
-    try:
-        from apf_viz import plot, sweep
-    except ImportError as e:
-        _fail(
-            f"apf-viz plot needs matplotlib and pyarrow: pip install 'apf-viz[sweep]' ({e.name} is missing)"
-        )
+    _need_extra("plot", ["matplotlib", "pyarrow"])
+    from apf_viz import plot, sweep
+
     if not args.results.is_file():
         _fail(f"{args.results}: no such file")
     for path in plot.plot(sweep.read_results(args.results), args.out):
@@ -202,12 +258,20 @@ def _cmd_plot(args: argparse.Namespace) -> int:
 
 
 def _cmd_schedule(args: argparse.Namespace) -> int:
+    for out in (args.out, args.robots_out, args.pattern_out):
+        if out:
+            check_writable(out)  # before reading a trace of a million lines, not after
     header, events = load_trace(args.from_trace)
-    text = schedule_text(len(header.robots), schedule_of_trace(events, header.light_semantics == "lc-atomic"))
-    if args.out:
-        write_atomic(args.out, text)
-    else:
-        sys.stdout.write(text)
+    lc_atomic = header.light_semantics == "lc-atomic"
+    y_up = header.y_up if header.y_up is not None else [True] * len(header.robots)  # as the replay does
+    text = schedule_text(
+        len(header.robots), schedule_of_trace(events, lc_atomic), y_up, header.light_semantics
+    )
+    if args.robots_out:
+        write_atomic(args.robots_out, robots_json(header.robots, y_up))
+    if args.pattern_out:
+        write_atomic(args.pattern_out, pattern_json(header.pattern, f"pattern of {args.from_trace.name}"))
+    _emit(text, args.out)
     return 0
 
 
@@ -347,8 +411,15 @@ ALGORITHM_HELP = (
 SEMANTICS_HELP = "when a new light becomes visible: at the end of Compute, or Look+Compute atomic"
 
 
-def _add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str]) -> None:
-    p.add_argument("--scheduler", default="async", choices=list(schedulers), help="the adversary")
+def _add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str], defaults: bool = True) -> None:
+    """The adversary's options. ``defaults=False`` (``run``) leaves --scheduler and --light-semantics
+    None when not given, so that a --schedule can tell them apart from the defaults."""
+    p.add_argument(
+        "--scheduler",
+        default="async" if defaults else None,
+        choices=list(schedulers),
+        help="the adversary" + ("" if defaults else " (default: async)"),
+    )
     p.add_argument(
         "--seed",
         type=int,
@@ -357,7 +428,10 @@ def _add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str]) -> N
     )
     p.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help=ALGORITHM_HELP)
     p.add_argument(
-        "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
+        "--light-semantics",
+        default="compute" if defaults else None,
+        choices=["compute", "lc-atomic"],
+        help=SEMANTICS_HELP + ("" if defaults else " (default: compute, or the --schedule's)"),
     )
 
 
@@ -394,7 +468,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--pattern", required=True, type=Path, help='pattern file: {"name": ..., "points": [[x, y], ...]}'
     )
-    _add_run_options(run, [s for s in SCHEDULERS if s != "manual"])
+    _add_run_options(run, [s for s in SCHEDULERS if s != "manual"], defaults=False)
     run.add_argument(
         "--max-events",
         type=_positive,
@@ -423,8 +497,15 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--schedule",
         type=Path,
-        help="follow this schedule file (who acts, line by line; README 'Playing the adversary') instead "
-        "of --scheduler; the run stops where it ends (outcome schedule-end) unless --then",
+        help="follow this schedule file (who acts, line by line, and each robot's y-axis; README 'Playing "
+        "the adversary') instead of --scheduler; it replays the run it was recorded from whatever --seed "
+        "says; the run stops where it ends (outcome schedule-end) unless --then",
+    )
+    run.add_argument(
+        "--flips",
+        choices=["schedule", "file"],
+        help="with --schedule, when the robots file states y_up and it differs from the schedule's flips: "
+        "which to use (without it the contradiction is refused)",
     )
     run.add_argument(
         "--then",
@@ -432,7 +513,9 @@ def build_parser() -> argparse.ArgumentParser:
         help="with --schedule: when the schedule ends, continue under this scheduler",
     )
     run.add_argument(
-        "--schedule-out", type=Path, help="write the run's schedule (who acted) to this file (atomically)"
+        "--schedule-out",
+        type=Path,
+        help="write the run's schedule (who acted, the flips, the light semantics) to this file (atomically)",
     )
     run.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
     run.set_defaults(func=_cmd_run)
@@ -454,6 +537,12 @@ def build_parser() -> argparse.ArgumentParser:
     swp.add_argument("--traces", type=Path, help="write a trace of every run that did not form here")
     swp.add_argument("--workers", type=_positive, help="local worker processes (default: one per core)")
     swp.add_argument("--cluster", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    swp.add_argument(
+        "--run-timeout",
+        type=_positive_seconds,
+        help="seconds one run may take; a run past it is recorded as outcome 'timeout' with its counts "
+        "so far, and the sweep goes on (default: no limit)",
+    )
     swp.set_defaults(func=_cmd_sweep)
 
     plt = command("plot", "plot a sweep's results (PNG): moves vs k·D, failure rates, events per move")
@@ -461,9 +550,13 @@ def build_parser() -> argparse.ArgumentParser:
     plt.add_argument("--out", type=Path, default=Path("plots"), help="folder for the PNGs")
     plt.set_defaults(func=_cmd_plot)
 
-    sch = command("schedule", "write the schedule (who acted, not what they saw) of a trace")
+    sch = command("schedule", "write the schedule (who acted and the flips, not what they saw) of a trace")
     sch.add_argument("--from-trace", required=True, type=Path, help="the trace file (JSON Lines)")
     sch.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
+    sch.add_argument(
+        "--robots-out", type=Path, help="also write the trace's start (with its flips) as a robots file"
+    )
+    sch.add_argument("--pattern-out", type=Path, help="also write the trace's pattern as a pattern file")
     sch.set_defaults(func=_cmd_schedule)
 
     rep = command("replay", "re-run a trace file exactly and check every event")

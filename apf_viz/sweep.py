@@ -18,7 +18,7 @@ import math
 import sys
 import time
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
@@ -43,14 +43,21 @@ class Cell:
     robots: tuple[tuple[int, int], ...] = ()
     pattern: tuple[tuple[int, int], ...] = ()
     y_up: tuple[bool, ...] = ()
+    timeout: float | None = None  # seconds; a run past it is recorded as "timeout" (not part of the key)
 
     def key(self) -> tuple:
         return (self.k, self.seed, self.scheduler, self.algorithm, self.light_semantics, self.start)
 
 
+MAX_VALUES = 100_000  # values one --ks or --seeds list may name
+MAX_RUNS = 1_000_000  # runs one sweep may hold (its rows are kept in memory)
+MAX_K = 100_000  # robots per generated start (random_configs.MAX_RANDOM_POINTS)
+
+
 def parse_range(text: str, what: str) -> list[int]:
-    """ "1-50" or "5,10,20" (or both: "1-3,7") as integers; a reversed range is refused."""
-    out: list[int] = []
+    """ "1-50" or "5,10,20" (or both: "1-3,7") as integers; a reversed range is refused, and so is a
+    list of more than :data:`MAX_VALUES` values, counted before any is made."""
+    parts: list[tuple[int, int]] = []
     for part in text.split(","):
         part = part.strip()
         lo, dash, hi = part[1:].partition("-")  # a leading minus is a sign, not a range
@@ -60,10 +67,11 @@ def parse_range(text: str, what: str) -> list[int]:
             raise InputError(f"{what} {text!r}: not a list of integers or ranges like 1-50") from None
         if b < a:
             raise InputError(f"{what} {text!r}: the range {part} runs backwards")
-        out.extend(range(a, b + 1))
-    if not out:
-        raise InputError(f"{what}: empty")
-    return out
+        parts.append((a, b))
+    count = sum(b - a + 1 for a, b in parts)
+    if count > MAX_VALUES:
+        raise InputError(f"{what} {text!r}: {count:,} values, more than the {MAX_VALUES:,} a sweep takes")
+    return [v for a, b in parts for v in range(a, b + 1)]
 
 
 def generated_start(k: int, seed: int) -> tuple[list, list, list[bool]]:
@@ -95,19 +103,27 @@ def grid(
             get_algorithm(name)
         except ValueError as e:
             raise InputError(f"--algorithms: {e}") from None
+    choices = [s for s in SCHEDULERS if s != "manual"]
     for s in schedulers:
-        if s not in SCHEDULERS or s == "manual":
-            raise InputError(f"--schedulers: unknown scheduler {s!r}")
+        if s not in choices:
+            raise InputError(f"--schedulers: unknown scheduler {s!r} (choose from {', '.join(choices)})")
     for s in semantics:
         if s not in ("compute", "lc-atomic"):
-            raise InputError(f"--light-semantics: {s!r} is not compute or lc-atomic")
+            raise InputError(
+                f"--light-semantics: {s!r} is not compute or lc-atomic (choose from compute, lc-atomic)"
+            )
     if starts is None and any(k < 1 for k in ks):
         raise InputError(f"--ks: a run needs at least one robot (got {min(ks)})")
+    if starts is None and any(k > MAX_K for k in ks):
+        raise InputError(f"--ks: at most {MAX_K:,} robots per run (got {max(ks):,})")
     if any(seed < 0 for seed in seeds):
         raise InputError(f"--seeds: seeds are 0 or more (got {min(seeds)})")
     pairs: list[tuple[str, int, list, list, list[bool]]] = []
     if starts is not None:
         pairs = [(name, 0, r, p, f) for name, r, p, f in start_pairs(starts)]
+    runs = len(pairs or ks) * len(seeds) * len(schedulers) * len(algorithms) * len(semantics)
+    if runs > MAX_RUNS:
+        raise InputError(f"the sweep has {runs:,} runs, more than the {MAX_RUNS:,} one sweep takes; split it")
     cells = []
     for sched in schedulers:
         for alg in algorithms:
@@ -168,7 +184,13 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         max_events=budget.max_events,
         max_moves=budget.max_moves,
     )
-    advance(engine, make_scheduler(cell.scheduler), cell.seed)
+    scheduler = make_scheduler(cell.scheduler)
+    if cell.timeout is None:
+        advance(engine, scheduler, cell.seed)
+    else:
+        deadline = t0 + cell.timeout
+        while not engine.finished and time.perf_counter() < deadline:
+            advance(engine, scheduler, cell.seed, steps=_TIMEOUT_CHUNK)
     wall = time.perf_counter() - t0
     st = engine.state
     d = paper_D(robots, pattern)
@@ -180,8 +202,11 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         header = trace_header(engine, cell.scheduler, cell.seed)
         write_atomic(path, trace_text(header, engine.history.events()))
         trace = str(path)
-    outcome = st.outcome or "running"
+    outcome = st.outcome or "timeout"
     return row(cell, d, outcome, st.moves, st.events, st.cycles, len(st.lights_used), wall, trace)
+
+
+_TIMEOUT_CHUNK = 2_000  # steps between looks at the clock: milliseconds at any k
 
 
 def row(cell: Cell, d, outcome, moves, events, cycles, lights, wall, trace, error: str = "") -> dict:
@@ -196,19 +221,40 @@ def row(cell: Cell, d, outcome, moves, events, cycles, lights, wall, trace, erro
 
 # ---------------------------------------------------------------------------------------------- results
 def read_results(path: Path) -> list[dict]:
+    """The rows of a results table, or [] when there is none; a file that is not a table this sweep
+    wrote (another CSV, a Parquet file with other columns, notes) is refused, never overwritten."""
     if not path.exists():
         return []
     try:
         if path.suffix == ".csv":
             import csv
 
-            with path.open(newline="") as f:
-                return [_typed(r) for r in csv.DictReader(f)]
+            with path.open(newline="", encoding="utf-8") as f:
+                reader = csv.DictReader(f)
+                _check_columns(path, reader.fieldnames or [])
+                return [_typed(r) for r in reader]
         import pyarrow.parquet as pq
 
-        return pq.read_table(path).to_pylist()
+        table = pq.read_table(path)
+        _check_columns(path, table.column_names)
+        return table.to_pylist()
+    except InputError:
+        raise
     except Exception as e:  # a file that is not a results table: say so rather than overwrite it
-        raise InputError(f"{path}: not a results table this sweep can resume ({e})") from None
+        raise InputError(
+            f"{path}: not a results table this sweep can resume ({type(e).__name__}: {e})"
+        ) from None
+
+
+def _check_columns(path: Path, columns: Sequence[str]) -> None:
+    missing = [c for c in COLUMNS if c not in columns]
+    extra = [c for c in columns if c not in COLUMNS]
+    if missing or extra:
+        what = f"missing columns {', '.join(missing)}" if missing else ""
+        what += ("; " if missing and extra else "") + (
+            f"columns it does not write: {', '.join(extra)}" if extra else ""
+        )
+        raise InputError(f"{path}: not a results table of apf-viz sweep ({what}); choose another --out")
 
 
 def _typed(r: dict) -> dict:
@@ -245,6 +291,58 @@ def _schema():
 
 
 # ---------------------------------------------------------------------------------------------- driving
+@dataclass(frozen=True)
+class Progress:
+    """What a sweep reports while it runs (every finished run, and every second a run is still going)."""
+
+    finished: int
+    total: int
+    failed: int
+    seconds: float
+    eta: float | None  # seconds, from the sizes of the runs left (None until one has finished)
+    slowest: str = ""  # the run that has been running longest, and for how long
+
+
+def cost(cell: Cell) -> float:
+    """A run's expected time, in arbitrary units: moves grow as k·D and each costs a little more in a
+    bigger crowd (measured, README: k = 100 → 1.8 s, 300 → 21 s, 1,000 → 8 min); a fixed part per run."""
+    side = max(3, math.isqrt(3 * cell.k) + 1)
+    d = max(cell.k, side) if not cell.robots else max(cell.k, *_extent(cell.robots), *_extent(cell.pattern))
+    return 50.0 + (cell.k * d) ** 1.2
+
+
+def _extent(points: Sequence[tuple[int, int]]) -> tuple[int, int]:
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    return max(xs) - min(xs), max(ys) - min(ys)
+
+
+def _describe(cell: Cell) -> str:
+    where = cell.start or f"k={cell.k}"
+    return f"{where} seed {cell.seed} {cell.scheduler} {cell.algorithm}"
+
+
+def _client(cluster: str | None, workers: int | None):
+    """A client of the given scheduler, or of a local cluster (no dashboard, no fixed port)."""
+    from dask.distributed import Client, LocalCluster
+
+    if cluster:
+        try:
+            return Client(cluster, timeout="10s"), None
+        except (OSError, TimeoutError) as e:
+            reason = str(e) if str(e) not in ("", "None") else type(e).__name__
+            raise InputError(f"--cluster {cluster}: cannot reach a Dask scheduler there ({reason})") from None
+    local = LocalCluster(
+        n_workers=workers or _cores(),
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        # The scheduler serves HTTP (health, metrics) even without a dashboard, by default on 8787: a
+        # second sweep, or anything else there, would get a warning. Any free port on loopback will do.
+        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+    )
+    return Client(local), local
+
+
 def run_sweep(
     cells: Sequence[Cell],
     out: Path,
@@ -253,69 +351,134 @@ def run_sweep(
     workers: int | None = None,
     cluster: str | None = None,
     run: Callable[[Cell, str | None], dict] = run_cell,
-    progress: Callable[[int, int, int, float], None] | None = None,
+    progress: Callable[[Progress], None] | None = None,
+    run_timeout: float | None = None,
 ) -> list[dict]:
     """Run every cell not already in ``out`` on Dask; rows are written as they come (every few
     seconds) and at the end, also after Ctrl+C. Returns all rows of the file."""
-    from dask.distributed import Client, LocalCluster, as_completed
-
     check_writable(out)
+    rows = read_results(out)  # before any work: a file that is not a results table is refused
     if traces is not None:
         traces.mkdir(parents=True, exist_ok=True)
-    rows = read_results(out)
     done = {tuple(r[c] for c in KEY) for r in rows}
-    todo = [c for c in cells if c.key() not in done]
+    todo = [replace(c, timeout=run_timeout) for c in cells if c.key() not in done]
     if not todo:
         return rows
-    local = None
-    if cluster:
-        client = Client(cluster, timeout="20s")
-    else:
-        local = LocalCluster(
-            n_workers=workers or _cores(), threads_per_worker=1, processes=True, dashboard_address=None
-        )
-        client = Client(local)
+    client, local = _client(cluster, workers)
     futures = {client.submit(run, c, str(traces) if traces else None, pure=False): c for c in todo}
-    t0 = time.monotonic()
-    finished = failed = 0
-    last_write = t0
+    tracker = _Tracker(client, futures, progress)
     try:
-        for fut in as_completed(futures):
-            cell = futures[fut]
-            try:
-                r = fut.result()
-            except Exception as e:  # the run raised, or its worker died (KilledWorker)
-                r = row(cell, 0, "error", 0, 0, 0, 0, 0.0, "", f"{type(e).__name__}: {e}"[:500])
+        for r in tracker.results():
             rows.append(r)
-            finished += 1
-            failed += r["outcome"] != "formed"
-            if progress:
-                progress(finished, len(todo), failed, time.monotonic() - t0)
-            if time.monotonic() - last_write > 5:
+            if tracker.due_for_write():
                 write_results(out, rows)
-                last_write = time.monotonic()
     except KeyboardInterrupt:
         write_results(out, rows)  # first: every run that finished is kept, whatever shutting down does
         print("\napf-viz sweep: interrupted; keeping the runs that finished", file=sys.stderr)
         _shut_down(futures, client, local)
         raise
     write_results(out, rows)
-    client.close()
-    if local is not None:
-        local.close()
+    _shut_down(futures, client, local)
     return rows
 
 
+class _Tracker:
+    """Waits for the sweep's runs and reports progress: finished, failed, an ETA weighted by the runs'
+    sizes (:func:`cost`), and the run that has been running longest."""
+
+    def __init__(self, client, futures: dict, progress: Callable[[Progress], None] | None) -> None:
+        self.client, self.futures, self.progress = client, futures, progress
+        self.total = len(futures)
+        self.cost_left = sum(cost(c) for c in futures.values())
+        self.cost_done = 0.0
+        self.finished = self.failed = 0
+        self.t0 = self.last_write = time.monotonic()
+        self.started: dict[str, float] = {}  # task key → when it was first seen running
+
+    def results(self):
+        from dask.distributed import wait
+
+        pending = set(self.futures)
+        while pending:
+            try:
+                finished, pending = wait(pending, timeout=1.0, return_when="FIRST_COMPLETED")
+            except TimeoutError:
+                finished = set()
+            for fut in finished:
+                r = self._row(fut)
+                self.finished += 1
+                self.failed += r["outcome"] != "formed"
+                self.cost_done += cost(self.futures[fut])
+                self.cost_left -= cost(self.futures[fut])
+                self.started.pop(fut.key, None)
+                yield r
+            self._report(pending)
+
+    def _row(self, fut) -> dict:
+        cell = self.futures[fut]
+        try:
+            return fut.result()
+        except Exception as e:  # the run raised, or its worker died (KilledWorker)
+            return row(cell, 0, "error", 0, 0, 0, 0, 0.0, "", f"{type(e).__name__}: {e}"[:500])
+
+    def due_for_write(self) -> bool:
+        if time.monotonic() - self.last_write > 5:
+            self.last_write = time.monotonic()
+            return True
+        return False
+
+    def _report(self, pending: set) -> None:
+        if self.progress is None:
+            return
+        now = time.monotonic()
+        seconds = now - self.t0
+        eta = seconds * self.cost_left / self.cost_done if self.cost_done else None
+        self.progress(
+            Progress(self.finished, self.total, self.failed, seconds, eta, self._slowest(pending, now))
+        )
+
+    def _slowest(self, pending: set, now: float) -> str:
+        if not pending:
+            return ""
+        try:  # a worker's queue counts as "processing" for the scheduler: ask what each one executes
+            running = {key for keys in self.client.run(_executing).values() for key in keys}
+        except Exception:  # a worker is busy or gone: no line is better than a wrong one
+            return ""
+        for key in running:
+            self.started.setdefault(key, now)
+        by_key = {f.key: f for f in pending}
+        candidates = [(t, k) for k, t in self.started.items() if k in running and k in by_key]
+        if not candidates:
+            return ""
+        t, key = min(candidates)
+        return f"{_describe(self.futures[by_key[key]])} running {now - t:.0f} s"
+
+
+def _executing(dask_worker) -> list:
+    """On a worker: the keys of the tasks it is running now (not those queued on it)."""
+    return [ts.key for ts in dask_worker.state.executing]
+
+
 def _shut_down(futures, client, local) -> None:
-    """Cancel what is queued and close the cluster; Dask may itself be interrupted mid-way (its errors
-    then are its own, and the results are already written)."""
+    """Cancel what is queued and close the cluster quietly: once the results are written, Dask's own
+    shutdown messages (a worker killed after 4 s, a heartbeat to a closed scheduler) report nothing
+    lost. Dask may itself be interrupted mid-way (a second Ctrl+C): nothing is lost then either."""
+    import logging
+
+    loggers = [logging.getLogger(name) for name in ("distributed", "tornado", "asyncio")]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
     try:
-        client.cancel(list(futures))
+        client.cancel([f for f in futures if not f.done()])
         client.close()
         if local is not None:
             local.close()
-    except BaseException:  # a second Ctrl+C, or Dask's own shutdown errors: nothing is lost
+    except BaseException:
         pass
+    finally:
+        for lg, level in zip(loggers, levels, strict=True):
+            lg.setLevel(level)
 
 
 def _cores() -> int:
@@ -324,14 +487,24 @@ def _cores() -> int:
     return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
 
 
-def report_progress(finished: int, total: int, failed: int, seconds: float) -> None:
-    eta = seconds / finished * (total - finished) if finished else 0.0
+def report_progress(p: Progress) -> None:
+    eta = "ETA …" if p.eta is None else f"ETA {_duration(p.eta)}"
+    slowest = f"; slowest: {p.slowest}" if p.slowest else ""
+    line = f"apf-viz sweep: {p.finished}/{p.total} runs, {p.failed} not formed, {_duration(p.seconds)}, {eta}"
     print(
-        f"\rapf-viz sweep: {finished}/{total} runs, {failed} not formed, {seconds:.0f} s, ETA {eta:.0f} s  ",
-        end="" if finished < total else "\n",
+        f"\r{line}{slowest}\x1b[K",
+        end="" if p.finished < p.total else "\n",
         file=sys.stderr,
         flush=True,
     )
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
 
 
 def summary(rows: Iterable[dict]) -> str:

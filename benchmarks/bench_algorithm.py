@@ -8,6 +8,9 @@ audit (k cells of a √(3k)-sided box). Each run is a child process, so its peak
 that takes longer than ``--timeout`` is reported as such (and Ctrl+C keeps the rows printed so far).
 
 Run: python benchmarks/bench_algorithm.py [--ks 5,10,20,40,100] [--all-up-to 100] [--timeout 900]
+     python benchmarks/bench_algorithm.py --one K SEED SKIP   (one run in this process, as JSON)
+
+It needs the package installed (``pip install -e .``); a run that fails makes the exit status 1.
 """
 
 from __future__ import annotations
@@ -58,19 +61,31 @@ def one(k: int, seed: int, scheduler: str, skip: bool) -> dict:
     }
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--ks", default="5,10,20,40,100")
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--scheduler", default="async")
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], allow_abbrev=False)
+    ap.add_argument("--ks", default="5,10,20,40,100", help="robot counts, one row (or two) each")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the start, pattern, flips and scheduler")
+    ap.add_argument("--scheduler", default="async", help="the adversary (apf-viz run --help lists them)")
     ap.add_argument("--all-up-to", type=int, default=100, help="also run --all-activations up to this k")
     ap.add_argument("--timeout", type=float, default=900.0, help="seconds per run")
-    ap.add_argument("--one", nargs=3, metavar=("K", "SEED", "SKIP"), help=argparse.SUPPRESS)
+    ap.add_argument(
+        "--one",
+        nargs=3,
+        metavar=("K", "SEED", "SKIP"),
+        help="one run of k robots from this seed, SKIP 1 (skip no-ops) or 0 (all activations), in this "
+        "process, printed as one JSON object (how the table's rows are made, and the k = 1,000 row)",
+    )
     args = ap.parse_args()
+    try:
+        import apf_viz  # noqa: F401
+    except ImportError:
+        print("bench_algorithm: apf_viz is not installed: pip install -e . first", file=sys.stderr)
+        return 2
     if args.one:
         k, seed, skip = int(args.one[0]), int(args.one[1]), args.one[2] == "1"
         print(json.dumps(one(k, seed, args.scheduler, skip)))
-        return
+        return 0
+    failed = False
     print(
         "| k | D | mode | moves | moves/(k·D) | events | events/move "
         f"| wall time ({args.scheduler}) | peak memory |"
@@ -91,11 +106,12 @@ def main() -> None:
                 except subprocess.TimeoutExpired:
                     print(f"| {k} | | {mode} | | | | | > {args.timeout:.0f} s | |", flush=True)
                     continue
-                if out.returncode != 0:
-                    print(f"| {k} | | {mode} | failed: {out.stderr.strip()[-200:]} |", flush=True)
+                r = json.loads(out.stdout) if out.returncode == 0 else {}
+                if not r.get("ok"):
+                    failed = True
+                    why = out.stderr.strip()[-200:] or f"the audit found problems: {r}"
+                    print(f"| {k} | | {mode} | failed: {why} |", flush=True)
                     continue
-                r = json.loads(out.stdout)
-                assert r["ok"], r
                 print(
                     f"| {k:,} | {r['D']:,} | {mode} | {r['moves']:,} | {r['moves'] / r['kD']:.3f} "
                     f"| {r['events']:,} | {r['events'] / max(1, r['moves']):.1f} | {r['wall']:.1f} s "
@@ -104,7 +120,9 @@ def main() -> None:
                 )
     except KeyboardInterrupt:
         print("(interrupted: the rows above are complete)", file=sys.stderr)
+        return 130
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

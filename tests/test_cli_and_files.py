@@ -468,3 +468,18 @@ def test_a_file_that_is_not_an_object_is_named_plainly(write_json):
     assert (
         proc.returncode == 2 and "expected a JSON object" in proc.stderr and "RobotsFile" not in proc.stderr
     )
+
+
+def test_an_abbreviated_option_is_an_error_not_a_guess(write_json):
+    robots, pattern = write_json("r.json", GOOD_ROBOTS), write_json("p.json", GOOD_PATTERN)
+    out = run_cli("run", "--robot", str(robots), "--pattern", str(pattern))
+    assert out.returncode == 2 and "required: --robots" in out.stderr
+
+
+def test_sweep_names_the_valid_schedulers_and_semantics(tmp_path):
+    out = run_cli(
+        "sweep", "--ks", "3", "--seeds", "1", "--schedulers", "asynch", "--out", str(tmp_path / "r.csv")
+    )
+    assert out.returncode == 2 and "unknown scheduler 'asynch' (choose from fsync, ssync, async" in out.stderr
+    out = run_cli("sweep", "--ks", "3", "--light-semantics", "lc", "--out", str(tmp_path / "r.csv"))
+    assert out.returncode == 2 and "choose from compute, lc-atomic" in out.stderr

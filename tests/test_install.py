@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import site
 import subprocess
 import sys
 import time
@@ -17,6 +18,25 @@ from apf_viz.ui.app import free_port
 
 ROOT = Path(__file__).resolve().parent.parent
 IGNORED = (".git", ".venv", "build", "*.egg-info", "__pycache__", "test-output", ".hypothesis", ".*_cache")
+
+
+def _see_the_running_environment(python: Path) -> None:
+    """Let a fresh venv import the dependencies installed for this test run (numpy, viser, ...), so that
+    only the wheel is installed into it, with no download.
+
+    ``system_site_packages`` would give the *base* interpreter's packages, not those of the venv the
+    tests run in (where the README's commands installed them): name this interpreter's site-packages
+    in a .pth file instead. Lines of a .pth file only extend ``sys.path``; the .pth files inside those
+    folders are not processed, so the editable install of this checkout stays invisible, and the venv's
+    own site-packages (the wheel) comes first."""
+    own = subprocess.run(
+        [str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.strip()
+    outer = [p for p in (*site.getsitepackages(), site.getusersitepackages()) if Path(p).is_dir()]
+    (Path(own) / "_apf_viz_test_outer.pth").write_text("\n".join(outer) + "\n")
 
 
 def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
@@ -31,9 +51,9 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
     assert built.returncode == 0, built.stderr[-2000:]
     (wheel,) = wheels.glob("apf_viz-*.whl")
     env_dir = tmp_path / "venv"
-    # The venv sees this interpreter's packages (numpy, viser, ...), so only the wheel is installed.
-    venv.EnvBuilder(system_site_packages=True, with_pip=True).create(env_dir)
+    venv.EnvBuilder(system_site_packages=False, with_pip=True).create(env_dir)
     python = env_dir / "bin" / "python"
+    _see_the_running_environment(python)
     installed = subprocess.run(
         [str(python), "-m", "pip", "install", "-q", "--no-deps", str(wheel)], capture_output=True, text=True
     )

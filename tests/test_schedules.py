@@ -184,3 +184,121 @@ def test_a_line_naming_a_robot_that_does_not_exist_keeps_the_run_up_to_it(tmp_pa
     out = run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule",
                   str(wrong_header))  # fmt: skip
     assert out.returncode == 2 and "a schedule for 5 robots, but the run has 10" in out.stderr
+
+
+# ------------------------------------------------------------------------- a schedule is the whole adversary
+CALL = Path(__file__).resolve().parent.parent / "demo_patterns" / "starts" / "sym-call-7.json"
+CUP = Path(__file__).resolve().parent.parent / "demo_patterns" / "cup-7.json"
+
+
+def run_json(*args: str) -> dict:
+    out = run_cli("run", "--robots", str(CALL), "--pattern", str(CUP), "--json", *args)
+    assert out.returncode in (0, 1), out.stderr
+    return json.loads(out.stdout)
+
+
+@pytest.mark.parametrize("algorithm", ["apf-opaque-grid", "apf-opaque-grid-literal"])
+def test_a_recorded_schedule_replays_its_run_whatever_the_seed(tmp_path, algorithm):
+    s = tmp_path / "s.jsonl"
+    first = run_json(
+        "--algorithm", algorithm, "--scheduler", "async", "--seed", "5", "--schedule-out", str(s)
+    )
+    header = json.loads(s.read_text().splitlines()[0])
+    assert header["version"] == 2 and len(header["y_up"]) == 7 and header["light_semantics"] == "compute"
+    for seed in ([], ["--seed", "1"], ["--seed", "99"]):
+        again = run_json("--algorithm", algorithm, "--schedule", str(s), *seed)
+        if first["outcome"] in ("formed", "stuck", "collision"):  # the literal paper may fail: the same way
+            assert again["outcome"] == first["outcome"], (seed, again)
+        assert {k: again[k] for k in ("final", "moves", "events")} == {
+            k: first[k] for k in ("final", "moves", "events")
+        }, seed
+
+
+def test_the_schedule_flips_against_a_robots_file_that_states_its_own(tmp_path):
+    s = tmp_path / "s.jsonl"
+    run_json("--seed", "5", "--schedule-out", str(s))
+    y_up = json.loads(s.read_text().splitlines()[0])["y_up"]
+    robots = json.loads(CALL.read_text())
+    same, other = tmp_path / "same.json", tmp_path / "other.json"
+    same.write_text(json.dumps({**robots, "y_up": y_up}))
+    other.write_text(json.dumps({**robots, "y_up": [not y_up[0], *y_up[1:]]}))
+    base = ["run", "--pattern", str(CUP), "--schedule", str(s)]
+    assert run_cli(*base, "--robots", str(same)).returncode == 0
+    refused = run_cli(*base, "--robots", str(other))
+    assert refused.returncode == 2 and refused.stderr.count("\n") == 1
+    assert "robot 0" in refused.stderr and "--flips schedule or --flips file" in refused.stderr
+    assert run_cli(*base, "--robots", str(other), "--flips", "schedule").returncode == 0
+    with_file = run_cli(*base, "--robots", str(other), "--flips", "file", "--json")
+    assert with_file.returncode in (0, 1) and with_file.stderr == ""
+
+
+def test_schedule_with_scheduler_or_contradicting_semantics_is_refused(tmp_path):
+    s = tmp_path / "s.jsonl"
+    run_json("--light-semantics", "lc-atomic", "--schedule-out", str(s))
+    base = ["run", "--robots", str(CALL), "--pattern", str(CUP), "--schedule", str(s)]
+    out = run_cli(*base, "--scheduler", "ssync")
+    assert out.returncode == 2 and "--then ssync" in out.stderr and out.stderr.count("\n") == 1
+    out = run_cli(*base, "--light-semantics", "compute")
+    assert out.returncode == 2 and "recorded under lc-atomic" in out.stderr
+    assert run_cli(*base).returncode == 0  # the schedule's semantics, unasked
+    assert run_cli(*base, "--light-semantics", "lc-atomic").returncode == 0
+
+
+def test_a_version_1_schedule_loads_with_a_warning_that_the_seed_decides_the_flips(tmp_path):
+    s = tmp_path / "v1.jsonl"
+    s.write_text('{"format": "apf-viz-schedule", "version": 1, "robots": 7}\n{"robot": 0, "phase": "look"}\n')
+    out = run_cli("run", "--robots", str(CALL), "--pattern", str(CUP), "--schedule", str(s), "--json")
+    assert out.returncode == 1 and json.loads(out.stdout)["outcome"] == "schedule-end"
+    assert "records no y-axis flips" in out.stderr and "--seed decides them" in out.stderr
+
+
+def test_schedule_from_trace_writes_the_start_and_pattern_that_replay_the_run(tmp_path):
+    trace, s, r, p = (tmp_path / n for n in ("t.jsonl", "s.jsonl", "r.json", "p.json"))
+    first = run_cli(
+        "run", "--robots", str(CALL), "--pattern", str(CUP), "--seed", "3", "--trace", str(trace), "--json"
+    )
+    made = run_cli(
+        "schedule",
+        "--from-trace",
+        str(trace),
+        "--out",
+        str(s),
+        "--robots-out",
+        str(r),
+        "--pattern-out",
+        str(p),
+    )
+    assert made.returncode == 0, made.stderr
+    again = run_cli("run", "--robots", str(r), "--pattern", str(p), "--schedule", str(s), "--json")
+    assert again.returncode == 0 and again.stderr == ""
+    assert json.loads(again.stdout)["final"] == json.loads(first.stdout)["final"]
+    assert json.loads(again.stdout)["events"] == json.loads(first.stdout)["events"]
+
+
+def test_a_schedule_given_as_a_trace_and_a_trace_given_as_a_schedule_say_which_command(tmp_path):
+    s = tmp_path / "s.jsonl"
+    run_json("--schedule-out", str(s))
+    out = run_cli("replay", "--trace", str(s))
+    assert (
+        out.returncode == 2 and "this is a schedule, not a trace" in out.stderr and "--schedule" in out.stderr
+    )
+    trace = Path(__file__).parent / "gap_traces" / "L2.jsonl"
+    out = run_cli("run", "--robots", str(CALL), "--pattern", str(CUP), "--schedule", str(trace))
+    assert out.returncode == 2 and "this is a trace, not a schedule" in out.stderr
+
+
+def test_the_visualiser_takes_an_uploaded_schedule_with_its_flips():
+    from apf_viz.ui.session import Session
+
+    e = demo_engine()
+    flipped = tuple(not u for u in e.y_up)
+    other = Engine(e.start, e.pattern, get_algorithm("apf-opaque-grid"), y_up=flipped)
+    advance(other, make_scheduler("async"), 3)
+    text = schedule_text(other.k, schedule_of_steps(other.history.steps), other.y_up, "compute")
+    session = Session(list(e.start), list(e.pattern), y_up=e.y_up)
+    note = session.load_schedule("s.jsonl", text.encode())
+    assert note is not None and "flips replace the run's (10 robots differ)" in note
+    assert tuple(session.y_up) == flipped
+    while session.engine.step_index < len(other.history.steps):
+        session.step()
+    assert session.engine.current_points() == other.current_points()

@@ -5,6 +5,7 @@ the command line loaded resolve. A name like ``os:abort`` is refused with one li
 
 from __future__ import annotations
 
+import builtins
 import importlib
 import json
 import math
@@ -74,16 +75,31 @@ def test_replay_with_an_algorithm_given_on_the_command_line(write_json):
     assert json.loads(proc.stdout)["outcome"] == "formed"
 
 
-def test_get_algorithm_never_imports(monkeypatch):
+def test_get_algorithm_never_imports():
+    """Patched by hand, not with monkeypatch: pytest's own setattr may import while the patch is active
+    (pytest 9.2 does), and the test must not depend on what a test tool does inside."""
+
     def forbidden(*args, **kwargs):
         raise AssertionError("get_algorithm imported a module")
 
-    monkeypatch.setattr(importlib, "import_module", forbidden)
-    monkeypatch.setattr("builtins.__import__", forbidden)
-    for name in ("os:abort", "this:s", "apf_viz.algorithms.examples:Stay", "../../etc/passwd", ""):
-        with pytest.raises(ValueError, match="unknown algorithm"):
-            get_algorithm(name)
-    assert get_algorithm("apf-opaque-grid@G1,G2").name == "apf-opaque-grid@G1,G2"
+    names = ("os:abort", "this:s", "apf_viz.algorithms.examples:Stay", "../../etc/passwd", "")
+    outcomes: list[str] = []
+    saved = (builtins.__import__, importlib.import_module)
+    builtins.__import__, importlib.import_module = forbidden, forbidden
+    try:
+        for name in names:
+            try:
+                get_algorithm(name)
+                outcomes.append("resolved")
+            except ValueError as e:
+                outcomes.append(str(e))
+            except AssertionError as e:
+                outcomes.append(f"imported: {e}")
+        variant = get_algorithm("apf-opaque-grid@G1,G2").name
+    finally:
+        builtins.__import__, importlib.import_module = saved
+    assert all(o.startswith("unknown algorithm") for o in outcomes), outcomes
+    assert variant == "apf-opaque-grid@G1,G2"
 
 
 def test_only_the_command_line_loads_a_plugin():

@@ -10,9 +10,10 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, BinaryIO, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
 
@@ -174,13 +175,13 @@ def _one_line(err: ValidationError) -> str:
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
 
 
-def _read_text(path: Path | str, limit: int = MAX_INPUT_BYTES) -> str:
+@contextmanager
+def _reading(path: Path | str) -> Iterator[BinaryIO]:
+    """The file opened for reading, every failure an :class:`InputError` naming it."""
     p = Path(path)
     try:
-        size = p.stat().st_size
-        if size > limit:
-            raise InputError(f"{p}: file is too large ({size:,} bytes, limit {limit:,})")
-        return p.read_text(encoding="utf-8")
+        with p.open("rb") as f:
+            yield f
     except FileNotFoundError:
         raise InputError(f"{p}: no such file") from None
     except IsADirectoryError:
@@ -189,6 +190,41 @@ def _read_text(path: Path | str, limit: int = MAX_INPUT_BYTES) -> str:
         raise InputError(f"{p}: not UTF-8 text") from None
     except OSError as e:
         raise InputError(f"{p}: cannot read ({e.strerror})") from None
+
+
+def _too_large(p: Path | str, limit: int) -> InputError:
+    return InputError(f"{p}: file is too large (more than {limit:,} bytes)")
+
+
+def _read_text(path: Path | str, limit: int = MAX_INPUT_BYTES) -> str:
+    """At most ``limit`` bytes, whatever ``stat`` says: a device or a pipe reports a size of 0 and may
+    never end (``/dev/zero``), so the limit is on what is read, not on what the file claims."""
+    with _reading(path) as f:
+        data = f.read(limit + 1)
+        if len(data) > limit:
+            raise _too_large(path, limit)
+        return data.decode("utf-8")
+
+
+def read_lines(path: Path | str, limit: int) -> Iterator[tuple[int, str]]:
+    """The file's non-blank lines with their numbers, read one at a time (a long trace or schedule is
+    never held whole), and at most ``limit`` bytes in all, however long a line."""
+    read = 0
+    with _reading(path) as f:
+        n = 0
+        while raw := f.readline(limit - read + 1):
+            read += len(raw)
+            if read > limit:
+                raise _too_large(path, limit)
+            n += 1
+            line = raw.decode("utf-8")
+            if line.strip():
+                yield n, line
+
+
+def numbered_lines(text: str) -> Iterator[tuple[int, str]]:
+    """The non-blank lines of a text with their numbers (as :func:`read_lines` gives a file's)."""
+    return ((n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip())
 
 
 def _parse_json(text: str, where: str) -> Any:
@@ -225,15 +261,25 @@ def load_pattern(path: Path | str) -> PatternFile:
     return parse_pattern(_read_text(path), str(path))
 
 
-def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Event]]:
-    lines = [(n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip()]
-    if not lines:
+def parse_trace_lines(
+    numbered: Iterable[tuple[int, str]], where: str = "trace"
+) -> tuple[TraceHeader, list[Event]]:
+    """A trace from its non-blank lines, each with its line number (read as they come)."""
+    lines = iter(numbered)
+    first = next(lines, None)
+    if first is None:
         raise InputError(f"{where}: empty trace file")
-    n0, first = lines[0]
-    header = _validate(TraceHeader, _parse_json(first, f"{where}:{n0}"), f"{where}:{n0}")
+    n0, text = first
+    data = _parse_json(text, f"{where}:{n0}")
+    if isinstance(data, dict) and data.get("format") == "apf-viz-schedule":
+        raise InputError(
+            f"{where}: this is a schedule, not a trace; follow it with apf-viz run --robots R --pattern P "
+            f"--schedule {where}"
+        )
+    header = _validate(TraceHeader, data, f"{where}:{n0}")
     k = len(header.robots)
     events = []
-    for n, line in lines[1:]:
+    for n, line in lines:
         ev = _validate(TraceEvent, _parse_json(line, f"{where}:{n}"), f"{where}:{n}")
         if ev.robot >= k:
             raise InputError(f"{where}:{n}: robot {ev.robot} does not exist ({k} robots)")
@@ -243,8 +289,12 @@ def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Even
     return header, events
 
 
+def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Event]]:
+    return parse_trace_lines(numbered_lines(text), where)
+
+
 def load_trace(path: Path | str) -> tuple[TraceHeader, list[Event]]:
-    return parse_trace(_read_text(path, MAX_TRACE_BYTES), str(path))
+    return parse_trace_lines(read_lines(path, MAX_TRACE_BYTES), str(path))
 
 
 def size_problem(pattern_points: int, robots: int) -> str | None:

@@ -2,13 +2,15 @@
 ``random-pattern``).
 
 The box is [0, width) × [0, height); its cells are numbered x-major (cell i is (i // height, i % height))
-and ``count`` distinct numbers are drawn with :meth:`random.Random.sample` on a ``range``, so a box of
-10^18 cells costs no more than one of 100: nothing but the drawn cells is ever built.
+and ``count`` distinct numbers are drawn with :meth:`random.Random.sample` on a ``range`` (or, past
+2^63 cells, where a ``range`` has no length, by repeated draws), so a box of 10^24 cells costs no more
+than one of 100: nothing but the drawn cells is ever built.
 """
 
 from __future__ import annotations
 
 import random
+import sys
 
 from apf_viz.core.grid import COORD_LIMIT, Point
 from apf_viz.core.symmetry import unsolvable_axis
@@ -35,7 +37,15 @@ def sample_cells(count: int, width: int, height: int, rng: random.Random) -> lis
     problem = box_problem(count, width, height)
     if problem:
         raise ValueError(problem)
-    return sorted((i // height, i % height) for i in rng.sample(range(width * height), count))
+    cells = width * height
+    if cells <= sys.maxsize:
+        numbers = rng.sample(range(cells), count)
+    else:  # len(range) must fit a C ssize_t; in a box this big, draws almost never repeat
+        drawn: dict[int, None] = {}
+        while len(drawn) < count:
+            drawn.setdefault(rng.randrange(cells))
+        numbers = list(drawn)
+    return sorted((i // height, i % height) for i in numbers)
 
 
 def random_robots(

@@ -6,42 +6,62 @@ SSYNC/FSYNC round: those robots Look, then Compute, then Move together). Which p
 depends only on how often it was activated, never on what it decided, so the same schedule drives any
 algorithm — the point: the same adversary against two variants.
 
-File: a header line ``{"format": "apf-viz-schedule", "version": 1, "robots": k}``, then one line per
-event or round (JSON Lines, hand-editable). A line that names a robot that does not exist, or a phase
-that is not that robot's next one, is refused with its line number.
+The adversary also chooses each robot's y-axis, and a run replays only with the flips it was recorded
+with: so the header carries them, and the light semantics, ``{"format": "apf-viz-schedule", "version":
+2, "robots": k, "y_up": [...], "light_semantics": "compute"}``; then one line per event or round (JSON
+Lines, hand-editable). A version-1 header (``robots`` only) still loads; then the robots file or the
+seed decides the flips, and the caller warns. A line that names a robot that does not exist, or a phase
+that is not that robot's next one, is refused with its line number when the run reaches it.
 """
 
 from __future__ import annotations
 
 import json
+from array import array
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, StrictInt
+from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, model_validator
 
 from apf_viz.core.engine import Engine
-from apf_viz.core.formats import MAX_TRACE_BYTES, InputError, _parse_json, _read_text, _validate
+from apf_viz.core.formats import InputError, _parse_json, _validate, numbered_lines, read_lines
 from apf_viz.core.history import Event, RecordedStep
 from apf_viz.core.run import steps_of_trace
 
 SCHEDULE_FORMAT = "apf-viz-schedule"
-SCHEDULE_VERSION = 1
+SCHEDULE_VERSION = 2
 Phase = Literal["look", "compute", "move"]
+PHASES: tuple[Phase, ...] = ("look", "compute", "move")
+# A schedule line is one event or round: a file of many million lines is the adversary of a long run.
+# Parsed lines are kept as two integers each (line number, code), not as objects: 16 bytes a line.
+MAX_SCHEDULE_BYTES = 200_000_000
 
 
 class ScheduleHeader(BaseModel):
+    """Version 2 records the whole adversary: who acts (the lines) and each robot's y-axis (``y_up``),
+    and the light semantics the schedule was recorded under. Version 1 had only ``robots``."""
+
     model_config = ConfigDict(extra="forbid")
     format: Literal["apf-viz-schedule"]
-    version: Literal[1]
+    version: Literal[1, 2]
     robots: StrictInt = Field(ge=1, description="how many robots the schedule is for")
+    y_up: list[StrictBool] | None = None
+    light_semantics: Literal["compute", "lc-atomic"] | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> ScheduleHeader:
+        if self.y_up is not None and len(self.y_up) != self.robots:
+            raise ValueError(f"y_up has {len(self.y_up)} entries for {self.robots} robots")
+        return self
 
 
 class Activation(BaseModel):
-    """One ASYNC event: this robot's next phase, which must be ``phase``."""
+    """One ASYNC event: this robot's next phase, which must be ``phase``. A robot that does not exist
+    (a negative number included) is refused when the run reaches it, so that the run so far is kept."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
-    robot: StrictInt = Field(ge=0)
+    robot: StrictInt
     phase: Phase
 
 
@@ -55,40 +75,126 @@ class Round(BaseModel):
 Line = Activation | Round
 
 
-class Schedule(BaseModel):
-    """A parsed schedule: ``k`` robots and its lines, each with its line number in the file."""
+class Schedule:
+    """A parsed schedule: ``k`` robots, the flips and light semantics it was recorded with (None in a
+    version-1 file), and its lines, each with its line number in the file.
 
-    k: int
-    lines: list[tuple[int, Line]]
+    An activation of robot r ≥ 0 is stored as the integer ``3·r + phase``; any other line (a round, or
+    an activation of a negative robot, refused when followed) as ``-1 - i``, the i-th of ``_others``."""
+
+    __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "y_up")
+
+    def __init__(
+        self, k: int, y_up: Sequence[bool] | None = None, light_semantics: str | None = None
+    ) -> None:
+        self.k = k
+        self.y_up = tuple(y_up) if y_up is not None else None
+        self.light_semantics = light_semantics
+        self._numbers = array("q")
+        self._codes = array("q")
+        self._others: list[Line] = []
+
+    def add(self, number: int, line: Line) -> None:
+        if isinstance(line, Activation) and line.robot >= 0:
+            self._add_activation(number, line.robot, PHASES.index(line.phase))
+            return
+        self._numbers.append(number)
+        self._codes.append(-1 - len(self._others))
+        self._others.append(line)
+
+    def _add_activation(self, number: int, robot: int, phase: int) -> None:
+        self._numbers.append(number)
+        self._codes.append(3 * robot + phase)
+
+    def __len__(self) -> int:
+        return len(self._codes)
+
+    def __iter__(self) -> Iterator[tuple[int, int | None, Phase | tuple[int, ...]]]:
+        """(line number, robot, phase) for an activation, (line number, None, robots) for a round."""
+        others = self._others
+        for n, code in zip(self._numbers, self._codes, strict=True):
+            if code >= 0:
+                robot, phase = divmod(code, 3)
+                yield n, robot, PHASES[phase]
+                continue
+            line = others[-1 - code]
+            if isinstance(line, Round):
+                yield n, None, tuple(line.round)
+            else:
+                yield n, line.robot, line.phase
+
+    def lines(self) -> list[Line]:
+        """The lines as models (for writing; a followed schedule never builds them)."""
+        return [
+            Round(round=list(what)) if r is None else Activation(robot=r, phase=what)  # type: ignore[arg-type]
+            for _, r, what in self
+        ]
 
 
-def _line(data: object, where: str) -> Line:
+_PHASE_CODE = {p: i for i, p in enumerate(PHASES)}
+
+
+def _parse_line(raw: str, where: str, schedule: Schedule, n: int) -> None:
+    data = _parse_json(raw, where)
+    # The common line, checked by hand: a million lines through pydantic cost 47 s.
+    if type(data) is dict and len(data) == 2 and type(data.get("robot")) is int and data["robot"] >= 0:
+        phase = _PHASE_CODE.get(data.get("phase"))  # type: ignore[arg-type]
+        if phase is not None:
+            schedule._add_activation(n, data["robot"], phase)
+            return
     if isinstance(data, dict) and "round" in data:
-        return _validate(Round, data, where)
-    return _validate(Activation, data, where)
+        line: Line = _validate(Round, data, where)
+        if len(set(line.round)) != len(line.round):
+            raise InputError(f"{where}: a robot is listed twice in one round")
+    else:
+        line = _validate(Activation, data, where)  # only to say what is wrong with it
+    schedule.add(n, line)
+
+
+def _other_format(data: object, where: str) -> None:
+    if isinstance(data, dict) and data.get("format") == "apf-viz-trace":
+        raise InputError(
+            f"{where}: this is a trace, not a schedule; replay it with apf-viz replay --trace, or take its "
+            "schedule with apf-viz schedule --from-trace"
+        )
+
+
+def parse_schedule_lines(numbered: Iterable[tuple[int, str]], where: str = "schedule") -> Schedule:
+    """A schedule from its non-blank lines, each with its line number (read as they come)."""
+    lines = iter(numbered)
+    first = next(lines, None)
+    if first is None:
+        raise InputError(f"{where}: empty schedule file")
+    n0, text = first
+    data = _parse_json(text, f"{where}:{n0}")
+    _other_format(data, where)
+    header = _validate(ScheduleHeader, data, f"{where}:{n0}")
+    schedule = Schedule(header.robots, header.y_up, header.light_semantics)
+    for n, raw in lines:
+        _parse_line(raw, f"{where}:{n}", schedule, n)
+    return schedule
 
 
 def parse_schedule(text: str, where: str = "schedule") -> Schedule:
-    numbered = [(n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip()]
-    if not numbered:
-        raise InputError(f"{where}: empty schedule file")
-    n0, first = numbered[0]
-    header = _validate(ScheduleHeader, _parse_json(first, f"{where}:{n0}"), f"{where}:{n0}")
-    lines: list[tuple[int, Line]] = []
-    for n, raw in numbered[1:]:
-        line = _line(_parse_json(raw, f"{where}:{n}"), f"{where}:{n}")
-        if isinstance(line, Round) and len(set(line.round)) != len(line.round):
-            raise InputError(f"{where}:{n}: a robot is listed twice in one round")
-        lines.append((n, line))
-    return Schedule(k=header.robots, lines=lines)
+    return parse_schedule_lines(numbered_lines(text), where)
 
 
 def load_schedule(path: Path | str) -> Schedule:
-    return parse_schedule(_read_text(path, MAX_TRACE_BYTES), str(path))
+    return parse_schedule_lines(read_lines(path, MAX_SCHEDULE_BYTES), str(path))
 
 
-def schedule_text(k: int, lines: Iterable[Line]) -> str:
-    header = {"format": SCHEDULE_FORMAT, "version": SCHEDULE_VERSION, "robots": k}
+def schedule_text(
+    k: int,
+    lines: Iterable[Line],
+    y_up: Sequence[bool] | None = None,
+    light_semantics: str | None = None,
+) -> str:
+    """A schedule file; ``y_up`` and ``light_semantics`` make it the whole adversary (version 2)."""
+    header: dict = {"format": SCHEDULE_FORMAT, "version": SCHEDULE_VERSION, "robots": k}
+    if y_up is not None:
+        header["y_up"] = [bool(u) for u in y_up]
+    if light_semantics is not None:
+        header["light_semantics"] = light_semantics
     body = (json.dumps(line.model_dump()) for line in lines)
     return "\n".join([json.dumps(header), *body]) + "\n"
 
@@ -127,34 +233,68 @@ class ScheduleError(InputError):
 
 def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Iterator[int]:
     """Drive ``engine`` by the schedule, line by line, until its end or the run's end; yields each line
-    number after it ran. A robot whose activation changes nothing is activated as written."""
+    number after it ran. A robot whose activation changes nothing is activated as written. (The flips
+    and light semantics are the engine's: :func:`schedule_adversary` says which to build it with.)"""
     if schedule.k != engine.k:
         raise InputError(f"{where}: a schedule for {schedule.k} robots, but the run has {engine.k}")
     lc_atomic = engine.light_semantics == "lc-atomic"
-    for n, line in schedule.lines:
+    k = engine.k
+    for n, robot, what in schedule:
         if engine.finished:
             return
         # Checked here, not when the file is read, so that the run up to a bad line is kept.
-        missing = [r for r in (line.round if isinstance(line, Round) else [line.robot]) if r >= engine.k]
+        robots = (robot,) if robot is not None else what
+        missing = [r for r in robots if not 0 <= r < k]  # type: ignore[union-attr]
         if missing:
-            raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({engine.k} robots)")
-        if isinstance(line, Activation):
-            now = engine.next_event(line.robot)
-            if now != line.phase:
-                raise ScheduleError(
-                    f"{where}:{n}: robot {line.robot}'s next phase is {now}, not {line.phase}"
-                )
-            engine.step([line.robot])
+            raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({k} robots: 0 to {k - 1})")
+        if robot is not None:
+            now = engine.next_event(robot)
+            if now != what:
+                raise ScheduleError(f"{where}:{n}: robot {robot}'s next phase is {now}, not {what}")
+            engine.step([robot])
         else:
-            busy = [r for r in line.round if engine.next_event(r) != "look"]
-            if busy:
-                raise ScheduleError(
-                    f"{where}:{n}: a round starts with its robots idle; robot {busy[0]}'s next phase is "
-                    f"{engine.next_event(busy[0])}"
-                )
-            number = engine.state.round + 1
-            for _ in range(2 if lc_atomic else 3):  # Look (+Compute under lc-atomic), Compute, Move
-                if engine.finished:
-                    break
-                engine.step(line.round, round=number)
+            _follow_round(engine, what, where, n, lc_atomic)  # type: ignore[arg-type]
         yield n
+
+
+def _follow_round(engine: Engine, robots: tuple[int, ...], where: str, n: int, lc_atomic: bool) -> None:
+    busy = [r for r in robots if engine.next_event(r) != "look"]
+    if busy:
+        raise ScheduleError(
+            f"{where}:{n}: a round starts with its robots idle; robot {busy[0]}'s next phase is "
+            f"{engine.next_event(busy[0])}"
+        )
+    number = engine.state.round + 1
+    for _ in range(2 if lc_atomic else 3):  # Look (+Compute under lc-atomic), Compute, Move
+        if engine.finished:
+            break
+        engine.step(robots, round=number)
+
+
+def adversary_flips(
+    schedule: Schedule,
+    file_y_up: Sequence[bool] | None,
+    prefer: Literal["schedule", "file"] | None,
+    where: str,
+    robots_where: str,
+) -> tuple[tuple[bool, ...] | None, str | None]:
+    """The y-axes a run following ``schedule`` uses (None: the seed decides) and a warning, if any.
+
+    The schedule's flips win over the seed; a robots file that states other flips contradicts it, and
+    is refused unless ``prefer`` says which of the two to take."""
+    if schedule.y_up is None:
+        decider = "the robots file's y_up" if file_y_up is not None else "--seed"
+        return (tuple(file_y_up) if file_y_up is not None else None), (
+            f"{where} records no y-axis flips (a version-1 schedule): {decider} decides them, so the run "
+            "may not be the one recorded"
+        )
+    if file_y_up is None or tuple(file_y_up) == schedule.y_up or prefer == "schedule":
+        return schedule.y_up, None
+    if prefer == "file":
+        return tuple(file_y_up), None
+    r = next(i for i, (a, b) in enumerate(zip(file_y_up, schedule.y_up, strict=True)) if a != b)
+    raise InputError(
+        f"{robots_where}: its y_up contradicts the flips {where} was recorded with (robot {r}: "
+        f"{'up' if file_y_up[r] else 'flipped'} in the file, {'up' if schedule.y_up[r] else 'flipped'} "
+        "in the schedule); --flips schedule or --flips file chooses"
+    )

@@ -49,7 +49,7 @@ from apf_viz.core.portrayal import (
     overlays_of,
 )
 from apf_viz.core.run import trace_header
-from apf_viz.core.schedule import ScheduleError, follow, schedule_of_steps, schedule_text
+from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
@@ -494,24 +494,27 @@ class Session:
         Step then follows it. A line that cannot be followed keeps the run up to it, and is returned."""
         schedule = loader.schedule_upload(filename, content)
         with self.lock:
-            engine = self.config.engine(self.run.plugins)
-            problem = None  # a schedule for another number of robots is refused before any step
+            config, notes = _with_schedule_adversary(self.config, schedule, filename)
+            engine = config.engine(self.run.plugins)
             try:
                 for _ in follow(engine, schedule, filename):
                     pass
             except ScheduleError as e:
-                problem = f"{e}; the run follows the schedule up to there"
-            self.run.adopt(self.config, engine, engine.state.events, what=f"the schedule {filename}")
+                notes.append(f"{e}; the run follows the schedule up to there")
+            self.run.adopt(config, engine, engine.state.events, what=f"the schedule {filename}")
+            self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.scenario_note = ""
             self.mode = "run"
             self.selected = None
-            return problem
+            return " ".join(notes) or None
 
     def schedule_file(self) -> str:
-        """Who acted so far (Manual clicks included), as a schedule file: it drives any algorithm."""
+        """Who acted so far (Manual clicks included) and the flips, as a schedule file: the whole
+        adversary, which drives any algorithm."""
         with self.lock:
             e = self.engine
-            return schedule_text(e.k, schedule_of_steps(e.history.steps[: e.step_index]))
+            lines = schedule_of_steps(e.history.steps[: e.step_index])
+            return schedule_text(e.k, lines, e.y_up, e.light_semantics)
 
     def robots_file(self) -> str:
         with self.lock:
@@ -853,6 +856,26 @@ def describe_event(ev, stays: bool = False) -> str:
     if stays:
         return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]})"
     return head + f"Move → ({ev.to[0]}, {ev.to[1]})"
+
+
+def _with_schedule_adversary(
+    config: RunConfig, schedule: Schedule, filename: str
+) -> tuple[RunConfig, list[str]]:
+    """The run a schedule replays: the current start and pattern with the schedule's flips and light
+    semantics (a version-1 schedule has none: the run's own are kept, and the notes say so)."""
+    if schedule.k != len(config.robots):
+        return config, []  # follow() refuses it in one line before any step
+    notes: list[str] = []
+    if schedule.y_up is None:
+        notes.append(f"{filename} records no y-axis flips (version 1): the run's own are used.")
+    elif schedule.y_up != config.y_up:
+        flipped = sum(a != b for a, b in zip(schedule.y_up, config.y_up, strict=True))
+        notes.append(f"The schedule's y-axis flips replace the run's ({flipped} robots differ).")
+        config = config.but(y_up=schedule.y_up)
+    if schedule.light_semantics and schedule.light_semantics != config.light_semantics:
+        notes.append(f"The schedule was recorded under {schedule.light_semantics}: the run now uses it.")
+        config = config.but(light_semantics=schedule.light_semantics)
+    return config, notes
 
 
 def _to_global(mark: Mark, origin: Point, y_up: bool) -> Mark:

@@ -1,0 +1,257 @@
+"""Hostile and careless input to the newer commands: refused in one line (exit 2), nothing lost, memory
+bounded. Each test names the finding it guards (issue "A newcomer's first hour", items 1-11)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import threading
+import tracemalloc
+from pathlib import Path
+
+import pytest
+
+from apf_viz.core import formats, schedule
+from apf_viz.core.formats import InputError, load_pattern, load_robots, load_trace
+from apf_viz.core.grid import COORD_LIMIT
+from apf_viz.core.schedule import load_schedule, parse_schedule_lines
+from apf_viz.demos import DEMO_PATTERN, DEMO_START
+
+ROOT = Path(__file__).resolve().parent.parent
+CUP, CALL = ROOT / "demo_patterns" / "cup-7.json", ROOT / "demo_patterns" / "starts" / "sym-call-7.json"
+
+
+def run_cli(*args: str, cwd: Path | None = None, env: dict | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", *args], capture_output=True, text=True, cwd=cwd, env=env
+    )
+
+
+def one_line_exit_2(out: subprocess.CompletedProcess, *needles: str) -> None:
+    assert out.returncode == 2, (out.returncode, out.stderr)
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr, out.stderr
+    for needle in needles:
+        assert needle in out.stderr, out.stderr
+
+
+# ------------------------------------------------------------------------- 1. device files, read to a limit
+def endless_fifo(path: Path, chunk: bytes = b"\0" * 65536, total: int = 40_000_000) -> threading.Thread:
+    """A named pipe that claims a size of 0 and delivers ``total`` bytes (as /dev/zero would, but ends
+    so that a reader without a limit fails by its message, not by exhausting memory)."""
+    os.mkfifo(path)
+
+    def feed() -> None:
+        sent = 0
+        try:
+            with open(path, "wb") as f:
+                while sent < total:
+                    f.write(chunk)
+                    sent += len(chunk)
+        except BrokenPipeError:  # the reader stopped at its limit
+            pass
+
+    thread = threading.Thread(target=feed, daemon=True)
+    thread.start()
+    return thread
+
+
+@pytest.mark.parametrize(
+    "load, limit_of",
+    [
+        (load_robots, None),
+        (load_pattern, None),
+        (load_trace, (formats, "MAX_TRACE_BYTES")),
+        (load_schedule, (schedule, "MAX_SCHEDULE_BYTES")),
+    ],
+    ids=["robots", "pattern", "trace", "schedule"],
+)
+def test_a_file_that_claims_no_size_is_read_only_up_to_the_limit(tmp_path, monkeypatch, load, limit_of):
+    if limit_of is not None:
+        monkeypatch.setattr(*limit_of, 1_000_000)  # the real 1 GB would only make the test slow
+    fifo = tmp_path / "endless"
+    feeder = endless_fifo(fifo)
+    with pytest.raises(InputError, match=r"endless: file is too large \(more than [\d,]+ bytes\)"):
+        load(fifo)
+    feeder.join(timeout=30)
+
+
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="no /dev/zero here")
+def test_run_with_dev_zero_as_robots_is_one_line():
+    one_line_exit_2(run_cli("run", "--robots", "/dev/zero", "--pattern", str(CUP)), "/dev/zero", "too large")
+
+
+# ------------------------------------------------------------------------- 2, 3. tables that are not ours
+def test_sweep_out_refuses_a_file_that_is_not_its_results_table_and_keeps_it(tmp_path):
+    notes = tmp_path / "notes.csv"
+    notes.write_text("important notes\n")
+    other = tmp_path / "other.csv"
+    other.write_text("a,b\n1,2\n")
+    for path, needle in ((notes, "missing columns k, D, seed"), (other, "columns it does not write: a, b")):
+        before = path.read_bytes()
+        out = run_cli("sweep", "--workers", "1", "--ks", "3", "--seeds", "1", "--out", str(path))
+        one_line_exit_2(out, str(path), needle)
+        assert path.read_bytes() == before
+
+
+def test_a_results_table_without_outcome_and_a_parquet_of_other_columns_are_one_line(tmp_path):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from apf_viz.sweep import COLUMNS
+
+    partial = tmp_path / "partial.csv"
+    partial.write_text(",".join(c for c in COLUMNS if c != "outcome") + "\n")
+    one_line_exit_2(
+        run_cli("sweep", "--workers", "1", "--ks", "3", "--seeds", "1", "--out", str(partial)),
+        "missing columns outcome",
+    )
+    table = tmp_path / "other.parquet"
+    pq.write_table(pa.table({"a": [1], "b": [2]}), table)
+    one_line_exit_2(
+        run_cli("sweep", "--workers", "1", "--ks", "3", "--seeds", "1", "--out", str(table)),
+        "missing columns k",
+    )
+    one_line_exit_2(run_cli("plot", str(partial), "--out", str(tmp_path / "d")), "missing columns outcome")
+    one_line_exit_2(run_cli("plot", str(table), "--out", str(tmp_path / "d")), "missing columns")
+
+
+# ------------------------------------------------------------------------- 4. huge ranges, counted first
+@pytest.mark.parametrize(
+    "flag, value, needle",
+    [
+        ("--ks", "1-10000000000", "more than the 100,000"),
+        ("--seeds", "0-10000000000", "more than the 100,000"),
+        ("--ks", "100001", "at most 100,000 robots"),
+        ("--ks", "0", "at least one robot"),
+    ],
+)
+def test_sweep_refuses_huge_grids_before_building_them(tmp_path, flag, value, needle):
+    args = {"--ks": "3", "--seeds": "1", flag: value}
+    argv = [x for pair in args.items() for x in pair]
+    out = run_cli("sweep", *argv, "--workers", "1", "--out", str(tmp_path / "r.csv"))
+    one_line_exit_2(out, needle)
+    assert not (tmp_path / "r.csv").exists()
+
+
+def test_a_sweep_of_more_runs_than_the_maximum_is_refused(tmp_path):
+    out = run_cli(
+        "sweep", "--ks", "1-1000", "--seeds", "1-2000", "--workers", "1", "--out", str(tmp_path / "r.csv")
+    )
+    one_line_exit_2(out, "2,000,000 runs", "split it")
+
+
+# ------------------------------------------------------------------------- 5. random boxes past 2^63 cells
+@pytest.mark.parametrize("command", ["random-robots", "random-pattern"])
+def test_random_points_in_the_largest_box_the_limits_allow(command):
+    side = str(COORD_LIMIT + 1)
+    out = run_cli(command, "--count", "3", "--width", side, "--height", side, "--seed", "4")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    points = data.get("robots") or data.get("points")
+    assert len({tuple(p) for p in points}) == 3
+    assert all(0 <= c <= int(side) - 1 for p in points for c in p)
+
+
+# ------------------------------------------------------------------------- 6. schedules held compactly
+def test_a_schedule_line_costs_tens_of_bytes_not_hundreds():
+    n = 200_000
+
+    def lines():
+        yield 1, json.dumps({"format": "apf-viz-schedule", "version": 2, "robots": 10})
+        for i in range(n):
+            yield i + 2, json.dumps({"robot": i % 10, "phase": ("look", "compute", "move")[i % 3]})
+
+    tracemalloc.start()
+    try:
+        parsed = parse_schedule_lines(lines())
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert len(parsed) == n
+    assert peak / n < 60, f"{peak / n:.0f} bytes per line"  # pydantic objects in a list: about 900
+
+
+# ------------------------------------------------------------------------- 7, 8. output paths and clusters
+def test_an_unreachable_cluster_is_named_with_its_reason(tmp_path):
+    out = run_cli(
+        "sweep",
+        "--ks",
+        "3",
+        "--seeds",
+        "1",
+        "--cluster",
+        "tcp://127.0.0.1:9",
+        "--out",
+        str(tmp_path / "r.csv"),
+    )
+    one_line_exit_2(out, "--cluster tcp://127.0.0.1:9: cannot reach a Dask scheduler there (")
+    assert "None" not in out.stderr
+
+
+def test_schedule_out_a_directory_is_refused_before_reading_the_trace(tmp_path):
+    trace = ROOT / "tests" / "gap_traces" / "L2.jsonl"
+    out = run_cli("schedule", "--from-trace", str(trace), "--out", str(tmp_path))
+    one_line_exit_2(out, f"{tmp_path}: is a directory")
+    assert ".tmp" not in out.stderr
+
+
+# ------------------------------------------------------------------------- 9. negative robots
+@pytest.mark.parametrize("line", [{"round": [-1]}, {"round": [0, -1]}, {"robot": -1, "phase": "look"}])
+def test_a_negative_robot_is_refused_with_its_line_and_the_run_so_far_kept(tmp_path, line):
+    sched = tmp_path / "s.jsonl"
+    header = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
+    body = [{"robot": 0, "phase": "look"}, {"robot": 0, "phase": "compute"}, {"robot": 0, "phase": "move"}]
+    sched.write_text("\n".join(json.dumps(x) for x in [header, *body, line]) + "\n")
+    trace = tmp_path / "t.jsonl"
+    out = run_cli(
+        "run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(sched),
+        "--trace", str(trace),
+    )  # fmt: skip
+    one_line_exit_2(out, f"{sched}:5: robot -1 does not exist (10 robots: 0 to 9)")
+    _, events = load_trace(trace)
+    assert [(e.robot, e.phase) for e in events] == [(0, "look"), (0, "compute"), (0, "move")]
+
+
+# ------------------------------------------------------------------------- 10. the sweep extra missing
+@pytest.mark.parametrize("command, blocked", [("sweep", "dask"), ("plot", "matplotlib")])
+def test_a_command_without_its_extra_says_which_to_install(tmp_path, command, blocked):
+    argv = ["sweep", "--ks", "3", "--seeds", "1", "--out", str(tmp_path / "r.csv")]
+    if command == "plot":
+        (tmp_path / "r.csv").write_text("k\n")
+        argv = ["plot", str(tmp_path / "r.csv")]
+    code = (
+        f"import sys; sys.modules[{blocked!r}] = None; from apf_viz.cli import main; sys.exit(main({argv!r}))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    one_line_exit_2(out, f"apf-viz {command} needs the sweep extra ({blocked} is not installed)", "[sweep]")
+
+
+# ------------------------------------------------------------------------- 11. a run past its time
+def test_a_run_past_run_timeout_is_recorded_as_timeout_and_the_sweep_goes_on(tmp_path):
+    from apf_viz.sweep import grid, run_sweep
+
+    starts = tmp_path / "starts"
+    starts.mkdir()
+    far = [[0, 0], [100_000, 3], [2, 100_000]]  # a long walk: minutes without a limit
+    (starts / "far.robots.json").write_text(json.dumps({"robots": far, "y_up": [True, True, False]}))
+    (starts / "far.pattern.json").write_text(json.dumps({"points": [[0, 0], [1, 0], [0, 2]]}))
+    (starts / "near.robots.json").write_text(json.dumps({"robots": [[0, 0], [3, 0], [1, 2]]}))
+    (starts / "near.pattern.json").write_text(json.dumps({"points": [[0, 0], [1, 0], [0, 2]]}))
+    seen = []
+    cells = grid([], [1], ["async"], ["apf-opaque-grid"], ["compute"], starts)
+    rows = run_sweep(cells, tmp_path / "r.csv", workers=1, run_timeout=3.0, progress=seen.append)
+    by_start = {r["start"]: r for r in rows}
+    assert by_start["near"]["outcome"] == "formed"
+    far_row = by_start["far"]
+    assert far_row["outcome"] == "timeout" and far_row["moves"] > 0 and 3.0 <= far_row["wall_s"] < 60
+    assert any("far seed 1 async" in p.slowest for p in seen), [p.slowest for p in seen]
+    assert seen[-1].finished == seen[-1].total == 2
+
+
+def test_the_eta_weighs_runs_by_their_size():
+    from apf_viz.sweep import Cell, cost
+
+    small, large = Cell(10, 1, "async", "apf-opaque-grid", "compute"), Cell(100, 1, "async", "x", "compute")
+    assert cost(large) > 50 * cost(small)
