@@ -209,7 +209,7 @@ def test_a_negative_robot_is_refused_with_its_line_and_the_run_so_far_kept(tmp_p
         "run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(sched),
         "--trace", str(trace),
     )  # fmt: skip
-    one_line_exit_2(out, f"{sched}:5: robot -1 does not exist (10 robots: 0 to 9)")
+    one_line_exit_2(out, f"{sched}:5: robot -1 does not exist (10 robots)")
     _, events = load_trace(trace)
     assert [(e.robot, e.phase) for e in events] == [(0, "look"), (0, "compute"), (0, "move")]
 

@@ -35,3 +35,25 @@ def test_readme_examples_run(tmp_path):
         )
         assert proc.returncode in (0, 1), (cmd, proc.stderr)
         assert "Traceback" not in proc.stderr
+
+
+def test_the_playing_the_adversary_commands_run_as_written(tmp_path):
+    """The block is run by bash as it stands, with ``apf-viz`` this checkout's CLI; exit 1 (ran, not
+    formed) is a result, anything else stops the block."""
+    text = (ROOT / "README.md").read_text()
+    section = text[text.index("## Playing the adversary") :]
+    block = re.search(r"```bash\n(.*?)```", section, re.S).group(1)
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    shim = bin_dir / "apf-viz"
+    shim.write_text(f'#!/bin/sh\n"{sys.executable}" -m apf_viz.cli "$@"\nc=$?\n[ $c -le 1 ] || exit $c\n')
+    shim.chmod(0o755)
+    (tmp_path / "demo_patterns").symlink_to(ROOT / "demo_patterns")
+    (tmp_path / "tests").symlink_to(ROOT / "tests")
+    env = {"PATH": f"{bin_dir}:/usr/bin:/bin", "PYTHONPATH": str(ROOT), "HOME": str(tmp_path)}
+    proc = subprocess.run(
+        ["bash", "-euo", "pipefail", "-c", block], cwd=tmp_path, env=env, capture_output=True, text=True
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "Traceback" not in proc.stderr and "error" not in proc.stderr, proc.stderr
+    assert (tmp_path / "l2.robots.json").is_file() and (tmp_path / "start-of-s.jsonl").is_file()

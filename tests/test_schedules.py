@@ -64,8 +64,9 @@ def test_the_schedule_of_a_trace_is_the_schedule_of_its_run(tmp_path):
     assert run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--seed", "2",
                    "--trace", str(trace)).returncode == 0  # fmt: skip
     assert run_cli("schedule", "--from-trace", str(trace), "--out", str(out)).returncode == 0
-    assert out.read_text() == schedule_text(e.k, schedule_of_steps(e.history.steps))
     header, events = load_trace(trace)
+    assert header.y_up is not None  # the run's flips (the demo file states none: drawn from --seed 2)
+    assert out.read_text() == schedule_text(e.k, schedule_of_steps(e.history.steps), header.y_up, "compute")
     assert schedule_of_trace(events, False) == schedule_of_steps(e.history.steps)
 
 
@@ -101,7 +102,7 @@ def write(tmp_path: Path, lines: list) -> Path:
     return path
 
 
-HEADER = {"format": "apf-viz-schedule", "version": 1, "robots": 10}
+HEADER = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
 
 
 @pytest.mark.parametrize(
@@ -115,8 +116,9 @@ HEADER = {"format": "apf-viz-schedule", "version": 1, "robots": 10}
         ([HEADER, "{not json"], "s.jsonl:2: not valid JSON"),
         ([HEADER, {"robot": 0, "phase": "jump"}], "s.jsonl:2: phase: Input should be 'look', 'compute'"),
         ([HEADER, {"round": [3, 3]}], "s.jsonl:2: a robot is listed twice in one round"),
-        ([{"format": "apf-viz-trace", "version": 1, "robots": 10}], "s.jsonl:1: format: Input should be"),
-        ([{**HEADER, "robots": 4}], "a schedule for 4 robots, but the run has 10"),
+        ([{"format": "apf-viz-trace", "version": 1, "robots": 10}], "s.jsonl: this is a trace, not a"),
+        ([{"format": "apf-viz-schedul", "version": 2, "robots": 10}], "s.jsonl:1: format: Input should be"),
+        ([{**HEADER, "robots": 4, "y_up": [True] * 4}], "a schedule for 4 robots, but the run has 10"),
         ([], "empty schedule file"),
     ],
 )  # fmt: skip
@@ -144,7 +146,7 @@ def test_a_schedule_ends_the_run_or_hands_over_to_then(tmp_path):
     e = demo_engine()
     advance(e, make_scheduler("async"), 4, steps=40)
     path = tmp_path / "s.jsonl"
-    path.write_text(schedule_text(e.k, schedule_of_steps(e.history.steps)))
+    path.write_text(schedule_text(e.k, schedule_of_steps(e.history.steps), e.y_up, "compute"))
     base = [
         "run",
         "--robots",
@@ -170,7 +172,7 @@ def test_follow_refuses_before_it_changes_anything():
         list(follow(e, parse_schedule(schedule_text(10, []) + '{"robot": 3, "phase": "move"}\n')))
     assert e.state.events == 0
     with pytest.raises(InputError, match="for 4 robots"):
-        list(follow(e, parse_schedule(json.dumps({**HEADER, "robots": 4}))))
+        list(follow(e, parse_schedule(json.dumps({**HEADER, "robots": 4, "y_up": [True] * 4}))))
 
 
 def test_a_line_naming_a_robot_that_does_not_exist_keeps_the_run_up_to_it(tmp_path):
@@ -180,7 +182,9 @@ def test_a_line_naming_a_robot_that_does_not_exist_keeps_the_run_up_to_it(tmp_pa
                   "--trace", str(trace))  # fmt: skip
     assert out.returncode == 2 and "s.jsonl:3: robot 12 does not exist (10 robots)" in out.stderr
     assert [(e.robot, e.phase) for e in load_trace(trace)[1]] == [(0, "look")]
-    wrong_header = write(tmp_path, [{**HEADER, "robots": 5}, {"robot": 7, "phase": "look"}])
+    wrong_header = write(
+        tmp_path, [{**HEADER, "robots": 5, "y_up": [True] * 5}, {"robot": 7, "phase": "look"}]
+    )
     out = run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule",
                   str(wrong_header))  # fmt: skip
     assert out.returncode == 2 and "a schedule for 5 robots, but the run has 10" in out.stderr

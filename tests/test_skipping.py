@@ -164,3 +164,22 @@ def test_the_issue_recipe_forms_with_default_options():
     data = json.loads(out.stdout)
     assert out.returncode == 0 and data["outcome"] == "formed"
     assert data["moves"] < data["max_moves"] // 10 and data["events"] < data["max_events"] // 10
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_stale_first_never_runs_a_cycle_the_skipping_passed_over(seed):
+    """Stale-first's oldest snapshot is looked for among robots holding a Move: an idle robot passed
+    over (its view answers "same light, stay") is never activated, so a move costs about 3 events
+    (it once cost 3 per robot in sight: 120 per move at k = 40)."""
+    start, pattern, y_up = small_case(20, seed)
+    e = Engine(start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up)
+    scheduler = make_scheduler("stale-first")
+    from apf_viz.core.schedulers import step_rng
+
+    while not e.finished:
+        eligible = e.eligible().copy()
+        record = scheduler.choose(e, step_rng(seed, e.step_index))
+        for r in record.robots:
+            assert e.state.phase[r] != int(Phase.IDLE) or eligible[r], (e.step_index, r)
+        e.apply(record)
+    assert e.outcome == "formed" and e.state.events <= 4 * e.state.moves + 4 * e.k

@@ -246,7 +246,7 @@ def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Itera
         robots = (robot,) if robot is not None else what
         missing = [r for r in robots if not 0 <= r < k]  # type: ignore[union-attr]
         if missing:
-            raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({k} robots: 0 to {k - 1})")
+            raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({k} robots)")
         if robot is not None:
             now = engine.next_event(robot)
             if now != what:
@@ -285,7 +285,7 @@ def adversary_flips(
     if schedule.y_up is None:
         decider = "the robots file's y_up" if file_y_up is not None else "--seed"
         return (tuple(file_y_up) if file_y_up is not None else None), (
-            f"{where} records no y-axis flips (a version-1 schedule): {decider} decides them, so the run "
+            f"{where} records no y-axis flips (as a version-1 schedule): {decider} decides them, so the run "
             "may not be the one recorded"
         )
     if file_y_up is None or tuple(file_y_up) == schedule.y_up or prefer == "schedule":

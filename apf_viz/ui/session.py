@@ -867,7 +867,7 @@ def _with_schedule_adversary(
         return config, []  # follow() refuses it in one line before any step
     notes: list[str] = []
     if schedule.y_up is None:
-        notes.append(f"{filename} records no y-axis flips (version 1): the run's own are used.")
+        notes.append(f"{filename} records no y-axis flips: the run's own are kept.")
     elif schedule.y_up != config.y_up:
         flipped = sum(a != b for a, b in zip(schedule.y_up, config.y_up, strict=True))
         notes.append(f"The schedule's y-axis flips replace the run's ({flipped} robots differ).")
