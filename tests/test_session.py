@@ -262,7 +262,10 @@ def test_why_says_when_the_robots_a_decision_saw_have_changed_since():
     for _ in range(3):
         s.click((3, 0))  # robot 1 looks, computes, moves to (2, 0)
     s.selected = 2
-    assert s.view().why.changed == ("seen at (3, 0) with light off: gone from there",)
+    why, caption = s.view().why, s.view().caption
+    assert why.changed_robots == (1,) and "(3, 0)" in why.changed[0] and "(2, 0)" in why.changed[0]
+    assert why.changed[0] in caption  # one notion of staleness: the caption says it in the same words
+    assert s.view().stale == (1,)
 
 
 def test_a_snapshot_is_stale_only_when_another_robot_it_saw_changed():
@@ -481,14 +484,16 @@ def test_a_deadlock_rings_every_robot_that_will_never_act():
         pass
     v = s.view()
     assert v.outcome == "stuck" and v.never_act == tuple(range(s.engine.k))
-    from apf_viz.ui.why import why_markdown
+    from apf_viz.ui.presenter.why import why_markdown
 
     s.selected = 0
-    assert "If it looked now:" in why_markdown(s.view()) and "would change nothing" in why_markdown(s.view())
+    assert "If it looked now:" in why_markdown(s.view().why) and "would change nothing" in why_markdown(
+        s.view().why
+    )
 
 
 def test_a_livelock_from_check_marks_its_loop_on_the_timeline():
-    from apf_viz.ui.session import loop_marks
+    from apf_viz.ui.presenter.story import loop_marks
 
     # The explorer's schedule: 5 steps of stem, then a loop of 4 steps written twice: 13 steps.
     assert loop_marks({"loop_starts_at_step": 5}, 13, "async") == (

@@ -327,7 +327,7 @@ def test_why_panel_lists_the_predicates_and_the_canvas_shades_the_regions(browse
     table.wait_for()
     text = table.inner_text()
     assert ("yes" in text or "no" in text) and "meaning" in text
-    assert any(n.startswith("/why/") for n in app.renderer._handles)
+    assert any(n.startswith("/why/") for n in app.drawn())
     shot(page, "why-panel")
     page.set_viewport_size({"width": 1024, "height": 768})
     time.sleep(1.0)
@@ -668,3 +668,33 @@ def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(brow
     page.get_by_role("button", name="Stop comparing").click()
     wait_for(lambda: app.compare_renderer is None)
     page.close()
+
+
+def test_two_browsers_select_apart_until_one_follows_the_presenter(browser, app):
+    """A laptop's click never changes the projector, and the projector (or anyone) may follow the
+    presenter's selection. The first browser to connect presents."""
+    for _ in range(12):
+        app.session.step()
+    projector = open_page(browser, app)
+    wait_for(lambda: len(app.screens) == 1)
+    laptop = open_page(browser, app)
+    wait_for(lambda: len(app.screens) == 2)
+    ids = list(app.screens)
+    a = next(i for i in ids if app.session.is_presenter(i))
+    b = next(i for i in ids if i != a)
+    x, y = screen_of(app, projector, app.session.engine.current_points()[4])
+    projector.mouse.click(x, y)
+    wait_for(lambda: app.session.view(a).selected == 4)
+    projector.get_by_text("Robot 4 —").first.wait_for()
+    rays = app.screens[b].selection._handles.get("/rays")
+    assert app.session.view(b).selected is None and (rays is None or not rays.visible)
+    laptop.get_by_text("Click a robot to see what it sees").first.wait_for()
+    shot(laptop, "laptop-unchanged-by-the-projector")
+    laptop.get_by_label("Follow presenter").check()
+    wait_for(lambda: app.session.view(b).selected == 4)
+    laptop.get_by_text("Following the presenter's selection.").wait_for()
+    laptop.get_by_text("Robot 4 —").first.wait_for()
+    wait_for(lambda: app.screens[b].selection._handles.get("/rays") is not None)
+    wait_for(lambda: app.screens[b].selection._handles["/rays"].visible)
+    shot(laptop, "laptop-follows-the-projector")
+    assert not projector.get_by_label("Follow presenter").is_visible()  # the presenter follows nobody

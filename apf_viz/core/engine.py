@@ -74,6 +74,8 @@ class EngineState:
     look_version: list[int]  # configuration version at each robot's latest Look
     pending: list[Decision | None]
     decided: list[Snapshot | None]  # the snapshot of each robot's latest Compute (kept after its Move)
+    decided_seen: list[tuple[int, ...] | None]  # who that snapshot saw…
+    decided_look: np.ndarray  # shape (k,): …and the step of its Look (what Why compares with now)
     last_act: np.ndarray  # shape (k,): step index of each robot's latest event (fairness)
     last_cycle_end: np.ndarray  # shape (k,): step index of each robot's latest Move (round-robin)
     steps: int = 0
@@ -102,6 +104,8 @@ class EngineState:
             look_version=list(self.look_version),
             pending=list(self.pending),
             decided=list(self.decided),
+            decided_seen=list(self.decided_seen),
+            decided_look=self.decided_look.copy(),
             last_act=self.last_act.copy(),
             last_cycle_end=self.last_cycle_end.copy(),
             steps=self.steps,
@@ -400,6 +404,8 @@ class Engine:
         decision = self._decide(r, snap)
         st.pending[r] = decision
         st.decided[r] = snap
+        st.decided_seen[r] = st.seen[r]
+        st.decided_look[r] = st.look_step[r]
         st.phase[r] = _COMPUTED
         if decision.light != st.lights[r]:
             st.lights[r] = decision.light
@@ -607,6 +613,8 @@ class Engine:
             look_version=[-1] * k,
             pending=[None] * k,
             decided=[None] * k,
+            decided_seen=[None] * k,
+            decided_look=np.zeros(k, dtype=np.int64),
             last_act=np.zeros(k, dtype=np.int64),
             last_cycle_end=np.zeros(k, dtype=np.int64),
             lights_used={first},

@@ -13,6 +13,7 @@ import threading
 import time
 from pathlib import Path
 
+import numpy as np
 import viser
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
@@ -25,8 +26,8 @@ from apf_viz.core.formats import (
     load_trace,
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
-from apf_viz.ui.panels import Panels, tell
-from apf_viz.ui.scene import SceneRenderer
+from apf_viz.ui.panels import Panels, SharedVerifier, tell
+from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -40,26 +41,87 @@ def free_port(host: str = "127.0.0.1") -> int:
         return sock.getsockname()[1]
 
 
+class BrowserScreen:
+    """One connected browser: its panel, its selection layer in its own scene, and its state."""
+
+    def __init__(self, app: App, client) -> None:
+        self.client = client
+        self.state = app.session.join(client.client_id)
+        self.selection = SceneRenderer(client, layer="selection", base=app.renderer)
+        self.panels = Panels(
+            client,
+            app.session,
+            app.request_render,
+            app.frame_client,
+            browser=client.client_id,
+            verifier=app.verifier,
+            frame_all=app.frame_all,
+        )
+        client.camera.on_update(self._camera_moved)
+
+    def _camera_moved(self, camera) -> None:
+        """A camera that leaves the pose it was framed to was moved by hand: it is left there while the
+        run grows, until a new run starts or Frame run is pressed."""
+        sent = self.state.framed_bounds
+        if sent is None:
+            return
+        try:
+            position = np.asarray(camera.position, dtype=float)
+        except (AssertionError, TypeError, ValueError):
+            return
+        target = np.asarray(self._sent_position, dtype=float) if self._sent_position is not None else None
+        if target is not None and np.abs(position - target).max() > 1e-3 * max(1.0, abs(target[2])):
+            self.state.camera = "moved"
+
+    _sent_position: tuple[float, float, float] | None = None
+
+    def starts_framed(self, renderer: SceneRenderer) -> None:
+        self._sent_position = renderer.framed_pose[0]
+        self.state.camera = "framed"
+        self.state.framed_bounds = renderer.bounds
+
+    def frame(self, renderer: SceneRenderer) -> None:
+        renderer.frame_camera(self.client.camera)
+        self._sent_position = renderer.camera_pose(_aspect(self.client))[0]
+        self.state.camera = "framed"
+        self.state.framed_bounds = renderer.bounds
+
+
+def _aspect(client) -> float:
+    try:
+        aspect = float(client.camera.aspect)
+    except (AssertionError, AttributeError, TypeError, ValueError):
+        return NARROW_ASPECT
+    return aspect if aspect == aspect and aspect > 0 else NARROW_ASPECT
+
+
 class App:
-    """The visualiser: server, scene, panels and the play/render loop."""
+    """The visualiser: server, the shared scene, each browser's panel and selection, the render loop."""
 
     def __init__(
         self, session: Session, host: str = "127.0.0.1", port: int = 8080, verbose: bool = True
     ) -> None:
         self.session = session
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
-        self.renderer = SceneRenderer(self.server)
+        gui = self.server.gui
+        gui.configure_theme(control_width="large")
+        # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
+        # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
+        gui.main_panel.dock_right()
+        self.renderer = SceneRenderer(self.server, layer="run")
         self.compare_renderer: SceneRenderer | None = None  # Compare: the second run, to the right
-        self.panels = Panels(self.server, session, self.request_render, self.frame_client)
+        self.verifier = SharedVerifier(session, self.request_render)
+        self.screens: dict[int, BrowserScreen] = {}
+        self._screens_lock = threading.Lock()
         self._dirty = threading.Event()
         self._stop = threading.Event()
-        self._framed: tuple[float, float, float, float] | None = None
         self._framed_engine = session.engine  # the run the cameras were last framed on
         self.frames = 0
         self.server.scene.on_click()(self._on_click)
+        self.server.on_client_connect(self._connect)
+        self.server.on_client_disconnect(self._disconnect)
         self._render()
         self.renderer.frame_initial_camera(self.server.initial_camera)
-        self._framed = self.renderer.bounds
         self._thread = threading.Thread(target=self._loop, name="apf-viz-render", daemon=True)
         self._thread.start()
 
@@ -67,12 +129,51 @@ class App:
     def port(self) -> int:
         return self.server.get_port()
 
+    @property
+    def panels(self) -> Panels | None:
+        """The presenter's panel (the first browser's), if it is connected."""
+        with self._screens_lock:
+            screens = list(self.screens.values())
+        return next((x.panels for x in screens if x.state is self.session.presenter), None)
+
+    def _connect(self, client) -> None:
+        screen = BrowserScreen(self, client)
+        with self._screens_lock:
+            self.screens[client.client_id] = screen
+        screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
+        self.request_render()
+
+    def _disconnect(self, client) -> None:
+        with self._screens_lock:
+            self.screens.pop(client.client_id, None)
+        self.session.leave(client.client_id)
+
     def request_render(self) -> None:
         self._dirty.set()
 
     def frame_client(self, client) -> None:
         """Point this browser's camera at the whole run (robots and targets), as it is now."""
-        self.renderer.frame_camera(client.camera)
+        with self._screens_lock:
+            screen = self.screens.get(client.client_id)
+        if screen is not None:
+            screen.frame(self.renderer)
+        else:
+            self.renderer.frame_camera(client.camera)
+
+    def frame_all(self) -> None:
+        with self._screens_lock:
+            screens = list(self.screens.values())
+        for screen in screens:
+            screen.frame(self.renderer)
+
+    def drawn(self) -> dict[str, object]:
+        """Every node drawn, by name: the shared run's, then each browser's selection layer."""
+        with self._screens_lock:
+            screens = list(self.screens.values())
+        nodes = dict(self.renderer._handles)
+        for screen in screens:
+            nodes.update(screen.selection._handles)
+        return nodes
 
     def stop(self) -> None:
         self._stop.set()
@@ -84,7 +185,7 @@ class App:
         cell = self.renderer.cell_of_ray(event.ray_origin, event.ray_direction)
         if cell is not None:
             try:
-                self.session.click(cell)
+                self.session.click(cell, event.client.client_id if event.client is not None else None)
             except Exception as err:  # a click must never kill the server; only its browser is told
                 tell(event.client, "Click refused", str(err), error=True)
         self.request_render()
@@ -121,17 +222,42 @@ class App:
             time.sleep(max(0.0, tick - time.perf_counter()))
 
     def _render(self) -> None:
-        view = self.session.view()
+        with self._screens_lock:
+            screens = list(self.screens.values())
+        run_view, views = self.session.views([x.client.client_id for x in screens])
         with self.server.atomic():
-            self.renderer.render(view, f"A: {view.algorithm}" if view.compare else None)
-            self._render_compare(view)
-            self.panels.refresh(view)
+            self.renderer.render(run_view, f"A: {run_view.algorithm}" if run_view.compare else None)
+            self._render_compare(run_view)
+        for screen in screens:
+            view = views[screen.client.client_id]
+            try:
+                with screen.client.atomic():
+                    screen.selection.render(view)
+                    screen.panels.refresh(view)
+            except RuntimeError:  # the browser left while its frame was drawn
+                continue
         self.frames += 1
-        if self._needs_reframe():
+        self._keep_framed(screens)
+
+    def _keep_framed(self, screens: list[BrowserScreen]) -> None:
+        """A new run (Reset, a load, a switch of algorithm: a new engine) re-frames every browser's
+        camera; a run growing out of the framed box re-frames the browsers whose camera is framed (one
+        moved by hand is left alone)."""
+        engine = self.session.engine
+        if engine is not self._framed_engine:
+            self._framed_engine = engine
             self.renderer.frame_initial_camera(self.server.initial_camera)
-            for client in self.server.get_clients().values():
-                self.renderer.frame_camera(client.camera)
-            self._framed = self.renderer.bounds
+            for screen in screens:
+                screen.frame(self.renderer)
+            return
+        b = self.renderer.bounds
+        for screen in screens:
+            f = screen.state.framed_bounds
+            if screen.state.camera != "framed" or f is None:
+                continue
+            if b[0] < f[0] - 2 or b[1] < f[1] - 2 or b[2] > f[2] + 2 or b[3] > f[3] + 2:
+                screen.frame(self.renderer)
+                self.renderer.frame_initial_camera(self.server.initial_camera)
 
     def _render_compare(self, view) -> None:
         """The second run of Compare beside the first, at a fixed distance to its right (the width of
@@ -154,20 +280,6 @@ class App:
         b = self.compare_renderer.bounds
         x0, y0, x1, y1 = a.bounds
         a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]), max(y1, b[3]))
-
-    def _needs_reframe(self) -> bool:
-        """Keep the run framed: re-frame when a new run starts (Reset, a load, a switch of algorithm: a
-        new engine) and when something leaves the framed box as the run grows."""
-        b = self.renderer.bounds
-        engine = self.session.engine
-        if engine is not self._framed_engine:
-            self._framed_engine = engine
-            return True
-        if self._framed is None:
-            self._framed = b
-            return False
-        f = self._framed
-        return b[0] < f[0] - 2 or b[1] < f[1] - 2 or b[2] > f[2] + 2 or b[3] > f[3] + 2
 
 
 def demo_session(**options) -> Session:

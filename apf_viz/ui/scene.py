@@ -1,4 +1,5 @@
-"""The only module that touches ``server.scene``: draws a :class:`SessionView`, one atomic update a frame.
+"""The only module that touches a viser scene: draws a :class:`SessionView`, one atomic update a frame;
+the run in the scene every browser shares, each browser's selection in that browser's own scene.
 
 Robots are flat, unlit discs in their light's legend colour (one point cloud per light) on a dark
 outline, with a small diamond on each robot's +y side for its y-axis (the adversary's flip); its phase,
@@ -19,12 +20,11 @@ from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
-import viser
 
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
-from apf_viz.ui.session import SessionView
+from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
+from apf_viz.ui.presenter import SessionView
 
-PHASE_COLORS = {"idle": (238, 238, 238), "looked": (250, 210, 40), "computed": (250, 120, 30)}
 ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
 # GRID_CELL_PX wide, and darker section lines every 5, 10, 50, ... cells, at least GRID_SECTION_PX apart.
@@ -78,22 +78,6 @@ def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
     return {light: style.color for light, style in view.legend.items()}
 
 
-TARGET_COLORS = {"placed": (100, 205, 100), "preview": (160, 220, 160), "drawing": (240, 120, 190)}
-# The engine's marks, one colour each; the legend (ui/why.py) reads the same table.
-MARK_COLORS: dict[str, tuple[int, int, int]] = {
-    "ray": (250, 200, 0),
-    "ghost": (120, 60, 200),
-    "never": (150, 0, 0),
-    "outline": (50, 50, 50),
-    "pending": (230, 40, 40),
-    "axis": (255, 0, 0),
-    "collision": (230, 0, 0),
-    "last": (140, 90, 40),  # brown and black: no light of the paper's legend is either
-    "selected": (0, 0, 0),
-    "region": (40, 120, 255),
-    "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
-    "frame": (30, 30, 30),
-}
 REGION_OPACITY = 0.13
 # The canvas a new browser is framed for before it reports its own: 1024×768 with the panel docked
 # (about 640×768). A wider canvas then shows a margin; a narrower guess would cut a 1024 projector's view.
@@ -111,20 +95,32 @@ def _xyz(points, z: float) -> np.ndarray:
 REORIGIN_DISTANCE = 1 << 20
 
 
-class SceneRenderer:
-    """Draws session views into one viser server's scene."""
+Layer = Literal["all", "run", "selection"]
 
-    def __init__(self, server: viser.ViserServer, prefix: str = "") -> None:
-        self.server = server
+
+class SceneRenderer:
+    """Draws session views into one scene: the server's (every browser) or one browser's.
+
+    ``layer``: ``run`` draws what every browser shares (robots, rings, targets, the algorithm's marks);
+    ``selection`` what belongs to one browser's selection (its ring, rays, ghosts, Why's regions), in
+    that browser's own scene, placed by the ``base`` renderer's origin; ``all`` both (one browser)."""
+
+    def __init__(
+        self, owner, prefix: str = "", layer: Layer = "all", base: SceneRenderer | None = None
+    ) -> None:
+        self.server = owner
         # A second run drawn beside the first (Compare) is a second renderer under its own prefix, its
         # origin set by the caller so that it stands to the right of the first.
         self.prefix = prefix
+        self.layer: Layer = layer
+        self.base = base
         self.fixed_origin: tuple[int, int] | None = None
-        self.scene = server.scene
-        self.scene.set_up_direction("+z")
-        # Nothing here casts a shadow, but lights that may cast one make the browser clear three
-        # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
-        self.scene.configure_default_lights(enabled=True, cast_shadow=False)
+        self.scene = owner.scene
+        if layer != "selection":
+            self.scene.set_up_direction("+z")
+            # Nothing here casts a shadow, but lights that may cast one make the browser clear three
+            # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
+            self.scene.configure_default_lights(enabled=True, cast_shadow=False)
         self._sprite_lights: set[str] = set()
         self._ghost_lights: set[str] = set()
         self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour
@@ -208,6 +204,11 @@ class SceneRenderer:
     def render(self, view: SessionView, title: str | None = None) -> None:
         """Draw one frame; the caller wraps it in ``server.atomic()``. ``title``: a label above the run
         (Compare names each side)."""
+        if self.layer == "selection":
+            assert self.base is not None
+            self.origin, self.bounds = self.base.origin, self.base.bounds
+            self._selection(view)
+            return
         editing_robots = view.mode == "edit-robots"
         grid_pts = np.array([r.position for r in view.robots], dtype=np.int64).reshape(-1, 2)
         self._place_origin(grid_pts, view)
@@ -222,10 +223,8 @@ class SceneRenderer:
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
         self._points("/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.25, "circle")
         self._targets(view)
-        self._ghosts(view)
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
-        self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
         pending = self._pending(view)
         self._segments("/pending", pending[:0] if dense else pending, MARK_COLORS["pending"], 3.0)
         destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
@@ -233,9 +232,25 @@ class SceneRenderer:
         axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
         self._marks(view)
-        self._why_regions(view)
         x0, _, _, y1 = self.bounds
         self._labels("/title", [(title, (x0 - 0.5, y1 + 2.0, 0.1))] if title else [])
+        if self.layer == "all":
+            self._selection(view)
+
+    def _selection(self, view: SessionView) -> None:
+        """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested."""
+        sel = view.selected
+        at = self._local([view.robots[sel].position] if sel is not None and sel < len(view.robots) else [])
+        self._points(
+            "/ring/selected",
+            _xyz(at, _LAYER["selected"]),
+            MARK_COLORS["selected"],
+            _SIZE["selected"],
+            "circle",
+        )
+        self._ghosts(view)
+        self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
+        self._why_regions(view)
 
     def clear(self) -> None:
         """Remove everything this renderer drew (Compare stopped)."""
@@ -275,19 +290,18 @@ class SceneRenderer:
         self._points("/robots/y_axes", nose, (40, 40, 40), 0.16, "diamond")
 
     def _rings(self, view: SessionView, pts: np.ndarray) -> None:
-        """Rings under the robots, widest at the bottom: selected (black), will never act (dark red, a
-        deadlock), acted last (brown), and the phase (yellow: looked, orange: computed; none when idle)."""
+        """Rings under the robots, widest at the bottom: will never act (dark red, a deadlock), acted last
+        (brown), and the phase (yellow: looked, orange: computed; none when idle). The selected robot's
+        (black) is its browser's own (:meth:`_selection`)."""
         phases = np.array([r.phase for r in view.robots])
         for phase in ("looked", "computed"):
             at = pts[phases == phase] if len(phases) else pts[:0]
             self._points(
                 f"/phase/{phase}", _xyz(at, _LAYER["phase"]), PHASE_COLORS[phase], _SIZE["phase"], "circle"
             )
-        one = {"selected": view.selected, "last": view.last_actor}
-        for name in ("selected", "last"):
-            robot = one[name]
-            at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
-            self._points(f"/ring/{name}", _xyz(at, _LAYER[name]), MARK_COLORS[name], _SIZE[name], "circle")
+        robot = view.last_actor
+        at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
+        self._points("/ring/last", _xyz(at, _LAYER["last"]), MARK_COLORS["last"], _SIZE["last"], "circle")
         never = pts[[r for r in view.never_act if r < len(pts)]] if view.never_act else pts[:0]
         self._points(
             "/ring/never", _xyz(never, _LAYER["never"]), MARK_COLORS["never"], _SIZE["never"], "circle"

@@ -1,14 +1,18 @@
-"""Text for the panels: the `Why` panel (the selected robot's last decision and the predicates its rule
-tested) and the legend, both read off what the algorithm describes, never off a particular algorithm."""
+"""The legend (every mark the screen can show, each swatch drawn as the canvas draws it) and the
+paper's symbols typeset for the panels; read off what the algorithm describes, never off a particular
+algorithm."""
 
 from __future__ import annotations
 
 import html
 import re
+from typing import TYPE_CHECKING
 
 from apf_viz.core.portrayal import Cells, Frame
-from apf_viz.ui.scene import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
-from apf_viz.ui.session import SessionView
+from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
+
+if TYPE_CHECKING:
+    from apf_viz.ui.presenter.views import SessionView
 
 # H_L^O → H<sub>L</sub><sup>O</sup>; L_I → L<sub>I</sub>; the paper's symbols as a reader knows them.
 _SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")
@@ -24,71 +28,6 @@ def symbol_html(text: str) -> str:
         return f"{m.group(1)}<sub>{sub}</sub>{sup}"
 
     return _SYMBOL.sub(typeset, html.escape(text))
-
-
-def _value(value: object) -> str:
-    if value is True:
-        return "✔ yes"
-    if value is False:
-        return "✘ no"
-    return html.escape(str(value))
-
-
-def why_markdown(view: SessionView) -> str:
-    """The selected robot's last decision: rule id and text, then each predicate with its value."""
-    why = view.why
-    if why is None:
-        return "Select a robot to see why it acted."
-    head = f"**Robot {why.robot}**"
-    if why.explanation is None:
-        return f"{head} has not decided yet: its first Compute will."
-    d = why.explanation.decision
-    move = d.move.value if d.move is not None else "stay"
-    lines = [
-        f"{head} · rule <code>{html.escape(d.rule_id or '—')}</code>",
-        f"{symbol_html(d.rule)}",
-        f"→ light <code>{html.escape(d.light)}</code>, move: {move} (its own frame)",
-    ]
-    if why.holds_snapshot:
-        lines.append("_It has looked again since: its next Compute decides anew._")
-    if why.changed:
-        shown = "; ".join(why.changed[:4]) + (
-            f"; and {len(why.changed) - 4} more" if len(why.changed) > 4 else ""
-        )
-        lines.append(
-            "⚠ **Decided on an older view.** Since the Look this decision used, robots it saw changed: "
-            f"{shown}. The predicates below are about that view."
-        )
-    if why.explanation.predicates:
-        rows = "".join(
-            f"<tr><td>{symbol_html(p.symbol)}</td><td>{_value(p.value)}</td>"
-            f"<td>{symbol_html(p.meaning)}</td></tr>"
-            for p in why.explanation.predicates
-        )
-        lines.append(
-            '<table style="font-size:0.9em"><tr><th>tested</th><th>value</th><th>meaning</th></tr>'
-            f"{rows}</table>"
-        )
-    elif not d.rule_id:
-        lines.append("_This algorithm does not explain its decisions._")
-    else:
-        lines.append("_No predicates are listed for this rule._")
-    if why.regions:
-        lines.append(
-            "Regions it looked at are shaded blue on the grid, in its own frame, where it stood when it "
-            "looked (they stay there when it moves)."
-        )
-    if why.now is not None:
-        n = why.now
-        now_move = n.move.value if n.move is not None else "stay"
-        idle = (
-            "its next cycle would change nothing" if n.light == d.light and n.move is None else "it will act"
-        )
-        lines.append(
-            f"**If it looked now:** rule <code>{html.escape(n.rule_id or '—')}</code> → light "
-            f"<code>{html.escape(n.light)}</code>, move: {now_move}: {idle}."
-        )
-    return "\n\n".join(lines)
 
 
 def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:

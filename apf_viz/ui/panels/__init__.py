@@ -1,0 +1,84 @@
+"""The GUI of one browser: a folder a module, each building its controls and refreshing itself from that
+browser's :class:`~apf_viz.ui.presenter.SessionView`.
+
+Labels are part of the interface (people and the browser tests find controls by them): Step, Back,
+Play/Pause, Speed, Reset, Timeline, Scheduler, Seed, Event, Mode, Follow presenter, and the file buttons.
+Callbacks ignore programmatic updates (``event.client is None``), so refreshing a value from the session
+never feeds back into it; what a callback has to say goes to the browser that caused it only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable
+
+from apf_viz.ui.panels.adversary import AdversaryFolder
+from apf_viz.ui.panels.algorithm import AlgorithmFolder
+from apf_viz.ui.panels.compare import CompareFolder
+from apf_viz.ui.panels.context import PanelContext, SharedVerifier, tell
+from apf_viz.ui.panels.edit import MODE_LABELS, MODES, EditFolder
+from apf_viz.ui.panels.files import FilesFolder, load_demo
+from apf_viz.ui.panels.legend import LegendFolder
+from apf_viz.ui.panels.moves import MovesFolder
+from apf_viz.ui.panels.run import RunFolder
+from apf_viz.ui.panels.selected import SelectedFolder
+from apf_viz.ui.panels.why import WhyFolder
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.session import Session
+
+__all__ = ["MODES", "MODE_LABELS", "Panels", "SharedVerifier", "tell"]
+
+# In this order on screen: the legend first, so that it is on screen whenever the run is; folders a
+# lecture rarely needs start collapsed, so that Last event and Why fit on a 1024×768 projector.
+FOLDERS = (
+    LegendFolder,
+    RunFolder,
+    AdversaryFolder,
+    SelectedFolder,
+    WhyFolder,
+    AlgorithmFolder,
+    CompareFolder,
+    EditFolder,
+    FilesFolder,
+    MovesFolder,
+)
+
+
+class Panels:
+    """One browser's panel (``owner``: the viser client, or the server for a panel every browser
+    shares); :meth:`refresh` shows that browser's view."""
+
+    def __init__(
+        self,
+        owner,
+        session: Session,
+        changed: Callable[[], None],
+        frame: Callable[[object], None] = lambda client: None,
+        *,
+        browser: Hashable | None = None,
+        verifier: SharedVerifier | None = None,
+        frame_all: Callable[[], None] = lambda: None,
+    ) -> None:
+        self.session = session
+        self.ctx = PanelContext(
+            session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
+        )
+        self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
+
+    def refresh(self, view: SessionView) -> None:
+        for folder in self.folders:
+            folder.refresh(view)
+
+    def _folder(self, kind: type):
+        return next(f for f in self.folders if isinstance(f, kind))
+
+    @property
+    def legend(self):
+        """The legend's HTML element."""
+        return self._folder(LegendFolder).html
+
+    @property
+    def _recorder(self):
+        """This browser's GIF recording, if one runs."""
+        return self._folder(FilesFolder).recorder
+
+    _load_demo = staticmethod(load_demo)

@@ -1,0 +1,89 @@
+"""Adversary: the scheduler and its seed, whether no-op activations are kept, Manual's clicks and who is
+next for what, and Verify (every schedule of a small start)."""
+
+from __future__ import annotations
+
+from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.session import SCHEDULER_LABELS
+from apf_viz.ui.verifier import MAX_K
+
+
+def scheduler_label(name: str) -> str:
+    return next(k for k, v in SCHEDULER_LABELS.items() if v == name)
+
+
+class AdversaryFolder:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
+        s = ctx.session
+        with gui.add_folder("Adversary"):
+            self.scheduler = gui.add_dropdown(
+                "Scheduler", tuple(SCHEDULER_LABELS), initial_value=scheduler_label(s.scheduler_name)
+            )
+            self.scheduler.on_update(ctx.from_browser(lambda e: s.set_scheduler(self.scheduler.value)))
+            self.seed = gui.add_number("Seed", initial_value=s.seed, step=1)
+            self.seed.on_update(ctx.from_browser(lambda e: s.set_seed(self.seed.value)))
+            self.all_activations = gui.add_checkbox(
+                "All activations",
+                initial_value=not s.config.skip_noops,
+                hint="keep the cycles that change nothing (a robot waking to a view it answers with "
+                "'same light, stay'); off: the scheduler passes those robots over (the run restarts)",
+            )
+            self.all_activations.on_update(ctx.from_browser(self._on_all_activations))
+            self.click = gui.add_dropdown(
+                "Click",
+                ("advance", "select"),
+                initial_value="advance",
+                visible=False,
+                hint="Manual: a click on a robot runs its next phase (advance) or only selects it (select)",
+            )
+            self.click.on_update(
+                ctx.from_browser(lambda e: s.set_click_advances(self.click.value == "advance"))
+            )
+            self.next_phase = gui.add_markdown("")
+            self._verify_controls(gui)
+
+    def _verify_controls(self, gui) -> None:
+        self.verify = gui.add_button(
+            "Verify",
+            hint=f"explore every schedule of this start and pattern (k ≤ {MAX_K}), as apf-viz check does",
+        )
+        self.verify.on_click(self._on_verify)
+        self.cancel_verify = gui.add_button("Cancel verification", visible=False)
+        self.cancel_verify.on_click(lambda e: self.ctx.verifier.cancel())
+        self.verify_status = gui.add_markdown("")
+
+    def _on_all_activations(self, event) -> None:
+        keep = bool(self.all_activations.value)
+        if keep != (not self.ctx.session.config.skip_noops):
+            self.ctx.session.set_all_activations(keep)
+
+    def _on_verify(self, event) -> None:
+        why_not = self.ctx.verifier.start(event.client)
+        if why_not:
+            tell(event.client, "Verify", why_not, error=True)
+        self.ctx.changed()
+
+    def refresh(self, view: SessionView) -> None:
+        s = self.ctx.session
+        v = self.ctx.verifier.status
+        running = v.state == "running"
+        self.verify_status.content = (
+            f"Verifying… **{v.states:,}** states, frontier {v.frontier:,}, {v.rate:,.0f} states/s"
+            if running
+            else (f"Verify: {v.text}" if v.text else "")
+        )
+        if self.cancel_verify.visible != running:
+            self.cancel_verify.visible = running
+        manual = view.scheduler == "manual"
+        if self.click.visible != manual:
+            self.click.visible = manual
+        click = "advance" if view.click_advances else "select"
+        if self.click.value != click:
+            self.click.value = click
+        if self.all_activations.value == s.config.skip_noops:
+            self.all_activations.value = not s.config.skip_noops
+        if self.scheduler.value != scheduler_label(view.scheduler):
+            self.scheduler.value = scheduler_label(view.scheduler)
+        self.next_phase.content = view.next_phases

@@ -1,0 +1,90 @@
+"""What every panel folder is given: the session, the browser it belongs to, and how to ask for a frame,
+point a camera, tell a browser something and verify the run."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable
+from dataclasses import dataclass
+
+from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
+from apf_viz.ui.session import Session
+from apf_viz.ui.verifier import Status, Verifier
+
+
+def tell(client, title: str, body: str, error: bool = False) -> None:
+    """A notification for one browser (None: a programmatic change, told to nobody)."""
+    if client is not None:
+        client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
+
+
+class SharedVerifier:
+    """One verification of the shared run at a time; its progress shows in every browser, its result is
+    told to the browser that started it, and a counterexample is loaded into the run for Step to follow."""
+
+    def __init__(self, session: Session, changed: Callable[[], None]) -> None:
+        self.session, self.changed = session, changed
+        self.verifier = Verifier(self._on_status)
+        self._client = None
+
+    @property
+    def status(self) -> Status:
+        return self.verifier.status
+
+    def start(self, client) -> str | None:
+        why_not = self.verifier.start(self.session.config, self.session.run.plugins)
+        if why_not is None:
+            self._client = client
+        return why_not
+
+    def cancel(self) -> None:
+        self.verifier.cancel()
+
+    def _on_status(self, status: Status) -> None:
+        """From the verifier's thread: progress, or the end (a counterexample is loaded into the run)."""
+        if status.state != "running":
+            if status.trace is not None:
+                try:
+                    self.session.load_trace("counterexample.jsonl", status.trace.encode(), MAX_TRACE_BYTES)
+                except InputError as e:  # cannot happen for the engine's own replay; said if it does
+                    tell(self._client, "Verify", f"the counterexample did not load: {e}", error=True)
+            tell(self._client, "Verify", status.text, error=status.state == "violation")
+        self.changed()
+
+
+@dataclass
+class PanelContext:
+    """A browser's panel: whose it is, and the App's services."""
+
+    session: Session
+    browser: Hashable | None  # the viser client id (None: a panel built on the server's own GUI)
+    changed: Callable[[], None]  # ask for a frame
+    frame: Callable[[object], None]  # point one browser's camera at the whole run
+    frame_all: Callable[[], None]  # point every browser's camera at the whole run
+    verifier: SharedVerifier
+
+    def guard(self, fn: Callable, title: str = "apf-viz") -> Callable:
+        """Run a callback; bad input, or what it has to say (a returned string), is told to the browser
+        that caused it, not to every browser (a laptop's hint must not pop up on the projector). Always
+        re-render afterwards."""
+
+        def wrapped(event) -> None:
+            try:
+                said = fn(event)
+                if isinstance(said, str) and said:
+                    tell(event.client, title, said)
+            except (InputError, ValueError) as err:
+                tell(event.client, "Refused", str(err), error=True)
+            self.changed()
+
+        return wrapped
+
+    def from_browser(self, fn: Callable, title: str = "apf-viz") -> Callable:
+        """:meth:`guard`, for a control's update: programmatic updates (``event.client is None``, a value
+        refreshed from the session) never feed back into it."""
+        guarded = self.guard(fn, title)
+
+        def wrapped(event) -> None:
+            if event.client is not None:
+                guarded(event)
+
+        return wrapped

@@ -1,0 +1,123 @@
+"""Files: demo patterns and starts, uploads (robots, pattern, trace, schedule), downloads of the current
+files, and this browser's view as a PNG or a GIF."""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+
+from apf_viz.core.formats import InputError
+from apf_viz.demos import demo_files
+from apf_viz.ui.image import png_on_white
+from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
+
+
+def load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
+    """A dropdown's value names a file only through the list of demo files: never a path."""
+    path = demo_files(folder).get(name)
+    if path is None:
+        raise InputError(f"no demo called {name[:80]!r}")
+    return load(path.name, path.read_bytes())
+
+
+class FilesFolder:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
+        self.recorder: GifRecorder | None = None  # this browser's recording, if one runs
+        self._recording_lock = threading.Lock()
+        s = ctx.session
+        with gui.add_folder("Files", expand_by_default=False):
+            self.demo_pattern = gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+            self.demo_pattern.on_update(
+                ctx.from_browser(lambda e: self._demo("", self.demo_pattern.value, s.load_pattern))
+            )
+            self.demo_start = gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
+            self.demo_start.on_update(
+                ctx.from_browser(lambda e: self._demo("starts", self.demo_start.value, s.load_robots))
+            )
+            for label, loader in (
+                ("Upload robots", s.load_robots),
+                ("Upload pattern", s.load_pattern),
+                ("Upload trace", s.load_trace),
+                ("Upload schedule", s.load_schedule),
+            ):
+                gui.add_upload_button(label, mime_type="*/*").on_upload(self._uploader(loader))
+            for label, name, make in (
+                ("Download robots", "robots.json", s.robots_file),
+                ("Download pattern", "pattern.json", s.pattern_file),
+                ("Download trace", "trace.jsonl", s.trace_file),
+                ("Download schedule", "schedule.jsonl", s.schedule_file),
+            ):
+                gui.add_button(label).on_click(self._downloader(name, make))
+            gui.add_button("Save screenshot").on_click(self._screenshot)
+            self.record = gui.add_button("Record GIF")
+            self.record.on_click(self._on_record)
+
+    @staticmethod
+    def _demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
+        return load_demo(folder, name, load) if name != "—" else None
+
+    def _uploader(self, loader: Callable[[str, bytes], str | None]) -> Callable:
+        def on_upload(event) -> None:
+            f = event.target.value
+            self.ctx.guard(lambda e: loader(f.name, f.content), f.name)(event)
+
+        return on_upload
+
+    @staticmethod
+    def _downloader(filename: str, make: Callable[[], str]) -> Callable:
+        def on_click(event) -> None:
+            if event.client is not None:
+                event.client.send_file_download(filename, make().encode("utf-8"))
+
+        return on_click
+
+    def _event(self) -> int:
+        return self.ctx.session.engine.state.events
+
+    def _screenshot(self, event) -> None:
+        """The clicking browser's view as it is now, as a PNG download named after the event shown."""
+        client = event.client
+        if client is None:
+            return
+        name = f"apf-viz-event-{self._event()}.png"
+        try:
+            rgba = render_view(client, "png")
+        except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
+            client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
+            return
+        client.send_file_download(name, png_on_white(rgba))
+
+    def _on_record(self, event) -> None:
+        """Record GIF / Stop recording: one recording at a time, of this browser's view."""
+        client = event.client
+        if client is None:
+            return
+        with self._recording_lock:
+            if self.recorder is not None:
+                self.recorder.stop()
+                return
+            first = self._event()
+            self.recorder = GifRecorder(client, lambda gif, why: self._recorded(client, first, gif, why))
+            self.record.label = "Stop recording"
+        client.add_notification(
+            "Recording a GIF",
+            f"of this view, up to {RECORD_FPS:g} frames a second for at most {MAX_SECONDS:g} s",
+            auto_close_seconds=4.0,
+        )
+
+    def _recorded(self, client, first: int, gif: bytes | None, why: str) -> None:
+        with self._recording_lock:
+            self.recorder = None
+            self.record.label = "Record GIF"
+        if gif is None:
+            client.add_notification("Recording failed", why, color="red", auto_close_seconds=8.0)
+            return
+        client.send_file_download(f"apf-viz-events-{first}-{self._event()}.gif", gif)
+        if why:  # stopped early: the browser stopped answering
+            client.add_notification("Recording stopped", why, color="red", auto_close_seconds=8.0)
+
+    def refresh(self, view: SessionView) -> None:
+        pass  # nothing here follows the run

@@ -1,0 +1,122 @@
+"""Run: the Demo scenarios, stepping and playing, the timeline, a followed trace, the outcome and the
+story of the last events."""
+
+from __future__ import annotations
+
+from viser._messages import GuiSliderMark
+
+from apf_viz.demos import scenarios
+from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.presenter.legend import symbol_html
+from apf_viz.ui.run_controller import MAX_SPEED
+
+
+class RunFolder:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
+        s = ctx.session
+        with gui.add_folder("Run"):
+            self.demo = gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—")
+            self.demo.on_update(ctx.from_browser(self._on_demo))
+            self.demo_note = gui.add_markdown("")
+            self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
+            self.controls.on_click(self._on_control)
+            self.speed = gui.add_slider(
+                "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
+            )
+            self.speed.on_update(ctx.from_browser(lambda e: s.set_speed(self.speed.value)))
+            self.timeline = gui.add_slider(
+                "Timeline", min=0, max=1, step=1, initial_value=0,
+                hint="scrub the history; stepping from the past branches",
+            )  # fmt: skip
+            self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
+            gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
+            self._trace_controls(gui)
+            self.banner = gui.add_markdown("")
+            self.event = gui.add_number("Event", initial_value=0, disabled=True)
+            self.last_event = gui.add_text("Last event", initial_value="", disabled=True)
+            self.log = gui.add_markdown("")
+            self.stats = gui.add_markdown("")
+            self.numbers = gui.add_checkbox(
+                "Numbers", initial_value=True, hint="each robot's number beside it"
+            )
+            self.numbers.on_update(ctx.from_browser(lambda e: s.set_numbers(bool(self.numbers.value))))
+
+    def _trace_controls(self, gui) -> None:
+        s = self.ctx.session
+        self.trace = gui.add_markdown("")
+        self.branch = gui.add_button("Branch here", visible=False, hint="leave the trace: the scheduler runs")
+        self.branch.on_click(self.ctx.guard(lambda e: s.branch_here()))
+        self.aside = gui.add_markdown("")
+        self.restore = gui.add_button(
+            "Return to set-aside branch",
+            visible=False,
+            hint="go back to the recorded steps the last branch dropped, and follow them",
+        )
+        self.restore.on_click(self.ctx.guard(lambda e: s.return_to_set_aside()))
+
+    def _on_demo(self, event) -> None:
+        """A ready scenario; what it shows stays under the dropdown, for the room to read."""
+        if self.demo.value != "—":
+            self.ctx.session.load_scenario(self.demo.value)
+
+    def _on_control(self, event) -> None:
+        value, s = event.target.value, self.ctx.session
+        if value == "Step":
+            s.pause()
+            if not s.step(self.ctx.browser):
+                tell(event.client, "Step", s.why_not_step())
+        elif value == "Back":
+            s.back()
+        elif value in ("Play", "Pause"):
+            s.toggle_play()
+        elif value == "Reset":
+            s.reset()
+        self.ctx.changed()
+
+    def _on_jump(self, event) -> None:
+        """Next move / Next stage run the scheduler until something happens (the result goes to the
+        browser that asked); Frame run points that browser's camera at the whole run."""
+        value, client = event.target.value, event.client
+        if value == "Frame run":
+            if client is not None:
+                self.ctx.frame(client)
+            return
+        result = self.ctx.session.run_until("move" if value == "Next move" else "stage")
+        if client is not None:
+            client.add_notification(value, result, auto_close_seconds=5.0)
+        self.ctx.changed()
+
+    def refresh(self, view: SessionView) -> None:
+        self.controls.options = ("Step", "Back", "Pause" if view.playing else "Play", "Reset")
+        self.timeline.max = max(1, view.history_length)
+        self.timeline.value = view.steps
+        self.event.value = view.event
+        last = view.last_events[0] if view.last_events else ""
+        if self.last_event.value != last:
+            self.last_event.value = last
+            latest = f"<small><b>{view.last_events[0]}</b></small>" if view.last_events else ""
+            self.log.content = "  \n".join([latest, *(f"<small>{e}</small>" for e in view.last_events[1:6])])
+        note = f"<small>{symbol_html(view.scenario_note)}</small>" if view.scenario_note else ""
+        if self.demo_note.content != note:
+            self.demo_note.content = note
+        if not view.scenario_note and self.demo.value != "—":
+            self.demo.value = "—"  # another run replaced the scenario
+        self.stats.content = view.stats
+        self.banner.content = view.banner
+        self._refresh_trace(view)
+        if self.numbers.value != view.numbers:
+            self.numbers.value = view.numbers
+
+    def _refresh_trace(self, view: SessionView) -> None:
+        following = view.trace_position is not None
+        if self.branch.visible != following:
+            self.branch.visible = following
+        self.trace.content = view.trace_line
+        if self.restore.visible != (view.set_aside is not None):
+            self.restore.visible = view.set_aside is not None
+        self.aside.content = view.aside_line
+        marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
+        if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
+            self.timeline._marks = marks or None

@@ -1,0 +1,16 @@
+"""Why: the selected robot's last decision, its rule and the predicates it tested."""
+
+from __future__ import annotations
+
+from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.presenter.why import why_markdown
+
+
+class WhyFolder:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        with gui.add_folder("Why"):
+            self.markdown = gui.add_markdown(why_markdown(None))
+
+    def refresh(self, view: SessionView) -> None:
+        self.markdown.content = view.why_text

@@ -1,0 +1,251 @@
+"""The presenter: turns the run (engine, history, config), the shared screen and *one browser's* state
+into the :class:`SessionView` that browser's scene and panels draw, sentences included. Pure: no viser,
+no locks (the session holds its lock while calling), no particular algorithm (what is drawn over the run
+and why a robot acted come from the algorithm's own description, core/portrayal.py).
+
+The run's part is the same for every browser and is made once a frame (:func:`present_run`); each
+browser's part (its selection: rays, ghosts, the caption, Why) is laid over it (:func:`for_browser`)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from itertools import repeat
+
+import numpy as np
+
+from apf_viz.core.budget import paper_D
+from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
+from apf_viz.core.frames import move_to_global
+from apf_viz.core.grid import Point
+from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of
+from apf_viz.ui.presenter import story
+from apf_viz.ui.presenter.staleness import seen_robots
+from apf_viz.ui.presenter.views import RobotView, SessionView, WhyView
+from apf_viz.ui.presenter.why import why_markdown, why_view
+from apf_viz.ui.run_controller import RunController
+from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, SharedScreen
+
+__all__ = ["RobotView", "SessionView", "WhyView", "for_browser", "present", "present_run"]
+
+_PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
+_COMPUTED = int(Phase.COMPUTED)
+
+
+def present(
+    run: RunController, screen: SharedScreen, browser: BrowserState, presenter: BrowserState
+) -> SessionView:
+    """The whole view of one browser (``presenter``: whose selection a following browser shows)."""
+    return for_browser(present_run(run, screen), run, screen, browser, presenter)
+
+
+def present_run(run: RunController, screen: SharedScreen) -> SessionView:
+    """What every browser shows alike: the run, its story and the shared screen; nothing selected."""
+    e = run.engine
+    st = e.state
+    pts = e.current_points()
+    running = screen.mode == "run"
+    robots = robot_views(e, pts) if screen.mode != "edit-robots" else _drafted_robots(e, screen)
+    overlays = _overlays(run, screen, pts, st.lights)
+    numbers = run_numbers(e, overlays)
+    crash = story.collision(e, pts) if st.outcome == "collision" and running else None
+    stuck = st.outcome == "stuck" and running
+    view = SessionView(
+        robots=tuple(robots),
+        targets=_targets(overlays),
+        selected=None,
+        rays=(),
+        ghosts=(),
+        overlays=overlays,
+        legend=legend_of(e.algorithm),
+        why=None,
+        outcome=st.outcome,
+        caption=story.caption(e, None, True, []),
+        last_events=story.last_events(e),
+        trace_position=run.trace_position,
+        last_actor=story.last_actor(e) if running else None,
+        numbers=screen.numbers if screen.numbers is not None else len(robots) <= NUMBERS_UP_TO,
+        collision=crash[:2] if crash else None,
+        collided=crash[2] if crash else (),
+        never_act=tuple(range(e.k)) if stuck else (),
+        scenario_note=screen.scenario_note,
+        algorithm=run.config.algorithm,
+        set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
+        following_what=run.following_what,
+        click_advances=screen.click_advances,
+        compare=_twin_view(run, screen) if screen.twin is not None and running else None,
+        divergence=screen.twin.divergence(e) if screen.twin is not None and running else None,
+        trace_note=story.trace_note(run.trace_options),
+        timeline_marks=story.loop_marks(run.trace_options, e.history.length, run.config.scheduler),
+        **numbers,
+        mode=screen.mode,
+        draft_count=len(screen.editor.pattern) if screen.mode != "edit-robots" else len(screen.editor.robots),
+        robot_count=len(screen.editor.robots) if screen.mode == "edit-robots" else e.k,
+        axis=screen.editor.axis() if screen.mode == "edit-robots" else None,
+        move_series=run.series.at(e.history, e.step_index),
+        scheduler=run.config.scheduler,
+        playing=run.playing,
+        why_text=why_markdown(None),
+    )
+    return replace(view, **_sentences(view, crash[0] if crash else None, stuck))
+
+
+def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
+    """The panels' sentences about the run, from the facts of its view."""
+    out = {
+        "banner": story.banner(view.outcome, crash, stuck),
+        "stats": story.stats(view.algorithm, view.__dict__),
+        "counts": story.counts(view.mode, view.draft_count, view.robot_count, len(view.robots), view.axis),
+        "trace_line": story.trace_line(view.trace_position, view.following_what, view.trace_note),
+        "aside_line": story.aside_line(view.set_aside),
+    }
+    twin = view.compare
+    if twin is not None:
+        a = (view.algorithm, view.outcome, view.event, view.moves)
+        b = (twin.algorithm, twin.outcome, twin.event, twin.moves)
+        out["compare_text"] = story.compare_text(a, b, view.divergence)
+    if view.scheduler == "manual":
+        out["next_phases"] = story.next_phases([r.next_event for r in view.robots], view.click_advances)
+    return out
+
+
+def for_browser(
+    view: SessionView,
+    run: RunController,
+    screen: SharedScreen,
+    browser: BrowserState,
+    presenter: BrowserState,
+) -> SessionView:
+    """``view`` (the run's) with this browser's selection: rays, ghosts, the caption and Why."""
+    e = run.engine
+    source = presenter if browser.follow and browser is not presenter else browser
+    sel = source.selected
+    if sel is None or sel >= e.k or screen.mode != "run":
+        return replace(view, follows_presenter=source is presenter and browser is not presenter)
+    st = e.state
+    pts = e.current_points()
+    start = list(run.config.robots)
+    seen = seen_robots(e, sel, start) if st.snapshot[sel] is not None else []
+    if st.snapshot[sel] is not None:  # what it saw, not what is there now
+        rays = tuple((pts[sel], s.seen_at) for s in seen)
+        ghosts = tuple((s.seen_at, s.seen_light) for s in seen if s.changed)
+    else:
+        rays, ghosts = tuple((pts[sel], pts[j]) for j in e.visible(sel).tolist()), ()
+    why = why_view(e, sel, pts, start)
+    return replace(
+        view,
+        selected=sel,
+        rays=rays,
+        ghosts=ghosts,
+        why=why,
+        why_text=why_markdown(why),
+        caption=story.caption(e, sel, e.y_up[sel], seen),
+        stale=tuple(s.robot for s in seen if s.changed),
+        follows_presenter=source is presenter and browser is not presenter,
+    )
+
+
+def robot_views(e: Engine, pts: list[Point]) -> list[RobotView]:
+    """What the scene draws for each robot of engine ``e`` (``pts``: its current points)."""
+    st = e.state
+    phases = st.phase.tolist()
+    pending: list[Point | None] = [None] * e.k
+    for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
+        if st.pending[r].move is not None:
+            dx, dy = move_to_global(st.pending[r].move, e.y_up[r]).delta
+            pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
+    # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
+    return list(
+        map(
+            tuple.__new__,
+            repeat(RobotView),
+            zip(
+                pts,
+                st.lights,
+                [_PHASE_NAMES[p] for p in phases],
+                e.y_up,
+                pending,
+                [NEXT_EVENT[p] for p in phases],
+                strict=True,
+            ),
+        )
+    )
+
+
+def run_numbers(e: Engine, overlays: Overlays) -> dict:
+    """The counts and stage a panel shows for engine ``e`` (the run's, or Compare's second run)."""
+    st = e.state
+    return {
+        "event": st.events,
+        "steps": st.steps,
+        "history_length": e.history.length,
+        "moves": st.moves,
+        "cycles": st.cycles,
+        "stage": overlays.stage,
+        "lights_in_use": tuple(sorted(set(st.lights), key=e.algorithm.lights.index)),
+        "skipped": st.skipped,
+        "moves_per_kD": st.moves / (e.k * paper_D(e.start, e.pattern)),
+    }
+
+
+def stage_of(run: RunController, screen: SharedScreen) -> str:
+    """The algorithm's stage now (Next stage steps until it changes)."""
+    e = run.engine
+    return _overlays(run, screen, e.current_points(), e.state.lights).stage
+
+
+def _drafted_robots(e: Engine, screen: SharedScreen) -> list[RobotView]:
+    """Edit robots: the robots being placed, not the run's."""
+    first = e.algorithm.lights[0]
+    editor = screen.editor
+    return [
+        RobotView(p, first, "idle", up, None, "look")
+        for p, up in zip(editor.robots, editor.y_up, strict=True)
+    ]
+
+
+def _targets(overlays: Overlays) -> tuple[Point, ...]:
+    return next((m.points for m in overlays.marks if isinstance(m, Cells)), ())
+
+
+def _overlays(run: RunController, screen: SharedScreen, pts: list[Point], lights: list[str]) -> Overlays:
+    """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead, and
+    while robots are placed, the pattern they will be given (the draft's, not the run's)."""
+    if screen.mode == "edit-pattern":
+        return Overlays((Cells(tuple(screen.editor.pattern), "pattern being drawn"),), "editing the pattern")
+    if screen.mode == "edit-robots":
+        return Overlays(
+            (Cells(tuple(screen.editor.pattern), "pattern for these robots", "preview"),),
+            "editing the robots",
+        )
+    config = Configuration(tuple(pts), tuple(lights), run.config.pattern, run.config.robots)
+    return overlays_of(run.engine.algorithm, config)
+
+
+def _twin_view(run: RunController, screen: SharedScreen) -> SessionView:
+    """Compare's second run as the scene draws it: robots, the algorithm's overlays, its outcome."""
+    assert screen.twin is not None
+    t = screen.twin.follow(run.engine, run.config)
+    pts = t.current_points()
+    st = t.state
+    overlays = overlays_of(t.algorithm, Configuration(tuple(pts), tuple(st.lights), t.pattern, t.start))
+    return SessionView(
+        robots=tuple(robot_views(t, pts)),
+        targets=_targets(overlays),
+        selected=None,
+        rays=(),
+        ghosts=(),
+        overlays=overlays,
+        legend=legend_of(t.algorithm),
+        why=None,
+        outcome=st.outcome,
+        caption="",
+        **run_numbers(t, overlays),
+        mode="run",
+        draft_count=len(t.pattern),
+        robot_count=t.k,
+        axis=None,
+        numbers=screen.numbers if screen.numbers is not None else t.k <= NUMBERS_UP_TO,
+        collision=None,
+        never_act=tuple(range(t.k)) if st.outcome == "stuck" else (),
+        algorithm=screen.twin.algorithm,
+    )

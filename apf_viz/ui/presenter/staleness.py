@@ -1,0 +1,106 @@
+"""What a robot's snapshot saw, robot by robot, against where those robots are now: the one notion of a
+stale snapshot, used by the Selected robot caption (the snapshot it holds) and by Why (the snapshot its
+last decision was made on), in the same words.
+
+A snapshot is identity-free (offsets and lights in the robot's own frame: all the algorithm may know),
+but the person watching wants names: "robot 1: seen at (0, 4), now at (-1, 4)". The engine records who
+was seen at each Look (``EngineState.seen``, and ``decided_seen`` for the Look a decision used) and every
+move since (the history), which is enough to put each seen robot where it stood at that Look. Stale
+means another robot's position or light differs from what the snapshot holds; the robot's own light does
+not count, nor robots that came into sight since.
+"""
+
+from __future__ import annotations
+
+from typing import Literal, NamedTuple
+
+from apf_viz.core.engine import Engine
+from apf_viz.core.grid import Point
+from apf_viz.core.portrayal import in_frame
+
+Which = Literal["held", "decided"]
+
+
+class SeenRobot(NamedTuple):
+    """One robot of a snapshot: where and with which light it was seen, and where and how it is now."""
+
+    robot: int
+    seen_at: Point
+    seen_light: str
+    now_at: Point
+    now_light: str
+
+    @property
+    def changed(self) -> bool:
+        return self.seen_at != self.now_at or self.seen_light != self.now_light
+
+    def describe(self) -> str:
+        """ "robot 1: seen at (0, 4), now at (-1, 4)" / "robot 2: seen with light off, now leader1"."""
+        parts = []
+        if self.seen_at != self.now_at:
+            parts.append(f"seen at {_p(self.seen_at)}, now at {_p(self.now_at)}")
+        if self.seen_light != self.now_light:
+            parts.append(f"seen with light {self.seen_light}, now {self.now_light}")
+        return f"robot {self.robot}: " + "; ".join(parts)
+
+
+def _p(p: Point) -> str:
+    return f"({p[0]}, {p[1]})"
+
+
+def seen_robots(engine: Engine, robot: int, start: list[Point], which: Which = "held") -> list[SeenRobot]:
+    """The robots of ``robot``'s snapshot, in the snapshot's order: the one it holds (``held``; empty if
+    it holds none) or the one its latest decision was computed on (``decided``; empty before it).
+
+    ``start``: the run's start positions (a robot that has not moved since the start stands there)."""
+    st = engine.state
+    if which == "held":
+        snap, ids, look = st.snapshot[robot], st.seen[robot], int(st.look_step[robot])
+    else:
+        snap, ids, look = st.decided[robot], st.decided_seen[robot], int(st.decided_look[robot])
+    if snap is None or ids is None or look < 1 or look > engine.step_index:
+        return []
+    at_look = _positions_at(engine, set(ids) | {robot}, look, start)
+    pts = engine.current_points()
+    places = in_frame(snap.offsets(), at_look[robot], engine.y_up[robot])
+    light_at = {p: s.light for p, s in zip(places, snap.robots, strict=True)}
+    by_place = {at_look[j]: j for j in ids}
+    return [
+        SeenRobot(by_place[p], p, light_at[p], pts[by_place[p]], st.lights[by_place[p]])
+        for p in places
+        if p in by_place
+    ]
+
+
+def changes(engine: Engine, robot: int, start: list[Point], which: Which = "held") -> list[SeenRobot]:
+    """The robots of that snapshot that have moved or changed light since its Look: what makes it stale."""
+    return [s for s in seen_robots(engine, robot, start, which) if s.changed]
+
+
+def _positions_at(engine: Engine, robots: set[int], look: int, start: list[Point]) -> dict[int, Point]:
+    """Where each of ``robots`` stood at the Look of step ``look`` (1-based: the Look is in step
+    ``look - 1``): now, unless it moved since; then at its last move before the Look, or its start."""
+    steps = engine.history.steps
+    pts = engine.current_points()
+    moved = {
+        ev.robot
+        for s in steps[look : engine.step_index]
+        for ev in s.events
+        if _moved(ev) and ev.robot in robots
+    }
+    at = {j: pts[j] for j in robots if j not in moved}
+    missing = set(moved)
+    for i in range(look - 1, -1, -1):  # back from the Look: each mover's last move before it
+        if not missing:
+            break
+        for ev in reversed(steps[i].events):
+            if ev.robot in missing and _moved(ev):
+                at[ev.robot] = tuple(ev.to)  # type: ignore[assignment]
+                missing.discard(ev.robot)
+    for j in missing:
+        at[j] = tuple(start[j])  # type: ignore[assignment]
+    return at
+
+
+def _moved(ev) -> bool:
+    return ev.phase == "move" and not ev.collision

@@ -1,0 +1,223 @@
+"""The story of a run in words: what just happened (events), how it ended (banners, a collision located),
+where the run stands (stats, a followed trace, Compare, Manual's next phases) and what the selected robot
+holds (the caption). Every sentence the panels show about the run is made here, from engine state."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+from apf_viz.core.engine import Engine
+from apf_viz.core.grid import Point
+from apf_viz.ui.presenter.legend import symbol_html
+from apf_viz.ui.presenter.staleness import SeenRobot
+
+MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
+_ICONS = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}
+
+
+def describe_event(ev, stays: bool = False) -> str:
+    """One event in words: "robot 3 · Move → (1, 0)", "robot 1 · Compute → light leader1, stay — A1.off.on-K"
+    (``stays``: the Move of a decision to stay)."""
+    head = f"robot {ev.robot} · "
+    if ev.phase == "look":
+        return head + f"Look: sees {len(ev.sees or ())} robots"
+    if ev.phase == "compute":
+        move = f", move {ev.move.value}" if ev.move is not None else ", stay"
+        rule = f" — {ev.rule_id or ev.rule}" if (ev.rule_id or ev.rule) else ""
+        return head + f"Compute → light {ev.light}{move}{rule}"
+    if ev.collision:
+        return head + f"Move → ({ev.to[0]}, {ev.to[1]}): COLLISION"
+    if stays:
+        return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]})"
+    return head + f"Move → ({ev.to[0]}, {ev.to[1]})"
+
+
+def last_events(e: Engine, n: int = 8) -> tuple[str, ...]:
+    """The last ``n`` events, newest first, in words: who did what."""
+    st = e.state
+    out: list[str] = []
+    window = e.history.steps[max(0, e.step_index - n) : e.step_index]
+    latest_seen: set[int] = set()
+    for step in reversed(window):
+        for ev in reversed(step.events):
+            stays = False
+            if ev.phase == "move" and ev.robot not in latest_seen and st.decided[ev.robot] is not None:
+                # Its latest event: the decision it moved on is the one on its latest decided snapshot.
+                stays = e.decide(st.decided[ev.robot]).move is None
+            latest_seen.add(ev.robot)
+            out.append(describe_event(ev, stays))
+            if len(out) == n:
+                return tuple(out)
+    return tuple(out)
+
+
+def last_actor(e: Engine) -> int | None:
+    if e.step_index == 0:
+        return None
+    events = e.history.steps[e.step_index - 1].events
+    return events[-1].robot if len(events) == 1 else None
+
+
+def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tuple[int, ...]] | None:
+    """The colliding moves of the last step: in words, the cells involved and the robots involved."""
+    if e.step_index == 0:
+        return None
+    st = e.state
+    movers = [ev for ev in e.history.steps[e.step_index - 1].events if ev.collision]
+    where = {p: i for i, p in enumerate(pts)}
+    words, cells, robots = [], [], []
+    for ev in movers:
+        other = where.get(ev.to)
+        onto = f"onto robot {other}" if other is not None and other != ev.robot else "into another mover"
+        words.append(
+            f"robot {ev.robot} moved {onto} at ({ev.to[0]}, {ev.to[1]}) on a snapshot taken at step "
+            f"{int(st.look_step[ev.robot])}"
+        )
+        cells += [ev.to, pts[ev.robot]]
+        robots += [ev.robot] + ([other] if other is not None and other != ev.robot else [])
+    if not words:
+        return None
+    return "; ".join(words), tuple(dict.fromkeys(cells)), tuple(dict.fromkeys(robots))
+
+
+def banner(outcome: str | None, collision_words: str | None, stuck: bool) -> str:
+    """The outcome as a heading, and where it happened."""
+    if outcome is None:
+        return ""
+    detail = f"\n\n{collision_words} (red on the grid)" if collision_words else ""
+    if stuck:
+        detail = "\n\nNo next cycle of any robot changes anything: all (ringed dark red) will never act"
+    if outcome == "formed":
+        detail = "\n\nEvery robot is on a target cell of the pattern."
+    return f"## {_ICONS.get(outcome, '')} {outcome.upper()}{detail}"
+
+
+def stats(algorithm: str, numbers: Mapping[str, object]) -> str:
+    n = numbers
+    skipped = n["skipped"]
+    return (
+        f"Algorithm **{algorithm}**  \n"
+        f"Moves **{n['moves']}** · cycles **{n['cycles']}** · step {n['steps']}/{n['history_length']}  \n"
+        f"Stage: **{n['stage']}** · moves/(k·D) = {n['moves_per_kD']:.3f}  \n"
+        + (f"Passed over (changing nothing): {skipped:,} robot·steps  \n" if skipped else "")
+        + f"Lights in use: {', '.join(n['lights_in_use'])}"  # type: ignore[arg-type]
+    )
+
+
+def trace_note(options: Mapping[str, object]) -> str:
+    """What a trace's header says it shows, in one line ("" for a plain recorded run)."""
+    verdict = options.get("verdict") or options.get("literal_failure")
+    detail = options.get("detail")
+    problems = options.get("problems")
+    if not detail and isinstance(problems, list) and problems:
+        detail = str(problems[0])
+    gap = options.get("shows_gap")
+    parts = []
+    if gap:
+        parts.append(f"shows gap {gap} (the variant without its resolution)")
+    if verdict:
+        detail = str(detail or "").removeprefix(f"{verdict}: ")
+        parts.append(f"verdict: {verdict}" + (f" — {detail}" if detail and detail != verdict else ""))
+    return "; ".join(parts)
+
+
+def trace_line(position: tuple[int, int] | None, what: str, note: str) -> str:
+    """Following a trace or schedule: where in it, and what its header says it shows."""
+    line = ""
+    if position is not None:
+        at, of = position
+        end = " — its end" if at >= of else ""
+        line = f"Following {what}: event **{at}** of {of}{end}"
+    if note:
+        line += f"  \n<small>The trace: {symbol_html(note)}</small>"
+    return line
+
+
+def aside_line(set_aside: tuple[int, int] | None) -> str:
+    if set_aside is None:
+        return ""
+    return f"Set aside: the branch you left, {set_aside[1]} recorded step(s) after step {set_aside[0]}."
+
+
+def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tuple[tuple[int, str], ...]:
+    """A livelock from ``apf-viz check``: the header gives the explorer step where the loop begins, and
+    the trace runs the loop twice; marks where it begins, repeats and ends, in engine steps (a
+    synchronous explorer step is three engine steps: Looks, Computes, Moves)."""
+    start = options.get("loop_starts_at_step")
+    if not isinstance(start, int) or isinstance(start, bool) or start < 0:
+        return ()
+    per = 1 if scheduler in ("async", "manual", "stale-first", "round-robin") else 3
+    items = steps // per
+    if items <= start:
+        return ()
+    twice = (items - start) // 2
+    first, again = start * per, (start + twice) * per
+    return ((first, "loop starts"), (again, "loop repeats"), (again + twice * per, "…for ever"))
+
+
+def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, int, int], divergence) -> str:
+    """Compare: each side's (algorithm, outcome, event, moves), and the first event where they differ."""
+
+    def side(name: str, s: tuple[str, str | None, int, int]) -> str:
+        algorithm, outcome, event, moves = s
+        return f"{name} **{algorithm}**: {(outcome or 'running').upper()}, event {event}, {moves} moves"
+
+    if divergence is None:
+        split = "Same configurations so far."
+    else:
+        at, what = divergence
+        split = f"First divergence at event **{at}**: A {what.split(' | ')[0]}; B {what.split(' | ')[1]}"
+    return f"{side('A', a)}  \n{side('B', b)}  \n{split}"
+
+
+def counts(mode: str, draft_count: int, robot_count: int, robots: int, axis: float | None) -> str:
+    if mode == "edit-pattern":
+        return f"Targets: **{draft_count}** / {robot_count} robots — click cells to toggle"
+    if mode == "edit-robots":
+        warning = f"  \n⚠ symmetric about y = {axis:g}: unsolvable" if axis is not None else ""
+        return f"Robots: **{robot_count}** — click: add, flip y, remove{warning}"
+    return f"Pattern: {draft_count} points for {robots} robots"
+
+
+def next_phases(next_events: Sequence[str], click_advances: bool) -> str:
+    """Manual: which robots are next for which phase."""
+    by_phase: dict[str, list[int]] = {}
+    for i, phase in enumerate(next_events):
+        by_phase.setdefault(phase, []).append(i)
+    parts = [
+        f"{phase}: {', '.join(map(str, rs[:20]))}{'…' if len(rs) > 20 else ''}"
+        for phase, rs in sorted(by_phase.items())
+    ]
+    head = (
+        "Manual — click a robot to run its next phase."
+        if click_advances
+        else "Manual, Click: select — a click only selects; Step runs the selected robot's next phase."
+    )
+    return head + "  \n" + "  \n".join(parts)
+
+
+def caption(e: Engine, sel: int | None, y_up: bool, seen: list[SeenRobot]) -> str:
+    """The Selected robot panel: its light, phase, flip, and what its snapshot holds (stale or not)."""
+    if sel is None:
+        return "Click a robot to see what it sees and why it acts."
+    st = e.state
+    phase = ("idle", "looked", "computed")[st.phase[sel]]
+    lines = [
+        f"**Robot {sel}** — light `{st.lights[sel]}`, {phase}; next: {e.next_event(sel)}; "
+        f"y-axis {'up' if y_up else 'flipped'}",
+    ]
+    if st.snapshot[sel] is None:
+        lines.append(f"Idle: rays show the {len(e.visible(sel))} robots it would see if it looked now.")
+        return "\n\n".join(lines)
+    look = f"its snapshot from step {int(st.look_step[sel])} ({len(seen)} robots; rays go where it saw them)"
+    changed = [s.describe() for s in seen if s.changed]
+    if not changed:
+        lines.append(f"It holds {look}. Nothing it saw has changed since: the snapshot is current.")
+        return "\n\n".join(lines)
+    shown = changed[:MAX_DIFFS]
+    more = f"  \n… and {len(changed) - len(shown)} more" if len(changed) > len(shown) else ""
+    lines.append(
+        f"It holds {look}. **Stale**: {len(changed)} of them changed since (ghosts, in the light it "
+        "saw, mark where):  \n" + "  \n".join(f"· {c}" for c in shown) + more
+    )
+    return "\n\n".join(lines)

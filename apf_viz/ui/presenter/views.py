@@ -1,0 +1,96 @@
+"""What the screen shows, as plain data: the scene draws a :class:`SessionView` and the panels put its
+sentences in place. Built by :func:`apf_viz.ui.presenter.present`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+from apf_viz.core.algorithm import Decision
+from apf_viz.core.grid import Point
+from apf_viz.core.portrayal import Explanation, LightStyle, Mark, Overlays
+from apf_viz.ui.screen_state import Mode
+
+
+class RobotView(NamedTuple):
+    """What the scene draws for one robot (a named tuple: a frame builds a thousand of them)."""
+
+    position: Point
+    light: str
+    phase: str  # idle / looked / computed
+    y_up: bool
+    pending: Point | None  # global target of a computed move
+    next_event: str
+
+
+@dataclass(frozen=True)
+class WhyView:
+    """The selected robot's last decision and its evidence; regions already in the global frame."""
+
+    robot: int
+    explanation: Explanation | None  # None: the robot has not decided yet
+    origin: Point  # where the robot stood when it looked (its frame's origin)
+    regions: tuple[Mark, ...]
+    holds_snapshot: bool  # it has looked again since (its next Compute will decide anew)
+    changed: tuple[str, ...] = ()  # robots its decision saw that have since moved or changed light
+    now: Decision | None = None  # what it would decide if it looked now
+    changed_robots: tuple[int, ...] = ()  # the robot numbers of ``changed``
+
+
+@dataclass(frozen=True)
+class SessionView:
+    """Everything the scene and panels show, computed in one place from the engine's state."""
+
+    robots: tuple[RobotView, ...]
+    targets: tuple[Point, ...]  # the cells of the overlays (or of the pattern being drawn)
+    selected: int | None
+    rays: tuple[tuple[Point, Point], ...]  # to what the selected robot saw (its snapshot) or sees now
+    ghosts: tuple[tuple[Point, str], ...]  # where a robot was seen, with the light seen, if changed since
+    overlays: Overlays
+    legend: dict[str, LightStyle]
+    why: WhyView | None
+    outcome: str | None
+    caption: str
+    event: int
+    steps: int
+    history_length: int
+    moves: int
+    cycles: int
+    stage: str
+    lights_in_use: tuple[str, ...]
+    moves_per_kD: float
+    mode: Mode
+    draft_count: int  # points of the pattern being drawn / robots being placed
+    robot_count: int
+    axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
+    move_series: tuple[tuple[int, int], ...] = field(default=())
+    skipped: int = 0  # robot·steps passed over because their next cycle could change nothing
+    last_events: tuple[str, ...] = ()  # newest first, in words
+    last_actor: int | None = None  # the robot of the last step (one robot: ASYNC or Manual)
+    numbers: bool = False  # draw each robot's number beside it
+    trace_position: tuple[int, int] | None = None  # (event, events in the trace) while following one
+    collision: tuple[str, tuple[Point, ...]] | None = None  # what collided, in words, and the cells
+    collided: tuple[int, ...] = ()  # the robots of the collision (the facts of its sentence)
+    never_act: tuple[int, ...] = ()  # stuck: robots whose every future cycle changes nothing
+    scenario_note: str = ""  # what the Demo scenario shown shows
+    algorithm: str = ""  # the run's algorithm (by name)
+    set_aside: tuple[int, int] | None = None  # a branch dropped recorded steps: (at step, how many)
+    following_what: str = "the trace"  # what Step follows while trace_position is set
+    click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
+    compare: SessionView | None = None  # Compare: the same adversary under the second algorithm
+    divergence: tuple[int, str] | None = None  # Compare: the first event where the two differ
+    trace_note: str = ""  # what a loaded trace's header says it shows (a verdict, a gap, a loop)
+    timeline_marks: tuple[tuple[int, str], ...] = ()  # steps of the timeline worth a mark (a loop)
+    stale: tuple[int, ...] = ()  # robots the selected robot's held snapshot shows other than they are now
+    scheduler: str = "async"  # the run's scheduler (by name)
+    playing: bool = False
+    # The sentences of the panels, made here so that a test can read them without a browser.
+    banner: str = ""  # the outcome, located
+    stats: str = ""  # algorithm, moves, cycles, stage, lights
+    compare_text: str = ""  # Compare: each side's state and the first divergence
+    counts: str = ""  # Edit: targets or robots drawn
+    next_phases: str = ""  # Manual: who is next for what
+    why_text: str = ""  # the Why panel
+    trace_line: str = ""  # following a trace or schedule: where, and what its header says
+    aside_line: str = ""  # a branch set recorded steps aside
+    follows_presenter: bool = False  # this browser shows the presenter's selection

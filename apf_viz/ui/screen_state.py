@@ -1,0 +1,40 @@
+"""The state of the screen apart from the run: what every browser shares (the mode, the drafts, the
+numbers, a Demo note, Compare) and what each browser has of its own (its selection, whether it follows
+the presenter's, its camera). :class:`~apf_viz.ui.session.Session` changes them; the presenter reads them."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+from apf_viz.ui.compare import Twin
+from apf_viz.ui.editor import Editor
+
+Mode = Literal["run", "edit-pattern", "edit-robots"]
+NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
+
+
+@dataclass
+class SharedScreen:
+    """What every browser shows alike, besides the run itself."""
+
+    editor: Editor
+    mode: Mode = "run"
+    numbers: bool | None = None  # robot numbers on the canvas; None: on up to NUMBERS_UP_TO robots
+    click_advances: bool = True  # Manual: a click runs the robot's next phase; False: it only selects
+    scenario_note: str = ""  # what the Demo scenario being shown shows, until another run starts
+    twin: Twin | None = None  # Compare: a second algorithm stepping with the run
+
+
+@dataclass
+class BrowserState:
+    """One browser's own part of the screen. A laptop selecting a robot does not change what the
+    projector shows, unless the projector chose to ``follow`` the presenter's selection."""
+
+    selected: int | None = None
+    follow: bool = False  # show the presenter's selection instead of one's own
+    # The camera: "framed" (kept on the whole run as it grows) or "moved" by hand (left where it is
+    # until a new run starts or Frame run is pressed); and the box and run it was last framed on.
+    camera: Literal["framed", "moved"] = "framed"
+    framed_bounds: tuple[float, float, float, float] | None = None
+    framed_run: object | None = field(default=None, repr=False)

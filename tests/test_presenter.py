@@ -1,0 +1,109 @@
+"""The presenter (ui/presenter): what each browser's screen says, tested without a browser, by the facts
+its sentences carry (robot numbers, cells, rule ids), never by whole sentences."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from apf_viz.ui.app import demo_session
+from apf_viz.ui.presenter import for_browser, present, present_run
+from apf_viz.ui.presenter.staleness import changes
+from apf_viz.ui.screen_state import BrowserState
+from apf_viz.ui.session import Session
+
+LITERAL_COLLISION = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+
+
+def stale_session() -> Session:
+    """Robot 2 looks and computes seeing robot 1 at (3, 0); then robot 1 moves to (2, 0)."""
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    for _ in range(2):
+        s.click((5, 1))
+    for _ in range(3):
+        s.click((3, 0))
+    s.selected = 2
+    return s
+
+
+def test_a_collision_names_its_robots_and_cell_in_the_banner():
+    s = demo_session()
+    s.load_trace(LITERAL_COLLISION.name, LITERAL_COLLISION.read_bytes())
+    while s.engine.redo() is not None:
+        pass
+    v = s.view()
+    crash = [ev for ev in s.engine.history.steps[s.engine.step_index - 1].events if ev.collision]
+    mover, cell = crash[0].robot, crash[0].to
+    onto = next(i for i, r in enumerate(v.robots) if r.position == cell and i != mover)
+    assert set(v.collided) == {mover, onto}
+    assert cell in v.collision[1] and v.robots[mover].position in v.collision[1]
+    assert "COLLISION" in v.banner and f"robot {mover}" in v.banner and f"robot {onto}" in v.banner
+    assert f"({cell[0]}, {cell[1]})" in v.banner
+    look = int(s.engine.state.look_step[mover])
+    assert f"step {look}" in v.banner  # the snapshot it moved on
+
+
+def test_the_stale_facts_name_the_robots_that_changed_and_where():
+    s = stale_session()
+    v = s.view()
+    assert v.selected == 2 and v.stale == (1,)
+    assert v.ghosts == (((3, 0), "off"),)  # where it was seen, in the light seen
+    assert "robot 1" in v.caption and "(3, 0)" in v.caption and "(2, 0)" in v.caption
+    assert "robot 0" not in v.caption.split("Stale")[-1]  # robot 0 did not change
+    fresh = stale_session()
+    fresh.click((5, 1))  # robot 2 moves: its cycle ends, it holds no snapshot
+    fresh.selected = 2
+    assert fresh.view().stale == () and fresh.view().ghosts == ()
+
+
+def test_why_and_the_caption_use_one_notion_of_staleness():
+    s = stale_session()
+    v = s.view()
+    assert v.why is not None and v.why.changed_robots == v.stale == (1,)
+    for sentence in v.why.changed:
+        assert sentence in v.caption  # the same words in both panels
+    assert [c.robot for c in changes(s.engine, 2, list(s.config.robots), "held")] == [1]
+    assert [c.robot for c in changes(s.engine, 2, list(s.config.robots), "decided")] == [1]
+    assert "robot 1" in v.why_text and "(3, 0)" in v.why_text
+
+
+def test_why_carries_the_rule_the_robot_computed_with():
+    s = demo_session()
+    for _ in range(30):
+        s.step()
+    e = s.engine
+    computes = [ev for step in e.history.steps[: e.step_index] for ev in step.events if ev.phase == "compute"]
+    last = computes[-1]
+    s.selected = last.robot
+    v = s.view()
+    assert v.why.robot == last.robot and v.why.explanation.decision.rule_id == last.rule_id
+    assert last.rule_id in v.why_text and f"Robot {last.robot}" in v.why_text
+    assert v.why.explanation.decision.light == last.light
+
+
+def test_each_browser_has_its_own_selection_and_a_follower_shows_the_presenters():
+    s = demo_session()
+    for _ in range(12):
+        s.step()
+    laptop = BrowserState()
+    s.presenter.selected = 4
+    run = present_run(s.run, s.screen)
+    projector_view = for_browser(run, s.run, s.screen, s.presenter, s.presenter)
+    laptop_view = for_browser(run, s.run, s.screen, laptop, s.presenter)
+    assert projector_view.selected == 4 and projector_view.rays
+    assert laptop_view.selected is None and laptop_view.rays == () and laptop_view.why is None
+    laptop.follow = True
+    followed = present(s.run, s.screen, laptop, s.presenter)
+    assert followed.selected == 4 and followed.rays == projector_view.rays and followed.follows_presenter
+    assert laptop.selected is None  # following shows the presenter's; it selects nothing of its own
+
+
+def test_a_click_selects_for_the_browser_that_clicked_only():
+    s = demo_session()
+    s.join("projector")
+    s.join("laptop")
+    cell = s.engine.current_points()[3]
+    assert s.click(cell, "laptop") == "selected robot 3"
+    assert s.view("laptop").selected == 3 and s.view("projector").selected is None
+    s.reset()  # a new run clears every browser's selection
+    assert s.view("laptop").selected is None
