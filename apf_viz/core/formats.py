@@ -261,16 +261,21 @@ def load_pattern(path: Path | str) -> PatternFile:
     return parse_pattern(_read_text(path), str(path))
 
 
+def header_line(numbered: Iterable[tuple[int, str]], where: str, what: str) -> tuple[Iterator, int, Any]:
+    """The first line of a JSON Lines file (trace or schedule), parsed, its number, and the rest to come."""
+    lines = iter(numbered)
+    first = next(lines, None)
+    if first is None:
+        raise InputError(f"{where}: empty {what} file")
+    n0, text = first
+    return lines, n0, _parse_json(text, f"{where}:{n0}")
+
+
 def parse_trace_lines(
     numbered: Iterable[tuple[int, str]], where: str = "trace"
 ) -> tuple[TraceHeader, list[Event]]:
     """A trace from its non-blank lines, each with its line number (read as they come)."""
-    lines = iter(numbered)
-    first = next(lines, None)
-    if first is None:
-        raise InputError(f"{where}: empty trace file")
-    n0, text = first
-    data = _parse_json(text, f"{where}:{n0}")
+    lines, n0, data = header_line(numbered, where, "trace")
     if isinstance(data, dict) and data.get("format") == "apf-viz-schedule":
         raise InputError(
             f"{where}: this is a schedule, not a trace; follow it with apf-viz run --robots R --pattern P "

@@ -25,7 +25,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, model_validator
 
 from apf_viz.core.engine import Engine
-from apf_viz.core.formats import InputError, _parse_json, _validate, numbered_lines, read_lines
+from apf_viz.core.formats import InputError, _parse_json, _validate, header_line, numbered_lines, read_lines
 from apf_viz.core.history import Event, RecordedStep
 from apf_viz.core.run import steps_of_trace
 
@@ -161,12 +161,7 @@ def _other_format(data: object, where: str) -> None:
 
 def parse_schedule_lines(numbered: Iterable[tuple[int, str]], where: str = "schedule") -> Schedule:
     """A schedule from its non-blank lines, each with its line number (read as they come)."""
-    lines = iter(numbered)
-    first = next(lines, None)
-    if first is None:
-        raise InputError(f"{where}: empty schedule file")
-    n0, text = first
-    data = _parse_json(text, f"{where}:{n0}")
+    lines, n0, data = header_line(numbered, where, "schedule")
     _other_format(data, where)
     header = _validate(ScheduleHeader, data, f"{where}:{n0}")
     schedule = Schedule(header.robots, header.y_up, header.light_semantics)

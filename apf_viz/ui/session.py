@@ -49,6 +49,13 @@ SCHEDULER_LABELS = {
 }
 
 
+def _screen_field(name: str) -> property:
+    """A Session attribute that is the shared screen's field ``name`` (read and written)."""
+    return property(
+        lambda self: getattr(self.screen, name), lambda self, value: setattr(self.screen, name, value)
+    )
+
+
 class Session:
     """What every browser sees and drives: the run, the drafts, the mode and the selection."""
 
@@ -119,41 +126,12 @@ class Session:
             state.selected = None
 
     # ------------------------------------------------------------------ the screen, shared
-    @property
-    def editor(self) -> Editor:
-        return self.screen.editor
-
-    @editor.setter
-    def editor(self, editor: Editor) -> None:
-        self.screen.editor = editor
-
-    @property
-    def mode(self) -> Mode:
-        return self.screen.mode
-
-    @mode.setter
-    def mode(self, mode: Mode) -> None:
-        self.screen.mode = mode
-
-    @property
-    def scenario_note(self) -> str:
-        return self.screen.scenario_note
-
-    @scenario_note.setter
-    def scenario_note(self, note: str) -> None:
-        self.screen.scenario_note = note
-
-    @property
-    def twin(self) -> Twin | None:
-        return self.screen.twin
-
-    @property
-    def click_advances(self) -> bool:
-        return self.screen.click_advances
-
-    @property
-    def numbers(self) -> bool | None:
-        return self.screen.numbers
+    editor = _screen_field("editor")
+    mode = _screen_field("mode")
+    scenario_note = _screen_field("scenario_note")
+    twin = _screen_field("twin")
+    click_advances = _screen_field("click_advances")
+    numbers = _screen_field("numbers")
 
     @property
     def selected(self) -> int | None:

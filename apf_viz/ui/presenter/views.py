@@ -43,14 +43,9 @@ class SessionView:
 
     robots: tuple[RobotView, ...]
     targets: tuple[Point, ...]  # the cells of the overlays (or of the pattern being drawn)
-    selected: int | None
-    rays: tuple[tuple[Point, Point], ...]  # to what the selected robot saw (its snapshot) or sees now
-    ghosts: tuple[tuple[Point, str], ...]  # where a robot was seen, with the light seen, if changed since
     overlays: Overlays
     legend: dict[str, LightStyle]
-    why: WhyView | None
     outcome: str | None
-    caption: str
     event: int
     steps: int
     history_length: int
@@ -63,6 +58,11 @@ class SessionView:
     draft_count: int  # points of the pattern being drawn / robots being placed
     robot_count: int
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
+    selected: int | None = None  # this browser's (or, following, the presenter's) selected robot
+    rays: tuple[tuple[Point, Point], ...] = ()  # to what the selected robot saw (its snapshot) or sees now
+    ghosts: tuple[tuple[Point, str], ...] = ()  # where a robot was seen, in the light seen, if changed since
+    why: WhyView | None = None
+    caption: str = ""
     move_series: tuple[tuple[int, int], ...] = field(default=())
     skipped: int = 0  # robot·steps passed over because their next cycle could change nothing
     last_events: tuple[str, ...] = ()  # newest first, in words
