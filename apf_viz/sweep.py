@@ -304,11 +304,12 @@ class Progress:
 
 
 def cost(cell: Cell) -> float:
-    """A run's expected time, in arbitrary units: moves grow as k·D and each costs a little more in a
-    bigger crowd (measured, README: k = 100 → 1.8 s, 300 → 21 s, 1,000 → 8 min); a fixed part per run."""
+    """A run's expected time, in arbitrary units (about 80 µs each here): moves grow as k·D and each
+    costs a little more in a bigger crowd (measured, README: k = 40 → 0.6 s, 100 → 1.8 s, 300 → 21 s,
+    1,000 → 8 min), plus a fixed part per run (a task's round trip, tens of milliseconds)."""
     side = max(3, math.isqrt(3 * cell.k) + 1)
     d = max(cell.k, side) if not cell.robots else max(cell.k, *_extent(cell.robots), *_extent(cell.pattern))
-    return 50.0 + (cell.k * d) ** 1.2
+    return 500.0 + (cell.k * d) ** 1.2
 
 
 def _extent(points: Sequence[tuple[int, int]]) -> tuple[int, int]:
@@ -389,6 +390,7 @@ class _Tracker:
     def __init__(self, client, futures: dict, progress: Callable[[Progress], None] | None) -> None:
         self.client, self.futures, self.progress = client, futures, progress
         self.total = len(futures)
+        self.workers = max(1, len(client.scheduler_info().get("workers", {})))
         self.cost_left = sum(cost(c) for c in futures.values())
         self.cost_done = 0.0
         self.finished = self.failed = 0
@@ -432,7 +434,9 @@ class _Tracker:
             return
         now = time.monotonic()
         seconds = now - self.t0
-        eta = seconds * self.cost_left / self.cost_done if self.cost_done else None
+        # The first runs also pay for the workers' imports: no estimate until a round of runs is done.
+        warm = self.finished >= min(self.total, 2 * self.workers)
+        eta = max(0.0, seconds * self.cost_left / self.cost_done) if warm and self.cost_done else None
         self.progress(
             Progress(self.finished, self.total, self.failed, seconds, eta, self._slowest(pending, now))
         )
