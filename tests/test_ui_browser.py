@@ -698,3 +698,21 @@ def test_two_browsers_select_apart_until_one_follows_the_presenter(browser, app)
     wait_for(lambda: app.screens[b].selection._handles["/rays"].visible)
     shot(laptop, "laptop-follows-the-projector")
     assert not projector.get_by_label("Follow presenter").is_visible()  # the presenter follows nobody
+
+
+def test_a_camera_moved_by_hand_is_that_browsers_own_until_frame_run(browser, app):
+    page = open_page(browser, app)
+    wait_for(lambda: len(app.screens) == 1)
+    (screen,) = app.screens.values()
+    assert screen.state.camera == "framed"
+    box = page.locator("canvas").first.bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(cx, cy)
+    page.mouse.down(button="right")  # pan
+    page.mouse.move(cx + 150, cy + 80, steps=8)
+    page.mouse.up(button="right")
+    wait_for(lambda: screen.state.camera == "moved")
+    page.get_by_role("button", name="Frame run").click()
+    wait_for(lambda: screen.state.camera == "framed")
+    time.sleep(1.0)  # the browser reports the framed pose back: still framed
+    assert screen.state.camera == "framed"
