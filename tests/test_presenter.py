@@ -107,3 +107,19 @@ def test_a_click_selects_for_the_browser_that_clicked_only():
     assert s.view("laptop").selected == 3 and s.view("projector").selected is None
     s.reset()  # a new run clears every browser's selection
     assert s.view("laptop").selected is None
+
+
+def test_targets_stay_where_the_pattern_forms_at_every_event_of_the_demo():
+    """The leader walks last, to t_{n−1}: the targets drawn do not walk with it (the done robots fix
+    them); every done robot stands on a drawn target at every event, and at FORMED every robot does."""
+    s = demo_session()
+    off_target = []
+    while s.step():
+        v = s.view()
+        targets = set(v.targets)
+        lights = s.engine.state.lights
+        off_target += [
+            (v.event, i) for i, r in enumerate(v.robots) if lights[i] == "done" and r.position not in targets
+        ]
+    assert s.engine.outcome == "formed" and off_target == []
+    assert {r.position for r in s.view().robots} == set(s.view().targets)

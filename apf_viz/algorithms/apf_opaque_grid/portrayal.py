@@ -67,13 +67,37 @@ def leader_frame(positions: tuple[Point, ...], lights: tuple[str, ...]) -> tuple
     return (lx, ly + s), s
 
 
+def placed_frame(
+    positions: tuple[Point, ...], lights: tuple[str, ...], targets: tuple[Point, ...]
+) -> tuple[Point, int] | None:
+    """The frame the placed robots fix once every robot but the leader is done: the leader then walks
+    to t_{n−1}, and a frame read off its position would walk with it. As the leader reads it (LA,
+    :func:`~.pattern_formation._anchored_frame`): +y towards the done robots off its row, t_{n−2} the
+    leftmost robot of the lowest done row. None before that moment."""
+    if "leader" not in lights or len(targets) < 2:
+        return None
+    others = [lt for lt in lights if lt != "leader"]
+    if not others or any(lt != "done" for lt in others):
+        return None
+    ly = positions[lights.index("leader")][1]
+    done = [p for p, lt in zip(positions, lights, strict=True) if lt == "done"]
+    off_row = [y for _, y in done if y != ly]
+    s = (1 if off_row[0] > ly else -1) if off_row else 1
+    lowest = min(s * (y - ly) for _, y in done)
+    bx, by = min((p for p in done if s * (p[1] - ly) == lowest), key=lambda p: p[0])
+    tx, ty = targets[-2]
+    return (bx - tx, by - s * ty), s
+
+
 def overlays(config: Configuration) -> Overlays:
     marks: list[Mark] = []
     k = line_K(config.positions, config.lights)
     if k is not None:
         marks.append(Line("y", k, "K", K_COLOR))
-    frame = leader_frame(config.positions, config.lights)
     targets = embedded_targets(tuple(config.pattern))
+    frame = placed_frame(config.positions, config.lights, targets) or leader_frame(
+        config.positions, config.lights
+    )
     if frame is not None:
         (ox, oy), s = frame
         marks.append(Frame((ox, oy), s, "the leader's frame"))
