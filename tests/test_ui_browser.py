@@ -716,3 +716,48 @@ def test_a_camera_moved_by_hand_is_that_browsers_own_until_frame_run(browser, ap
     wait_for(lambda: screen.state.camera == "framed")
     time.sleep(1.0)  # the browser reports the framed pose back: still framed
     assert screen.state.camera == "framed"
+
+
+def inside_canvas(app: App, page, client_id, cells) -> list:
+    """The cells a browser's own camera (as it is now) projects outside its canvas, half a cell of
+    margin included: robots and targets must be whole."""
+    camera = app.screens[client_id].client.camera
+    p, target = np.array(camera.position, dtype=float), np.array(camera.look_at, dtype=float)
+    f = (target - p) / np.linalg.norm(target - p)
+    r = np.cross(f, [0.0, 0.0, 1.0])
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    box = page.locator("canvas").first.bounding_box()
+    t = np.tan(float(camera.fov) / 2)
+    out = []
+    for cell in cells:
+        x, y = app.renderer.to_scene(cell)
+        for dx, dy in ((-0.5, -0.5), (0.5, 0.5)):
+            d = np.array([x + dx, y + dy, 0.0]) - p
+            ndc_x = (d @ r) / ((d @ f) * t * (box["width"] / box["height"]))
+            ndc_y = (d @ u) / ((d @ f) * t)
+            if not (-1 <= ndc_x <= 1 and -1 <= ndc_y <= 1):
+                out.append(cell)
+    return out
+
+
+@pytest.mark.parametrize("size", [(1400, 900), (1024, 768)])
+def test_a_camera_nobody_moved_keeps_the_whole_run_in_view_to_formed(browser, app, size):
+    page = browser.new_page(viewport={"width": size[0], "height": size[1]})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    wait_for(lambda: len(app.screens) == 1)
+    (cid,) = app.screens
+    stops = []
+    while app.session.step():
+        v = app.session.view()
+        if v.event in (60, 300, 540) or app.session.engine.finished:
+            app.request_render()
+            time.sleep(1.5)  # a frame, and the camera sent
+            cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
+            stops.append((v.event, inside_canvas(app, page, cid, cells)))
+    assert app.session.engine.outcome == "formed"
+    shot(page, f"formed-in-view-{size[0]}x{size[1]}")
+    assert all(not outside for _, outside in stops), stops
+    page.close()

@@ -87,6 +87,13 @@ class BrowserScreen:
         self.state.framed_bounds = renderer.bounds
 
 
+def _inside(box: tuple[float, float, float, float], framed: tuple[float, float, float, float] | None) -> bool:
+    """Whether ``box`` lies inside the ``framed`` one (whose camera shows it whole, with a margin)."""
+    if framed is None:
+        return False
+    return box[0] >= framed[0] and box[1] >= framed[1] and box[2] <= framed[2] and box[3] <= framed[3]
+
+
 def _aspect(client) -> float:
     try:
         aspect = float(client.camera.aspect)
@@ -116,12 +123,13 @@ class App:
         self._dirty = threading.Event()
         self._stop = threading.Event()
         self._framed_engine = session.engine  # the run the cameras were last framed on
+        self._initial_bounds: tuple[float, float, float, float] | None = None
         self.frames = 0
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
         self._render()
-        self.renderer.frame_initial_camera(self.server.initial_camera)
+        self._frame_initial()
         self._thread = threading.Thread(target=self._loop, name="apf-viz-render", daemon=True)
         self._thread.start()
 
@@ -240,24 +248,28 @@ class App:
         self._keep_framed(screens)
 
     def _keep_framed(self, screens: list[BrowserScreen]) -> None:
-        """A new run (Reset, a load, a switch of algorithm: a new engine) re-frames every browser's
-        camera; a run growing out of the framed box re-frames the browsers whose camera is framed (one
-        moved by hand is left alone)."""
+        """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;
+        a run growing out of a framed box (robots, targets, the leader's frame) re-frames the browsers
+        whose camera is framed — one moved by hand is left alone — and the initial camera of browsers
+        yet to join."""
         engine = self.session.engine
+        b = self.renderer.bounds
         if engine is not self._framed_engine:
             self._framed_engine = engine
-            self.renderer.frame_initial_camera(self.server.initial_camera)
+            self._frame_initial()
             for screen in screens:
                 screen.frame(self.renderer)
             return
-        b = self.renderer.bounds
+        if not _inside(b, self._initial_bounds):
+            self._frame_initial()
         for screen in screens:
             f = screen.state.framed_bounds
-            if screen.state.camera != "framed" or f is None:
-                continue
-            if b[0] < f[0] - 2 or b[1] < f[1] - 2 or b[2] > f[2] + 2 or b[3] > f[3] + 2:
+            if screen.state.camera == "framed" and (f is None or not _inside(b, f)):
                 screen.frame(self.renderer)
-                self.renderer.frame_initial_camera(self.server.initial_camera)
+
+    def _frame_initial(self) -> None:
+        self.renderer.frame_initial_camera(self.server.initial_camera)
+        self._initial_bounds = self.renderer.bounds
 
     def _render_compare(self, view) -> None:
         """The second run of Compare beside the first, at a fixed distance to its right (the width of

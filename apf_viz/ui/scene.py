@@ -214,6 +214,9 @@ class SceneRenderer:
         self._place_origin(grid_pts, view)
         pts = self._local(grid_pts)
         self._update_bounds(pts, view)
+        if title:  # Compare's titles stand above each run: keep them in view too
+            x0, y0, x1, y1 = self.bounds
+            self.bounds = (x0, y0, x1, y1 + 3.0)
         self._grid()
         dense = len(pts) > DENSE
         self._robots(view, pts)
@@ -355,7 +358,15 @@ class SceneRenderer:
         return None if cell is None else (cell[0] + self.origin[0], cell[1] + self.origin[1])
 
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
-        extra = self._local(view.targets)
+        """The box the camera keeps in view: robots, targets, and the corners of the overlays' frames
+        (a frame's arms reach two cells from its origin)."""
+        corners = [
+            (f.origin[0] + dx, f.origin[1] + f.y_sign * dy)
+            for f in view.overlays.marks
+            if isinstance(f, Frame)
+            for dx, dy in ((0, 0), (2, 2))
+        ]
+        extra = self._local([*view.targets, *corners])
         allp = np.vstack([pts, extra]) if len(extra) else pts
         if len(allp) == 0:
             allp = np.zeros((1, 2), dtype=np.float32)
