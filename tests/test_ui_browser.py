@@ -84,6 +84,13 @@ def wait_for(predicate, timeout: float = 30.0) -> None:
     raise AssertionError("condition not met in time")
 
 
+def downloaded(page, button) -> tuple[str, bytes]:
+    """Click a button that downloads a file; its name and bytes (saved at once: no link is left)."""
+    with page.expect_download(timeout=60_000) as download:
+        button.click()
+    return download.value.suggested_filename, Path(download.value.path()).read_bytes()
+
+
 def shot(page, name: str) -> Path:
     OUT.mkdir(exist_ok=True)
     path = OUT / f"{name}.png"
@@ -227,14 +234,8 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
         page.get_by_role("button", name="Step").click()
     wait_for(lambda: event_value(page) == app.session.view().event > 0)
     open_folder(page, "Files")
-    page.get_by_role("button", name="Save screenshot").click()
-    link = page.locator("a[download$='.png']")
-    link.wait_for()
-    assert link.get_attribute("download") == f"apf-viz-event-{event_value(page)}.png"
-    data = page.evaluate(
-        "async (a) => Array.from(new Uint8Array(await (await fetch(a.href)).arrayBuffer()))",
-        link.element_handle(),
-    )
+    name, data = downloaded(page, page.get_by_role("button", name="Save screenshot"))
+    assert name == f"apf-viz-event-{event_value(page)}.png"
     image = iio.imread(bytes(data), extension=".png")
     OUT.mkdir(exist_ok=True)
     (OUT / "saved-screenshot.png").write_bytes(bytes(data))
@@ -267,15 +268,9 @@ def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
         wait_for(lambda step=step: app.session.view().event == step)
     a_new_frame()
     a_new_frame()  # one asked for after the last step's frame was drawn
-    page.get_by_role("button", name="Stop recording").click()
-    link = page.locator("a[download$='.gif']")
-    link.wait_for(timeout=60_000)
+    name, data = downloaded(page, page.get_by_role("button", name="Stop recording"))
     ended = time.perf_counter() - started
-    assert link.get_attribute("download") == f"apf-viz-events-0-{event_value(page)}.gif"
-    data = page.evaluate(
-        "async (a) => Array.from(new Uint8Array(await (await fetch(a.href)).arrayBuffer()))",
-        link.element_handle(),
-    )
+    assert name == f"apf-viz-events-0-{event_value(page)}.gif"
     OUT.mkdir(exist_ok=True)
     (OUT / "recorded.gif").write_bytes(bytes(data))
     frames = iio.imread(bytes(data), extension=".gif", index=None)
@@ -379,12 +374,12 @@ def test_last_event_next_move_and_frame_run(browser, app):
     other = open_page(browser, app)  # a second browser on the same run (a projector, say)
     page.get_by_role("button", name="Step").click()
     wait_for(lambda: app.session.engine.step_index == 1)
-    last = page.locator("xpath=//*[text()='Last event']/following::input[1]")
-    wait_for(lambda: "· Look: sees" in last.input_value())
+    last = page.locator("p", has_text="Last event:").first
+    wait_for(lambda: "· Look: sees" in last.inner_text())
     page.get_by_role("button", name="Next move").click()
     page.get_by_text("a robot moved after").wait_for()
     wait_for(lambda: app.session.engine.state.moves == 1)
-    wait_for(lambda: "· Move → (" in last.input_value())
+    wait_for(lambda: "· Move → (" in last.inner_text())
     time.sleep(1.0)
     assert other.get_by_text("a robot moved after").count() == 0  # told only the browser that asked
     page.get_by_role("button", name="Frame run").click()
@@ -460,8 +455,8 @@ def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_colli
             step.click()
             wait_for(lambda n=n: served.session.engine.step_index == n)  # one event per click
         page.get_by_role("heading", name="💥 COLLISION").wait_for()
-        last = page.locator("xpath=//*[text()='Last event']/following::input[1]")
-        wait_for(lambda: last.input_value() == "robot 3 · Move → (0, 1): COLLISION")
+        last = page.locator("p", has_text="Last event:").first
+        wait_for(lambda: last.inner_text().endswith("robot 3 · Move → (0, 1): COLLISION"))
         page.get_by_text("robot 3 moved onto robot 1 at (0, 1)").first.wait_for()
         page.get_by_text("event 41 of 41 — its end").wait_for()
         shot(page, "cex-collision")
@@ -592,10 +587,9 @@ def test_download_schedule_after_manual_clicks_then_upload_schedule_on_a_reset_r
         wait_for(lambda n=n: app.session.engine.step_index == n)
     clicked = app.session.engine.history.events()
     open_folder(page, "Files")
-    page.get_by_role("button", name="Download schedule").click()
-    link = page.locator("a[download='schedule.jsonl']")
-    link.wait_for()
-    text = page.evaluate("async (a) => await (await fetch(a.href)).text()", link.element_handle())
+    name, data = downloaded(page, page.get_by_role("button", name="Download schedule"))
+    assert name == "schedule.jsonl"
+    text = data.decode()
     assert [json.loads(line) for line in text.splitlines()[1:]] == [
         {"robot": 2, "phase": p} for p in ("look", "compute", "move")
     ]
@@ -760,4 +754,75 @@ def test_a_camera_nobody_moved_keeps_the_whole_run_in_view_to_formed(browser, ap
     assert app.session.engine.outcome == "formed"
     shot(page, f"formed-in-view-{size[0]}x{size[1]}")
     assert all(not outside for _, outside in stops), stops
+    page.close()
+
+
+def test_at_1024x768_step_event_last_event_and_why_show_together(browser, app):
+    for _ in range(20):
+        app.session.step()
+    app.session.selected = next(r for r in range(10) if app.session.engine.state.decided[r] is not None)
+    app.request_render()
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    time.sleep(1.5)
+    r = app.session.selected
+    for locator in (
+        page.get_by_role("button", name="Step"),
+        page.get_by_label("Event"),
+        page.locator("p", has_text="Last event:").first,
+        page.get_by_text(f"Robot {r} · rule").first,
+    ):
+        box = locator.bounding_box()
+        assert box is not None and box["y"] >= 0 and box["y"] + box["height"] <= 768, (locator, box)
+    last = page.locator("p", has_text="Last event:").first.inner_text()
+    assert last.endswith(app.session.view().last_events[0])  # in full, not cut
+    shot(page, "lecture-first-screen-1024x768")
+    page.close()
+
+
+def test_an_upload_in_one_browser_is_told_to_that_browser_only(browser, app, tmp_path):
+    a = open_page(browser, app)
+    b = open_page(browser, app)
+    pattern = tmp_path / "heart-again.json"
+    pattern.write_text((Path(__file__).parent.parent / "demo_patterns" / "heart.json").read_text())
+    open_folder(a, "Files")
+    with a.expect_file_chooser() as chooser:
+        a.get_by_role("button", name="Upload pattern").click()
+    chooser.value.set_files(str(pattern))
+    a.get_by_text("heart-again.json").first.wait_for()  # the uploading browser sees its toast
+    time.sleep(1.5)
+    assert b.get_by_text("Uploading").count() == 0 and b.get_by_text("heart-again.json").count() == 0
+    a.close()
+    b.close()
+
+
+def test_panels_follow_the_run_verdict_variant_and_banner(browser, app):
+    page = open_page(browser, app)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="One robot on L1").click()
+    wait_for(lambda: app.session.engine.k == 3)
+    page.get_by_role("button", name="Verify").click()
+    page.get_by_text("Verify: ").first.wait_for(timeout=120_000)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="Heart from 10 robots").click()
+    wait_for(lambda: app.session.engine.k == 10)
+    wait_for(lambda: page.get_by_text("Verify: ").count() == 0)  # the verdict was about the other start
+    open_folder(page, "Algorithm")
+    page.get_by_role("combobox", name="Algorithm").click()
+    page.get_by_role("option", name="apf-opaque-grid-literal").click()
+    wait_for(lambda: app.session.algorithm_name == "apf-opaque-grid-literal")
+    variant = page.locator("xpath=//*[text()='Variant']/following::input[1]")
+    wait_for(lambda: variant.input_value() == "apf-opaque-grid-literal")  # follows the dropdown too
+    app.session.set_algorithm("apf-opaque-grid")
+    while app.session.step():
+        pass
+    app.request_render()
+    page.get_by_role("heading", name="FORMED").wait_for()
+    open_folder(page, "Edit")
+    page.get_by_role("combobox", name="Mode").click()
+    page.get_by_role("option", name="Edit pattern").click()
+    wait_for(lambda: app.session.mode == "edit-pattern")
+    wait_for(lambda: page.get_by_role("heading", name="FORMED").count() == 0)  # no banner while editing
     page.close()

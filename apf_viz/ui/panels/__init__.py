@@ -19,7 +19,7 @@ from apf_viz.ui.panels.edit import MODE_LABELS, MODES, EditFolder
 from apf_viz.ui.panels.files import FilesFolder, load_demo
 from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
-from apf_viz.ui.panels.run import RunFolder
+from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.why import WhyFolder
 from apf_viz.ui.presenter import SessionView
@@ -27,14 +27,16 @@ from apf_viz.ui.session import Session
 
 __all__ = ["MODES", "MODE_LABELS", "Panels", "SharedVerifier", "tell"]
 
-# In this order on screen: the legend first, so that it is on screen whenever the run is; folders a
-# lecture rarely needs start collapsed, so that Last event and Why fit on a 1024×768 projector.
+# In this order on screen: what a lecture narrates first — Step, the outcome, Event, the last event in
+# full, the selected robot and Why fit together on a 1024×768 projector's first screen — then the history,
+# the legend, and the folders a lecture rarely needs, collapsed.
 FOLDERS = (
-    LegendFolder,
     RunFolder,
-    AdversaryFolder,
     SelectedFolder,
     WhyFolder,
+    HistoryFolder,
+    LegendFolder,
+    AdversaryFolder,
     AlgorithmFolder,
     CompareFolder,
     EditFolder,

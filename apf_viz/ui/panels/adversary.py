@@ -67,13 +67,16 @@ class AdversaryFolder:
 
     def refresh(self, view: SessionView) -> None:
         s = self.ctx.session
-        v = self.ctx.verifier.status
-        running = v.state == "running"
-        self.verify_status.content = (
-            f"Verifying… **{v.states:,}** states, frontier {v.frontier:,}, {v.rate:,.0f} states/s"
-            if running
-            else (f"Verify: {v.text}" if v.text else "")
-        )
+        v = self.ctx.verifier.shown()
+        running = v is not None and v.state == "running"
+        if v is None:
+            self.verify_status.content = ""
+        elif running:
+            self.verify_status.content = (
+                f"Verifying… **{v.states:,}** states, frontier {v.frontier:,}, {v.rate:,.0f} states/s"
+            )
+        else:
+            self.verify_status.content = f"Verify: {v.text}"
         if self.cancel_verify.visible != running:
             self.cancel_verify.visible = running
         manual = view.scheduler == "manual"

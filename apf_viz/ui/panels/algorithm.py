@@ -26,6 +26,7 @@ class AlgorithmFolder:
                 "Light semantics", ("compute", "lc-atomic"), initial_value=s.config.light_semantics
             )
             self.semantics.on_update(ctx.from_browser(self._on_semantics))
+        self._shown = s.algorithm_name
 
     def _names(self, current: str | None = None) -> tuple[str, ...]:
         s = self.ctx.session
@@ -43,7 +44,8 @@ class AlgorithmFolder:
 
     def refresh(self, view: SessionView) -> None:
         s = self.ctx.session
-        if self.algorithm.value != s.algorithm_name:
+        if self._shown != s.algorithm_name:  # the run's algorithm changed, by whichever control
+            self._shown = s.algorithm_name
             self.algorithm.options = self._names(s.algorithm_name)
             self.algorithm.value = s.algorithm_name
             self.variant.value = s.algorithm_name  # the field follows the run's algorithm

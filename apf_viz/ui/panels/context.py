@@ -31,10 +31,22 @@ class SharedVerifier:
         return self.verifier.status
 
     def start(self, client) -> str | None:
-        why_not = self.verifier.start(self.session.config, self.session.run.plugins)
+        config = self.session.config
+        why_not = self.verifier.start(config, self.session.run.plugins)
         if why_not is None:
             self._client = client
+            self._verified = _problem_of(config)
         return why_not
+
+    def shown(self) -> Status | None:
+        """The status to show: a verification running, or the verdict on the problem now on screen (a
+        counterexample loaded keeps it; another start, pattern, algorithm or semantics does not)."""
+        status = self.verifier.status
+        if status.state == "running" or (status.text and self._verified == _problem_of(self.session.config)):
+            return status
+        return None
+
+    _verified: tuple | None = None
 
     def cancel(self) -> None:
         self.verifier.cancel()
@@ -49,6 +61,10 @@ class SharedVerifier:
                     tell(self._client, "Verify", f"the counterexample did not load: {e}", error=True)
             tell(self._client, "Verify", status.text, error=status.state == "violation")
         self.changed()
+
+
+def _problem_of(config) -> tuple:
+    return (config.robots, config.pattern, config.y_up, config.algorithm, config.light_semantics)
 
 
 @dataclass

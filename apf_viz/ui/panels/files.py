@@ -1,5 +1,6 @@
 """Files: demo patterns and starts, uploads (robots, pattern, trace, schedule), downloads of the current
-files, and this browser's view as a PNG or a GIF."""
+files, and this browser's view as a PNG or a GIF. Downloads are saved at once (the browser's own download),
+so no notification with a link is left over the canvas."""
 
 from __future__ import annotations
 
@@ -70,7 +71,7 @@ class FilesFolder:
     def _downloader(filename: str, make: Callable[[], str]) -> Callable:
         def on_click(event) -> None:
             if event.client is not None:
-                event.client.send_file_download(filename, make().encode("utf-8"))
+                event.client.send_file_download(filename, make().encode("utf-8"), save_immediately=True)
 
         return on_click
 
@@ -88,7 +89,7 @@ class FilesFolder:
         except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return
-        client.send_file_download(name, png_on_white(rgba))
+        client.send_file_download(name, png_on_white(rgba), save_immediately=True)
 
     def _on_record(self, event) -> None:
         """Record GIF / Stop recording: one recording at a time, of this browser's view."""
@@ -115,7 +116,7 @@ class FilesFolder:
         if gif is None:
             client.add_notification("Recording failed", why, color="red", auto_close_seconds=8.0)
             return
-        client.send_file_download(f"apf-viz-events-{first}-{self._event()}.gif", gif)
+        client.send_file_download(f"apf-viz-events-{first}-{self._event()}.gif", gif, save_immediately=True)
         if why:  # stopped early: the browser stopped answering
             client.add_notification("Recording stopped", why, color="red", auto_close_seconds=8.0)
 

@@ -13,35 +13,22 @@ from apf_viz.ui.run_controller import MAX_SPEED
 
 
 class RunFolder:
+    """What a lecture needs on the panel's first screen: the Demo, Step / Back / Play / Reset, the jumps,
+    the outcome, the event number and the last event in full (the History folder has the rest)."""
+
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
-        s = ctx.session
         with gui.add_folder("Run"):
             self.demo = gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—")
             self.demo.on_update(ctx.from_browser(self._on_demo))
             self.demo_note = gui.add_markdown("")
             self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             self.controls.on_click(self._on_control)
-            self.speed = gui.add_slider(
-                "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
-            )
-            self.speed.on_update(ctx.from_browser(lambda e: s.set_speed(self.speed.value)))
-            self.timeline = gui.add_slider(
-                "Timeline", min=0, max=1, step=1, initial_value=0,
-                hint="scrub the history; stepping from the past branches",
-            )  # fmt: skip
-            self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
             self._trace_controls(gui)
             self.banner = gui.add_markdown("")
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
-            self.last_event = gui.add_text("Last event", initial_value="", disabled=True)
-            self.log = gui.add_markdown("")
-            self.stats = gui.add_markdown("")
-            self.numbers = gui.add_checkbox(
-                "Numbers", initial_value=True, hint="each robot's number beside it"
-            )
-            self.numbers.on_update(ctx.from_browser(lambda e: s.set_numbers(bool(self.numbers.value))))
+            self.last_event = gui.add_markdown("")
 
     def _trace_controls(self, gui) -> None:
         s = self.ctx.session
@@ -90,24 +77,17 @@ class RunFolder:
 
     def refresh(self, view: SessionView) -> None:
         self.controls.options = ("Step", "Back", "Pause" if view.playing else "Play", "Reset")
-        self.timeline.max = max(1, view.history_length)
-        self.timeline.value = view.steps
         self.event.value = view.event
-        last = view.last_events[0] if view.last_events else ""
-        if self.last_event.value != last:
-            self.last_event.value = last
-            latest = f"<small><b>{view.last_events[0]}</b></small>" if view.last_events else ""
-            self.log.content = "  \n".join([latest, *(f"<small>{e}</small>" for e in view.last_events[1:6])])
+        last = f"**Last event:** {view.last_events[0]}" if view.last_events else "**Last event:** —"
+        if self.last_event.content != last:
+            self.last_event.content = last
         note = f"<small>{symbol_html(view.scenario_note)}</small>" if view.scenario_note else ""
         if self.demo_note.content != note:
             self.demo_note.content = note
         if not view.scenario_note and self.demo.value != "—":
             self.demo.value = "—"  # another run replaced the scenario
-        self.stats.content = view.stats
         self.banner.content = view.banner
         self._refresh_trace(view)
-        if self.numbers.value != view.numbers:
-            self.numbers.value = view.numbers
 
     def _refresh_trace(self, view: SessionView) -> None:
         following = view.trace_position is not None
@@ -117,6 +97,39 @@ class RunFolder:
         if self.restore.visible != (view.set_aside is not None):
             self.restore.visible = view.set_aside is not None
         self.aside.content = view.aside_line
+
+
+class HistoryFolder:
+    """The run's history: the events before the last, speed, the timeline, the counts."""
+
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        s = ctx.session
+        with gui.add_folder("History"):
+            self.log = gui.add_markdown("")
+            self.speed = gui.add_slider(
+                "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
+            )
+            self.speed.on_update(ctx.from_browser(lambda e: s.set_speed(self.speed.value)))
+            self.timeline = gui.add_slider(
+                "Timeline", min=0, max=1, step=1, initial_value=0,
+                hint="scrub the history; stepping from the past branches",
+            )  # fmt: skip
+            self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
+            self.stats = gui.add_markdown("")
+            self.numbers = gui.add_checkbox(
+                "Numbers", initial_value=True, hint="each robot's number beside it"
+            )
+            self.numbers.on_update(ctx.from_browser(lambda e: s.set_numbers(bool(self.numbers.value))))
+
+    def refresh(self, view: SessionView) -> None:
+        self.timeline.max = max(1, view.history_length)
+        self.timeline.value = view.steps
+        log = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])
+        if self.log.content != log:
+            self.log.content = log
+        self.stats.content = view.stats
+        if self.numbers.value != view.numbers:
+            self.numbers.value = view.numbers
         marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
         if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
             self.timeline._marks = marks or None

@@ -88,7 +88,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
 def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
     """The panels' sentences about the run, from the facts of its view."""
     out = {
-        "banner": story.banner(view.outcome, crash, stuck),
+        "banner": story.banner(view.outcome, crash, stuck) if view.mode == "run" else "",
         "stats": story.stats(view.algorithm, view.__dict__),
         "counts": story.counts(view.mode, view.draft_count, view.robot_count, len(view.robots), view.axis),
         "trace_line": story.trace_line(view.trace_position, view.following_what, view.trace_note),
