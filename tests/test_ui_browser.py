@@ -826,3 +826,27 @@ def test_panels_follow_the_run_verdict_variant_and_banner(browser, app):
     wait_for(lambda: app.session.mode == "edit-pattern")
     wait_for(lambda: page.get_by_role("heading", name="FORMED").count() == 0)  # no banner while editing
     page.close()
+
+
+def test_a_lecture_runs_from_the_keyboard(browser, app):
+    page = open_page(browser, app)
+    page.keyboard.press("ArrowRight")
+    wait_for(lambda: app.session.engine.step_index == 1)
+    page.keyboard.press("ArrowRight")
+    wait_for(lambda: app.session.engine.step_index == 2)
+    page.keyboard.press("ArrowLeft")
+    wait_for(lambda: app.session.engine.step_index == 1)
+    page.keyboard.press("Space")
+    wait_for(lambda: app.session.playing)
+    page.keyboard.press("Space")
+    wait_for(lambda: not app.session.playing)
+    first = app.session.view().stage
+    page.keyboard.press("PageDown")
+    wait_for(lambda: app.session.view().stage != first)
+    second, at = app.session.view().stage, app.session.engine.step_index
+    page.keyboard.press("PageDown")
+    wait_for(lambda: app.session.view().stage not in (first, second))
+    page.keyboard.press("PageUp")  # back to where the second stage began
+    wait_for(lambda: app.session.engine.step_index == at)
+    assert app.session.view().stage == second
+    page.close()

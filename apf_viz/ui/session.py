@@ -284,6 +284,30 @@ class Session:
         """Stop playing and go to that step of the history (any number is clamped; NaN refused)."""
         self.run.seek(step)
 
+    def back_to_stage(self, seconds: float = 3.0) -> str:
+        """Back to where the previous stage began (PageUp: Next stage's stops, in reverse). Returns what
+        happened, for a notification."""
+        with self.lock:
+            self.run.pause()
+            e = self.engine
+            deadline = time.monotonic() + seconds  # the lock is held: keep every browser responsive
+            if e.step_index == 0:
+                return "at the start of the run"
+            stage = stage_of(self.run, self.screen)
+            while e.step_index > 0 and stage_of(self.run, self.screen) == stage:
+                e.seek(e.step_index - 1)  # into the previous stage (or to the start)
+                if time.monotonic() > deadline:
+                    return f"still in {stage} at step {e.step_index}: press again"
+            previous = stage_of(self.run, self.screen)
+            while e.step_index > 0:
+                e.seek(e.step_index - 1)
+                if stage_of(self.run, self.screen) != previous:
+                    e.seek(e.step_index + 1)  # its first step
+                    break
+                if time.monotonic() > deadline:
+                    break
+            return f"{previous} from step {e.step_index}"
+
     def set_scheduler(self, label_or_name: str) -> None:
         self.run.set_scheduler(SCHEDULER_LABELS.get(label_or_name, label_or_name))
 

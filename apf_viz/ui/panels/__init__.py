@@ -21,6 +21,7 @@ from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
+from apf_viz.ui.panels.shortcuts import Shortcuts
 from apf_viz.ui.panels.why import WhyFolder
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.session import Session
@@ -65,6 +66,7 @@ class Panels:
             session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
         )
         self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
+        self.folders.append(Shortcuts(owner.gui, self.ctx))
 
     def refresh(self, view: SessionView) -> None:
         for folder in self.folders:

@@ -25,6 +25,10 @@ class RunFolder:
             self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             self.controls.on_click(self._on_control)
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
+            gui.add_markdown(
+                "<small>Keys: → step · ← back · space play/pause · PgDn/PgUp next/previous stage · M next "
+                "move · F frame the run (Ctrl+K lists them)</small>"
+            )
             self._trace_controls(gui)
             self.banner = gui.add_markdown("")
             self.event = gui.add_number("Event", initial_value=0, disabled=True)

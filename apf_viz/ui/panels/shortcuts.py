@@ -1,0 +1,47 @@
+"""Keyboard shortcuts (viser's command palette, Ctrl/Cmd+K, lists them too): a lecture is driven from the
+keyboard or a presenter's clicker, with the panel collapsed if need be. Each browser has its own, and
+what a shortcut has to say goes to that browser only."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.presenter import SessionView
+
+# (label, key, what it does): the keys a presenter's clicker sends are the arrows and PageUp/PageDown.
+SHORTCUTS = (
+    ("Play / Pause", "space", "play the run, or pause it"),
+    ("Step", "arrowright", "one event (Manual: the selected robot's next phase)"),
+    ("Back", "arrowleft", "one event back"),
+    ("Next stage", "pagedown", "run until the algorithm's stage changes"),
+    ("Previous stage", "pageup", "back to where the previous stage began"),
+    ("Next move", "M", "run until some robot moves"),
+    ("Frame run", "F", "point this browser's camera at the whole run"),
+)
+
+
+class Shortcuts:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
+        actions: dict[str, Callable] = {
+            "Play / Pause": lambda e: ctx.session.toggle_play(),
+            "Step": self._step,
+            "Back": lambda e: ctx.session.back(),
+            "Next stage": lambda e: ctx.session.run_until("stage"),
+            "Previous stage": lambda e: ctx.session.back_to_stage(),
+            "Next move": lambda e: ctx.session.run_until("move"),
+            "Frame run": lambda e: ctx.frame(e.client) if e.client is not None else None,
+        }
+        for label, key, text in SHORTCUTS:
+            command = gui.add_command(label, description=text, hotkey=key)
+            command.on_trigger(ctx.guard(actions[label], label))
+
+    def _step(self, event) -> None:
+        s = self.ctx.session
+        s.pause()
+        if not s.step(self.ctx.browser):
+            tell(event.client, "Step", s.why_not_step())
+
+    def refresh(self, view: SessionView) -> None:
+        pass  # a shortcut shows nothing of its own
