@@ -123,3 +123,39 @@ def test_targets_stay_where_the_pattern_forms_at_every_event_of_the_demo():
         ]
     assert s.engine.outcome == "formed" and off_target == []
     assert {r.position for r in s.view().robots} == set(s.view().targets)
+
+
+def test_the_demo_texts_match_their_runs():
+    """What each Demo text says is drawn is drawn, when it says so."""
+    s = demo_session()
+    s.load_scenario("Heart from 10 robots")
+    ks = set()
+    while s.step():
+        v = s.view()
+        ks.add((v.stage.split(":")[0], any(m.label == "K" for m in v.overlays.marks)))
+    assert ("Phase 3", True) not in ks  # the text does not promise K in Phase 3
+    assert "leader's row" in s.scenario_note or "leader's row" in s.view().scenario_note
+    s = demo_session()
+    s.load_scenario("Robots already on K")
+    assert not any(m.label == "K" for m in s.view().overlays.marks)  # not before the terminals light
+    assert "once the two light terminal1" in s.view().scenario_note
+    s = demo_session()
+    s.load_scenario("The L2 lockstep counterexample")
+    assert "escape" in s.view().scenario_note and "escape" in s.view().trace_note
+
+
+def test_the_drafted_patterns_swatch_is_its_canvas_colour_and_formed_drops_phase_rings():
+    from apf_viz.ui.palette import TARGET_COLORS
+    from apf_viz.ui.presenter.legend import legend_html
+
+    s = demo_session()
+    s.set_mode("edit-pattern")
+    v = s.view()
+    (cells,) = [m for m in v.overlays.marks if m.label == "pattern being drawn"]
+    assert cells.style == "drawing" and f"rgb{TARGET_COLORS['drawing']}" in legend_html(v)
+    assert f"rgb{TARGET_COLORS['placed']}" not in legend_html(v)
+    s = demo_session()
+    while s.step():
+        pass
+    v = s.view()
+    assert v.outcome == "formed" and not v.phase_rings and v.last_actor is None

@@ -296,7 +296,7 @@ class SceneRenderer:
         """Rings under the robots, widest at the bottom: will never act (dark red, a deadlock), acted last
         (brown), and the phase (yellow: looked, orange: computed; none when idle). The selected robot's
         (black) is its browser's own (:meth:`_selection`)."""
-        phases = np.array([r.phase for r in view.robots])
+        phases = np.array([r.phase if view.phase_rings else "idle" for r in view.robots])
         for phase in ("looked", "computed"):
             at = pts[phases == phase] if len(phases) else pts[:0]
             self._points(
@@ -425,7 +425,7 @@ class SceneRenderer:
     def _targets(self, view: SessionView) -> None:
         """The first set of cells the algorithm gives (where the pattern forms), or the pattern drawn."""
         cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
-        style = "drawing" if view.mode == "edit-pattern" else (cells.style if cells else "placed")
+        style = cells.style if cells else "placed"  # the legend shows the same swatch
         points = self._local(cells.points if cells else ())
         self._points("/targets", _xyz(points, 0.005), TARGET_COLORS[style], 0.8)
 

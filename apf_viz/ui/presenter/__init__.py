@@ -58,7 +58,9 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         caption=story.caption(e, None, True, []),
         last_events=story.last_events(e),
         trace_position=run.trace_position,
-        last_actor=story.last_actor(e) if running else None,
+        # Formed, nothing is pending any more: rings of phase and of the last actor would read as marks.
+        last_actor=story.last_actor(e) if running and st.outcome != "formed" else None,
+        phase_rings=st.outcome != "formed",
         numbers=screen.numbers if screen.numbers is not None else len(robots) <= NUMBERS_UP_TO,
         collision=crash[:2] if crash else None,
         collided=crash[2] if crash else (),
@@ -207,7 +209,10 @@ def _overlays(run: RunController, screen: SharedScreen, pts: list[Point], lights
     """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead, and
     while robots are placed, the pattern they will be given (the draft's, not the run's)."""
     if screen.mode == "edit-pattern":
-        return Overlays((Cells(tuple(screen.editor.pattern), "pattern being drawn"),), "editing the pattern")
+        drawn = Cells(
+            tuple(screen.editor.pattern), "pattern being drawn", "drawing"
+        )  # the legend's swatch too
+        return Overlays((drawn,), "editing the pattern")
     if screen.mode == "edit-robots":
         return Overlays(
             (Cells(tuple(screen.editor.pattern), "pattern for these robots", "preview"),),

@@ -94,3 +94,4 @@ class SessionView:
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection
+    phase_rings: bool = True  # draw the looked / computed rings (not once the pattern is formed)
