@@ -830,11 +830,11 @@ def test_panels_follow_the_run_verdict_variant_and_banner(browser, app):
 
 def test_a_lecture_runs_from_the_keyboard(browser, app):
     page = open_page(browser, app)
-    page.keyboard.press("ArrowRight")
+    page.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.step_index == 1)
-    page.keyboard.press("ArrowRight")
+    page.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.step_index == 2)
-    page.keyboard.press("ArrowLeft")
+    page.keyboard.press("Backspace")
     wait_for(lambda: app.session.engine.step_index == 1)
     page.keyboard.press("Space")
     wait_for(lambda: app.session.playing)
@@ -849,4 +849,29 @@ def test_a_lecture_runs_from_the_keyboard(browser, app):
     page.keyboard.press("PageUp")  # back to where the second stage began
     wait_for(lambda: app.session.engine.step_index == at)
     assert app.session.view().stage == second
+    (screen,) = [x for x in app.screens.values()]
+    assert screen.state.camera == "framed"  # the keys drove the run, not the camera
     page.close()
+
+
+def test_presentation_mode_collapses_the_panel_and_narrates_on_the_canvas(browser, app):
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    other = open_page(browser, app)  # a second browser keeps its panel
+    time.sleep(1.0)
+    page.keyboard.press("P")
+    page.get_by_text("Phase 1: leader election").first.wait_for()
+    for _ in range(3):
+        page.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 3)
+    last = app.session.view().last_events[0]
+    page.get_by_text(f"Event 3 · {last}").wait_for()
+    shot(page, "presentation-1024x768")
+    assert not page.get_by_role("button", name="Step").is_visible()  # the panel is collapsed
+    assert other.get_by_role("button", name="Step").is_visible()  # only in the browser that asked
+    page.keyboard.press("P")
+    page.get_by_role("button", name="Step").wait_for(state="visible")
+    page.close()
+    other.close()

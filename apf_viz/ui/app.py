@@ -31,6 +31,7 @@ from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer
 from apf_viz.ui.session import Session
 
 FPS = 30
+ECHO_SECONDS = 3.0  # a browser reports a pose it was sent within this (a loaded machine included)
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 
 
@@ -57,32 +58,33 @@ class BrowserScreen:
             verifier=app.verifier,
             frame_all=app.frame_all,
         )
+        self._sent: list[tuple[float, np.ndarray]] = []  # (when, position) of the poses sent to it
         client.camera.on_update(self._camera_moved)
 
     def _camera_moved(self, camera) -> None:
-        """A camera that leaves the pose it was framed to was moved by hand: it is left there while the
-        run grows, until a new run starts or Frame run is pressed."""
-        sent = self.state.framed_bounds
-        if sent is None:
-            return
+        """A camera that leaves the poses it was framed to was moved by hand: it is left there while the
+        run grows, until a new run starts or Frame run is pressed. The browser reports each pose it was
+        sent, possibly after a newer one was sent: any pose sent in the last seconds is not the hand's."""
         try:
             position = np.asarray(camera.position, dtype=float)
         except (AssertionError, TypeError, ValueError):
             return
-        target = np.asarray(self._sent_position, dtype=float) if self._sent_position is not None else None
-        if target is not None and np.abs(position - target).max() > 1e-3 * max(1.0, abs(target[2])):
+        now = time.monotonic()
+        recent = [p for t, p in self._sent if now - t < ECHO_SECONDS] or [p for _, p in self._sent[-1:]]
+        if recent and all(np.abs(position - p).max() > 1e-3 * max(1.0, abs(p[2])) for p in recent):
             self.state.camera = "moved"
 
-    _sent_position: tuple[float, float, float] | None = None
+    def _sending(self, position) -> None:
+        self._sent = [*self._sent[-7:], (time.monotonic(), np.asarray(position, dtype=float))]
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
-        self._sent_position = renderer.framed_pose[0]
+        self._sending(renderer.framed_pose[0])
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
     def frame(self, renderer: SceneRenderer) -> None:
         renderer.frame_camera(self.client.camera)
-        self._sent_position = renderer.camera_pose(_aspect(self.client))[0]
+        self._sending(renderer.camera_pose(_aspect(self.client))[0])
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 

@@ -19,6 +19,7 @@ from apf_viz.ui.panels.edit import MODE_LABELS, MODES, EditFolder
 from apf_viz.ui.panels.files import FilesFolder, load_demo
 from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
+from apf_viz.ui.panels.presentation import Presentation
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
@@ -65,8 +66,9 @@ class Panels:
         self.ctx = PanelContext(
             session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
         )
+        self.presentation = Presentation(owner.gui, self.ctx)
         self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
-        self.folders.append(Shortcuts(owner.gui, self.ctx))
+        self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
 
     def refresh(self, view: SessionView) -> None:
         for folder in self.folders:

@@ -26,9 +26,12 @@ class RunFolder:
             self.controls.on_click(self._on_control)
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
             gui.add_markdown(
-                "<small>Keys: → step · ← back · space play/pause · PgDn/PgUp next/previous stage · M next "
-                "move · F frame the run (Ctrl+K lists them)</small>"
+                "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
+                "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them)</small>"
             )
+            gui.add_button(
+                "Presentation mode", hint="collapse this panel; a large caption on the canvas (P)"
+            ).on_click(ctx.guard(lambda e: ctx.toggle_presentation(e)))
             self._trace_controls(gui)
             self.banner = gui.add_markdown("")
             self.event = gui.add_number("Event", initial_value=0, disabled=True)

@@ -9,16 +9,17 @@ from collections.abc import Callable
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.presenter import SessionView
 
-# (label, key, what it does): the keys a presenter's clicker sends are the arrows and PageUp/PageDown.
+# (label, key, what it does). A presenter's clicker sends PageDown / PageUp. The arrows (and W A S D Q E)
+# are the camera's own in viser, held to orbit: a step on → would also turn the view.
 SHORTCUTS = (
     ("Play / Pause", "space", "play the run, or pause it"),
-    ("Step", "arrowright", "one event (Manual: the selected robot's next phase)"),
-    ("Back", "arrowleft", "one event back"),
+    ("Step", "enter", "one event (Manual: the selected robot's next phase)"),
+    ("Back", "backspace", "one event back"),
     ("Next stage", "pagedown", "run until the algorithm's stage changes"),
     ("Previous stage", "pageup", "back to where the previous stage began"),
     ("Next move", "M", "run until some robot moves"),
     ("Frame run", "F", "point this browser's camera at the whole run"),
-)
+)  # and P, presentation mode (ui/panels/presentation.py)
 
 
 class Shortcuts:

@@ -100,3 +100,28 @@ def legend_html(view: SessionView) -> str:
     return (
         f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div></div>'
     )
+
+
+def lecture_html(view: SessionView) -> str:
+    """Presentation mode's caption, large enough for the back of a lecture room: the stage, the last
+    event, the outcome located, and the lights in use with their meaning."""
+    lights = "".join(
+        f'<div style="display:flex;align-items:center;gap:8px">{_swatch(view.legend[light].color)}'
+        f"<b>{html.escape(light)}</b>&nbsp;"
+        f'<span style="color:#444">{symbol_html(view.legend[light].meaning)}</span></div>'
+        for light in view.lights_in_use
+        if light in view.legend
+    )
+    last = html.escape(view.last_events[0]) if view.last_events else "—"
+    outcome = ""
+    if view.outcome:
+        where = f"<div>{html.escape(view.collision[0])}</div>" if view.collision else ""
+        outcome = (
+            f'<div style="font-size:1.5em;font-weight:bold;margin:6px 0">{view.outcome.upper()}</div>{where}'
+        )
+    return (
+        f'<div style="font-size:1.25em;line-height:1.35">'
+        f"<div><b>{symbol_html(view.stage)}</b></div>"
+        f"<div>Event {view.event} · {last}</div>{outcome}"
+        f'<div style="margin-top:6px">{lights}</div></div>'
+    )

@@ -1,0 +1,44 @@
+"""Presentation mode (P, or the Run folder's button): this browser's panel collapses and a large caption
+floats over the canvas — the stage, the last event, a failure's outcome, the lights in use — while the
+keyboard drives the run (ui/panels/shortcuts.py). Another browser's screen is not touched."""
+
+from __future__ import annotations
+
+from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.presenter.legend import lecture_html
+
+
+class Presentation:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.gui, self.ctx = gui, ctx
+        self.panel = None
+        self.html = None
+        command = gui.add_command(
+            "Presentation mode", description="collapse the panel; a large caption on the canvas", hotkey="P"
+        )
+        command.on_trigger(ctx.guard(self.toggle))
+        ctx.toggle_presentation = self.toggle
+
+    @property
+    def on(self) -> bool:
+        return self.panel is not None
+
+    def toggle(self, event=None) -> None:
+        if self.panel is None:
+            self.gui.main_panel.minimize()
+            self.panel = self.gui.add_panel()
+            with self.panel.add_tab("Lecture"):
+                self.html = self.gui.add_html("")
+            self.panel.float(x=12, y=12, width=560)
+        else:
+            self.panel.remove()
+            self.panel = self.html = None
+            self.gui.main_panel.expand()
+        self.ctx.changed()
+
+    def refresh(self, view: SessionView) -> None:
+        if self.html is not None:
+            content = lecture_html(view)
+            if self.html.content != content:
+                self.html.content = content
