@@ -159,3 +159,22 @@ def test_the_drafted_patterns_swatch_is_its_canvas_colour_and_formed_drops_phase
         pass
     v = s.view()
     assert v.outcome == "formed" and not v.phase_rings and v.last_actor is None
+
+
+def test_a_collision_is_explained_by_the_movers_stale_decision():
+    s = demo_session()
+    s.load_scenario("The literal paper collides")
+    while s.step():
+        pass
+    v = s.view()
+    assert v.outcome == "collision"
+    mover = next(ev.robot for ev in s.engine.history.steps[s.engine.step_index - 1].events if ev.collision)
+    why, computed = v.fatal
+    look = int(s.engine.state.look_step[mover])
+    assert computed is not None and look < computed < v.steps
+    assert f"robot {mover} decided this move at step {computed}" in why and f"at step {look}" in why
+    stale = [c for c in v.collided if c != mover]
+    assert any(f"robot {r}: seen at" in why for r in stale)  # what changed since, named
+    assert why in v.banner
+    s.seek(computed)
+    assert s.view().last_events[0].startswith(f"robot {mover} · Compute")  # the fatal decision itself

@@ -875,3 +875,18 @@ def test_presentation_mode_collapses_the_panel_and_narrates_on_the_canvas(browse
     page.get_by_role("button", name="Step").wait_for(state="visible")
     page.close()
     other.close()
+
+
+def test_go_to_the_fatal_decision_of_a_collision(browser, app):
+    app.session.load_scenario("The literal paper collides")
+    while app.session.step():
+        pass
+    app.request_render()
+    computed = app.session.view().fatal[1]
+    page = open_page(browser, app)
+    page.get_by_text("decided this move at step").first.wait_for()
+    shot(page, "collision-explained")
+    page.get_by_role("button", name="Go to the fatal decision").click()
+    wait_for(lambda: app.session.engine.step_index == computed)
+    wait_for(lambda: "· Compute" in page.locator("p", has_text="Last event:").first.inner_text())
+    page.close()

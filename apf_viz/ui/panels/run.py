@@ -34,6 +34,12 @@ class RunFolder:
             ).on_click(ctx.guard(lambda e: ctx.toggle_presentation(e)))
             self._trace_controls(gui)
             self.banner = gui.add_markdown("")
+            self.fatal = gui.add_button(
+                "Go to the fatal decision",
+                visible=False,
+                hint="the step at which the colliding robot computed its move",
+            )
+            self.fatal.on_click(ctx.guard(self._to_fatal))
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
             self.last_event = gui.add_markdown("")
 
@@ -49,6 +55,11 @@ class RunFolder:
             hint="go back to the recorded steps the last branch dropped, and follow them",
         )
         self.restore.on_click(self.ctx.guard(lambda e: s.return_to_set_aside()))
+
+    def _to_fatal(self, event) -> None:
+        step = self.ctx.session.view(self.ctx.browser).fatal[1]
+        if step is not None:
+            self.ctx.session.seek(step)
 
     def _on_demo(self, event) -> None:
         """A ready scenario; what it shows stays under the dropdown, for the room to read."""
@@ -94,6 +105,9 @@ class RunFolder:
         if not view.scenario_note and self.demo.value != "—":
             self.demo.value = "—"  # another run replaced the scenario
         self.banner.content = view.banner
+        fatal = view.fatal[1] is not None
+        if self.fatal.visible != fatal:
+            self.fatal.visible = fatal
         self._refresh_trace(view)
 
     def _refresh_trace(self, view: SessionView) -> None:

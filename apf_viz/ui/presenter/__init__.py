@@ -64,6 +64,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         numbers=screen.numbers if screen.numbers is not None else len(robots) <= NUMBERS_UP_TO,
         collision=crash[:2] if crash else None,
         collided=crash[2] if crash else (),
+        fatal=story.fatal_decisions(e, crash[2], list(run.config.robots)) if crash else ("", None),
         never_act=tuple(range(e.k)) if stuck else (),
         scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
@@ -90,7 +91,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
 def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
     """The panels' sentences about the run, from the facts of its view."""
     out = {
-        "banner": story.banner(view.outcome, crash, stuck) if view.mode == "run" else "",
+        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0]) if view.mode == "run" else "",
         "stats": story.stats(view.algorithm, view.__dict__),
         "counts": story.counts(view.mode, view.draft_count, view.robot_count, len(view.robots), view.axis),
         "trace_line": story.trace_line(view.trace_position, view.following_what, view.trace_note),

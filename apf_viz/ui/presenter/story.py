@@ -6,10 +6,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from apf_viz.core.engine import Engine
+from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.grid import Point
 from apf_viz.ui.presenter.legend import symbol_html
-from apf_viz.ui.presenter.staleness import SeenRobot
+from apf_viz.ui.presenter.staleness import SeenRobot, changes
 
 MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
 _ICONS = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}
@@ -80,11 +80,43 @@ def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tupl
     return "; ".join(words), tuple(dict.fromkeys(cells)), tuple(dict.fromkeys(robots))
 
 
-def banner(outcome: str | None, collision_words: str | None, stuck: bool) -> str:
+def fatal_decisions(e: Engine, robots: tuple[int, ...], start: list[Point]) -> tuple[str, int | None]:
+    """Why a collision happened, robot by robot: the step at which each mover decided its move (its
+    Compute), the step of the Look it decided on, and what has changed since in what it saw (the
+    staleness of that snapshot); and the step of the earliest such Compute (to jump to), if any."""
+    st = e.state
+    steps = e.history.steps
+    lines, first = [], None
+    for r in robots:
+        if st.phase[r] != Phase.COMPUTED or st.snapshot[r] is None:  # a robot holding its fatal decision
+            continue
+        computed = next(
+            (
+                i + 1
+                for i in range(e.step_index - 1, -1, -1)
+                for ev in steps[i].events
+                if ev.robot == r and ev.phase == "compute"
+            ),
+            None,
+        )
+        since = changes(e, r, start, "held")
+        what = "; ".join(c.describe() for c in since) or "nothing it saw has changed"
+        lines.append(
+            f"robot {r} decided this move at step {computed} on what it saw at step {int(st.look_step[r])}; "
+            f"since then: {what}"
+        )
+        if computed is not None:
+            first = computed if first is None else min(first, computed)
+    return "  \n".join(lines), first
+
+
+def banner(outcome: str | None, collision_words: str | None, stuck: bool, why: str = "") -> str:
     """The outcome as a heading, and where it happened."""
     if outcome is None:
         return ""
     detail = f"\n\n{collision_words} (red on the grid)" if collision_words else ""
+    if why:
+        detail += f"\n\n**Why:** {why}"
     if stuck:
         detail = "\n\nNo next cycle of any robot changes anything: all (ringed dark red) will never act"
     if outcome == "formed":

@@ -94,4 +94,7 @@ class SessionView:
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection
+    # A collision explained: each mover's fatal decision (when, on what, what changed since), in words,
+    # and the step of the earliest such Compute (Go to the fatal decision).
+    fatal: tuple[str, int | None] = ("", None)
     phase_rings: bool = True  # draw the looked / computed rings (not once the pattern is formed)
