@@ -608,12 +608,17 @@ def test_download_schedule_after_manual_clicks_then_upload_schedule_on_a_reset_r
     page.close()
 
 
+def verify_demo(page, app: App, name: str, k: int) -> None:
+    """Choose a Demo scenario of k robots and press Verify."""
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name=name).click()
+    wait_for(lambda: app.session.engine.k == k)
+    page.get_by_role("button", name="Verify").click()
+
+
 def test_verify_shows_verified_on_a_small_start_and_loads_the_literal_papers_violation(browser, app):
     page = open_page(browser, app)
-    page.get_by_role("combobox", name="Demo").click()
-    page.get_by_role("option", name="One robot on L1").click()
-    wait_for(lambda: app.session.engine.k == 3)
-    page.get_by_role("button", name="Verify").click()
+    verify_demo(page, app, "One robot on L1", 3)
     page.get_by_text("Verify: verified:").wait_for(timeout=120_000)
     start = Path(__file__).parent.parent / "demo_patterns"
     app.session.load_robots("vertical-line-4.json", (start / "starts" / "vertical-line-4.json").read_bytes())
@@ -800,10 +805,7 @@ def test_an_upload_in_one_browser_is_told_to_that_browser_only(browser, app, tmp
 
 def test_panels_follow_the_run_verdict_variant_and_banner(browser, app):
     page = open_page(browser, app)
-    page.get_by_role("combobox", name="Demo").click()
-    page.get_by_role("option", name="One robot on L1").click()
-    wait_for(lambda: app.session.engine.k == 3)
-    page.get_by_role("button", name="Verify").click()
+    verify_demo(page, app, "One robot on L1", 3)
     page.get_by_text("Verify: ").first.wait_for(timeout=120_000)
     page.get_by_role("combobox", name="Demo").click()
     page.get_by_role("option", name="Heart from 10 robots").click()
