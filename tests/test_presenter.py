@@ -178,3 +178,24 @@ def test_a_collision_is_explained_by_the_movers_stale_decision():
     assert why in v.banner
     s.seek(computed)
     assert s.view().last_events[0].startswith(f"robot {mover} · Compute")  # the fatal decision itself
+
+
+def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
+    from apf_viz.core.formats import load_trace
+    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+
+    demos = Path(__file__).parent.parent / "demo_patterns"
+    s = demo_session()
+    s.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
+    s.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
+    _, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
+    s.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
+    s.compare_with("apf-opaque-grid-literal")
+    while s.step():
+        pass
+    at, what = s.view().divergence
+    s.seek_event(at)
+    v = s.view()
+    assert v.event == at and v.divergence == (at, what)
+    robot = what.split(" | ")[0].split(" · ")[0]  # "robot 1"
+    assert v.last_events[0].startswith(robot + " · ")  # the run's side of the difference is the last event

@@ -284,6 +284,17 @@ class Session:
         """Stop playing and go to that step of the history (any number is clamped; NaN refused)."""
         self.run.seek(step)
 
+    def seek_event(self, event: int) -> None:
+        """Go to the step that ends with event number ``event`` (Compare's Go to divergence)."""
+        with self.lock:
+            done = 0
+            for i, step in enumerate(self.engine.history.steps[: self.engine.history.length]):
+                done += len(step.events)
+                if done >= event:
+                    self.run.seek(i + 1)
+                    return
+            self.run.seek(self.engine.history.length)
+
     def back_to_stage(self, seconds: float = 3.0) -> str:
         """Back to where the previous stage began (PageUp: Next stage's stops, in reverse). Returns what
         happened, for a notification."""

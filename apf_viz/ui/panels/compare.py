@@ -18,6 +18,15 @@ class CompareFolder:
             )
             gui.add_button_group("Compare runs", ("Compare", "Stop comparing")).on_click(self._on_compare)
             self.status = gui.add_markdown("")
+            self.divergence = gui.add_button(
+                "Go to divergence", visible=False, hint="the first event at which the two runs differ"
+            )
+            self.divergence.on_click(ctx.guard(self._to_divergence))
+
+    def _to_divergence(self, event) -> None:
+        at = self.ctx.session.view(self.ctx.browser).divergence
+        if at is not None:
+            self.ctx.session.seek_event(at[0])
 
     def _on_compare(self, event) -> None:
         s = self.ctx.session
@@ -33,3 +42,5 @@ class CompareFolder:
 
     def refresh(self, view: SessionView) -> None:
         self.status.content = view.compare_text
+        if self.divergence.visible != (view.divergence is not None):
+            self.divergence.visible = view.divergence is not None
