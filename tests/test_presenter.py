@@ -199,3 +199,20 @@ def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
     assert v.event == at and v.divergence == (at, what)
     robot = what.split(" | ")[0].split(" · ")[0]  # "robot 1"
     assert v.last_events[0].startswith(robot + " · ")  # the run's side of the difference is the last event
+
+
+def test_a_deadlock_says_what_each_robot_waits_on():
+    s = demo_session()
+    s.load_scenario("The literal paper deadlocks")
+    while s.step():
+        pass
+    v = s.view()
+    assert v.outcome == "stuck"
+    e = s.engine
+    for r in range(e.k):  # each robot is listed once, with the rule it answers its view with now
+        rule_id = e.decide(e.look(r)).rule_id
+        line = next(line for line in v.waits.splitlines() if rule_id in line)
+        listed = line.split(" — ")[0].removeprefix("robots ").removeprefix("robot ").split(", ")
+        assert str(r) in listed
+    assert sum(len(line.split(" — ")[0].split(", ")) for line in v.waits.splitlines()) == e.k
+    assert v.waits in v.banner

@@ -65,6 +65,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         collision=crash[:2] if crash else None,
         collided=crash[2] if crash else (),
         fatal=story.fatal_decisions(e, crash[2], list(run.config.robots)) if crash else ("", None),
+        waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
         scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
@@ -91,7 +92,9 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
 def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
     """The panels' sentences about the run, from the facts of its view."""
     out = {
-        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0]) if view.mode == "run" else "",
+        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0] or view.waits)
+        if view.mode == "run"
+        else "",
         "stats": story.stats(view.algorithm, view.__dict__),
         "counts": story.counts(view.mode, view.draft_count, view.robot_count, len(view.robots), view.axis),
         "trace_line": story.trace_line(view.trace_position, view.following_what, view.trace_note),

@@ -110,17 +110,34 @@ def fatal_decisions(e: Engine, robots: tuple[int, ...], start: list[Point]) -> t
     return "  \n".join(lines), first
 
 
+WAIT_FOR_UP_TO = 200  # robots: a deadlock's wait-for summary asks each robot once (a thousand cost a frame)
+
+
+def wait_for(e: Engine) -> str:
+    """A deadlock's wait-for summary: what each robot would decide now (its rule: what it waits on),
+    robots grouped by rule."""
+    if e.k > WAIT_FOR_UP_TO:
+        return ""
+    groups: dict[str, list[int]] = {}
+    for r in range(e.k):
+        d = e.decide(e.look(r))
+        groups.setdefault(f"{d.rule_id or '—'}: {d.rule}" if d.rule else (d.rule_id or "stay"), []).append(r)
+    return "  \n".join(
+        f"robot{'s' if len(rs) > 1 else ''} {', '.join(map(str, rs))} — {why}" for why, rs in groups.items()
+    )
+
+
 def banner(outcome: str | None, collision_words: str | None, stuck: bool, why: str = "") -> str:
     """The outcome as a heading, and where it happened."""
     if outcome is None:
         return ""
     detail = f"\n\n{collision_words} (red on the grid)" if collision_words else ""
-    if why:
-        detail += f"\n\n**Why:** {why}"
     if stuck:
         detail = "\n\nNo next cycle of any robot changes anything: all (ringed dark red) will never act"
     if outcome == "formed":
         detail = "\n\nEvery robot is on a target cell of the pattern."
+    if why:
+        detail += f"\n\n**{'Waiting' if stuck else 'Why'}:**  \n{why}"
     return f"## {_ICONS.get(outcome, '')} {outcome.upper()}{detail}"
 
 

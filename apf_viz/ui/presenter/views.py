@@ -97,4 +97,5 @@ class SessionView:
     # A collision explained: each mover's fatal decision (when, on what, what changed since), in words,
     # and the step of the earliest such Compute (Go to the fatal decision).
     fatal: tuple[str, int | None] = ("", None)
+    waits: str = ""  # a deadlock: what each robot waits on (its rule now), robots grouped by rule
     phase_rings: bool = True  # draw the looked / computed rings (not once the pattern is formed)
