@@ -14,6 +14,14 @@ from apf_viz.ui.session import Session
 LITERAL_COLLISION = Path(__file__).parent / "literal_traces" / "collision.jsonl"
 
 
+def played_to_its_end(scenario: str) -> Session:
+    s = demo_session()
+    s.load_scenario(scenario)
+    while s.step():
+        pass
+    return s
+
+
 def stale_session() -> Session:
     """Robot 2 looks and computes seeing robot 1 at (3, 0); then robot 1 moves to (2, 0)."""
     s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], algorithm="compact-left")
@@ -162,10 +170,7 @@ def test_the_drafted_patterns_swatch_is_its_canvas_colour_and_formed_drops_phase
 
 
 def test_a_collision_is_explained_by_the_movers_stale_decision():
-    s = demo_session()
-    s.load_scenario("The literal paper collides")
-    while s.step():
-        pass
+    s = played_to_its_end("The literal paper collides")
     v = s.view()
     assert v.outcome == "collision"
     mover = next(ev.robot for ev in s.engine.history.steps[s.engine.step_index - 1].events if ev.collision)
@@ -202,10 +207,7 @@ def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
 
 
 def test_a_deadlock_says_what_each_robot_waits_on():
-    s = demo_session()
-    s.load_scenario("The literal paper deadlocks")
-    while s.step():
-        pass
+    s = played_to_its_end("The literal paper deadlocks")
     v = s.view()
     assert v.outcome == "stuck"
     e = s.engine
