@@ -18,7 +18,7 @@ import pytest
 from PIL import Image, ImageSequence
 
 from apf_viz.core.formats import load_trace
-from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.app import App, _inside, demo_session, free_port
 
 playwright = pytest.importorskip("playwright.sync_api")
 CHROMIUM = "/usr/bin/chromium"
@@ -99,9 +99,21 @@ def shot(page, name: str) -> Path:
 
 
 def screen_of(app: App, page, cell: tuple[int, int]) -> tuple[float, float]:
-    """Project a grid point through the initial (top-down) camera onto the page."""
-    position, look_at, fov = app.renderer.framed_pose
-    p, target = np.array(position), np.array(look_at)
+    """Project a grid point onto the page through the camera of the presenter's browser (the first to
+    connect) as it is now (it follows the run), or the initial camera before any browser reports one."""
+    wait_for(lambda: bool(app.screens))
+    presenter = next((x for x in app.screens.values() if x.state is app.session.presenter), None)
+    if presenter is not None:  # a run stepped without a frame: let its camera follow it first
+        app.request_render()
+        box = presenter.state
+        wait_for(lambda: box.camera == "moved" or _inside(app.renderer.bounds, box.framed_bounds))
+        time.sleep(0.5)  # the pose reaches the browser
+    try:
+        camera = presenter.client.camera
+        position, look_at, fov = camera.position, camera.look_at, float(camera.fov)
+    except (AttributeError, AssertionError):
+        position, look_at, fov = app.renderer.framed_pose
+    p, target = np.array(position, dtype=float), np.array(look_at, dtype=float)
     f = (target - p) / np.linalg.norm(target - p)
     r = np.cross(f, [0.0, 0.0, 1.0])
     r /= np.linalg.norm(r)

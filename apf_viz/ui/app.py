@@ -59,6 +59,8 @@ class BrowserScreen:
             frame_all=app.frame_all,
         )
         self._sent: list[tuple[float, np.ndarray]] = []  # (when, position) of the poses sent to it
+        self._renderer = app.renderer
+        self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
         client.camera.on_update(self._camera_moved)
 
     def _camera_moved(self, camera) -> None:
@@ -73,18 +75,24 @@ class BrowserScreen:
         recent = [p for t, p in self._sent if now - t < ECHO_SECONDS] or [p for _, p in self._sent[-1:]]
         if recent and all(np.abs(position - p).max() > 1e-3 * max(1.0, abs(p[2])) for p in recent):
             self.state.camera = "moved"
+        elif self.state.camera == "framed" and abs(_aspect(self.client) - self._framed_aspect) > 0.02:
+            # The canvas changed shape (the panel docked, a window resized, a first report): the framing
+            # was fitted to another width.
+            self.frame(self._renderer)
 
     def _sending(self, position) -> None:
         self._sent = [*self._sent[-7:], (time.monotonic(), np.asarray(position, dtype=float))]
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
+        self._framed_aspect = NARROW_ASPECT  # the initial camera's
         self._sending(renderer.framed_pose[0])
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
     def frame(self, renderer: SceneRenderer) -> None:
         renderer.frame_camera(self.client.camera)
-        self._sending(renderer.camera_pose(_aspect(self.client))[0])
+        self._framed_aspect = _aspect(self.client)
+        self._sending(renderer.camera_pose(self._framed_aspect)[0])
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
