@@ -31,7 +31,6 @@ from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer
 from apf_viz.ui.session import Session
 
 FPS = 30
-ECHO_SECONDS = 3.0  # a browser reports a pose it was sent within this (a loaded machine included)
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 
 
@@ -58,7 +57,7 @@ class BrowserScreen:
             verifier=app.verifier,
             frame_all=app.frame_all,
         )
-        self._sent: list[tuple[float, np.ndarray]] = []  # (when, position) of the poses sent to it
+        self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
         self._renderer = app.renderer
         self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
         client.camera.on_update(self._camera_moved)
@@ -66,13 +65,13 @@ class BrowserScreen:
     def _camera_moved(self, camera) -> None:
         """A camera that leaves the poses it was framed to was moved by hand: it is left there while the
         run grows, until a new run starts or Frame run is pressed. The browser reports each pose it was
-        sent, possibly after a newer one was sent: any pose sent in the last seconds is not the hand's."""
+        sent, possibly late (a loaded machine, a page still loading) and after a newer one was sent: none
+        of the last poses sent is the hand's."""
         try:
             position = np.asarray(camera.position, dtype=float)
         except (AssertionError, TypeError, ValueError):
             return
-        now = time.monotonic()
-        recent = [p for t, p in self._sent if now - t < ECHO_SECONDS] or [p for _, p in self._sent[-1:]]
+        recent = self._sent
         if recent and all(np.abs(position - p).max() > 1e-3 * max(1.0, abs(p[2])) for p in recent):
             self.state.camera = "moved"
         elif self.state.camera == "framed" and abs(_aspect(self.client) - self._framed_aspect) > 0.02:
@@ -81,7 +80,7 @@ class BrowserScreen:
             self.frame(self._renderer)
 
     def _sending(self, position) -> None:
-        self._sent = [*self._sent[-7:], (time.monotonic(), np.asarray(position, dtype=float))]
+        self._sent = [*self._sent[-7:], np.asarray(position, dtype=float)]
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
         self._framed_aspect = NARROW_ASPECT  # the initial camera's
