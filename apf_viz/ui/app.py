@@ -27,7 +27,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer
+from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -74,7 +74,7 @@ class BrowserScreen:
         recent = self._sent
         if recent and all(np.abs(position - p).max() > 1e-3 * max(1.0, abs(p[2])) for p in recent):
             self.state.camera = "moved"
-        elif self.state.camera == "framed" and abs(_aspect(self.client) - self._framed_aspect) > 0.02:
+        elif self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
             # The canvas changed shape (the panel docked, a window resized, a first report): the framing
             # was fitted to another width.
             self.frame(self._renderer)
@@ -89,9 +89,8 @@ class BrowserScreen:
         self.state.framed_bounds = renderer.bounds
 
     def frame(self, renderer: SceneRenderer) -> None:
-        renderer.frame_camera(self.client.camera)
-        self._framed_aspect = _aspect(self.client)
-        self._sending(renderer.camera_pose(self._framed_aspect)[0])
+        position, self._framed_aspect = renderer.frame_camera(self.client.camera)
+        self._sending(position)
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
@@ -101,14 +100,6 @@ def _inside(box: tuple[float, float, float, float], framed: tuple[float, float, 
     if framed is None:
         return False
     return box[0] >= framed[0] and box[1] >= framed[1] and box[2] <= framed[2] and box[3] <= framed[3]
-
-
-def _aspect(client) -> float:
-    try:
-        aspect = float(client.camera.aspect)
-    except (AssertionError, AttributeError, TypeError, ValueError):
-        return NARROW_ASPECT
-    return aspect if aspect == aspect and aspect > 0 else NARROW_ASPECT
 
 
 class App:

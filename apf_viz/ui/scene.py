@@ -609,22 +609,28 @@ class SceneRenderer:
         initial.position = position
         initial.look_at = look_at
 
-    def frame_camera(self, camera) -> None:
+    def frame_camera(self, camera) -> tuple[tuple[float, float, float], float]:
         """Move a connected browser's camera to the whole run (position first: it drags look_at along),
-        fitted to that browser's canvas."""
-        try:
-            aspect = float(camera.aspect)
-        except (AssertionError, AttributeError, TypeError, ValueError):
-            aspect = NARROW_ASPECT
-        position, look_at, fov = self.camera_pose(
-            aspect if aspect == aspect and aspect > 0 else NARROW_ASPECT
-        )
+        fitted to that browser's canvas. Returns the position sent and the aspect it was fitted to."""
+        aspect = camera_aspect(camera)
+        position, look_at, fov = self.camera_pose(aspect)
         try:
             camera.fov = fov
             camera.position = position
             camera.look_at = look_at
         except AssertionError:
             pass  # the browser has not reported its camera yet; its initial pose is already right
+        return position, aspect
+
+
+def camera_aspect(camera) -> float:
+    """The width / height of a browser's canvas, as its camera reports it (before it has: the narrow
+    canvas new browsers are framed for)."""
+    try:
+        aspect = float(camera.aspect)
+    except (AssertionError, AttributeError, TypeError, ValueError):
+        return NARROW_ASPECT
+    return aspect if aspect == aspect and aspect > 0 else NARROW_ASPECT
 
 
 def cell_of_ray(origin, direction) -> tuple[int, int] | None:
