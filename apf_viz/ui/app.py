@@ -60,27 +60,32 @@ class BrowserScreen:
         self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
         self._renderer = app.renderer
         self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
+        self._acknowledged = False  # it has reported the last pose sent
         client.camera.on_update(self._camera_moved)
 
     def _camera_moved(self, camera) -> None:
-        """A camera that leaves the poses it was framed to was moved by hand: it is left there while the
-        run grows, until a new run starts or Frame run is pressed. The browser reports each pose it was
-        sent, possibly late (a loaded machine, a page still loading) and after a newer one was sent: none
-        of the last poses sent is the hand's."""
+        """A camera that leaves the pose it was last framed to was moved by hand: it is left there while
+        the run grows, until a new run starts or Frame run is pressed. Reports are matched against the
+        poses sent: the browser reports each, possibly late (a loaded machine, a page still loading), and
+        until it has reported the latest, what it reports may predate that framing (a drag still in
+        flight when Frame run was pressed): not the hand's."""
         try:
             position = np.asarray(camera.position, dtype=float)
         except (AssertionError, TypeError, ValueError):
             return
-        recent = self._sent
-        if recent and all(np.abs(position - p).max() > 1e-3 * max(1.0, abs(p[2])) for p in recent):
+        if any(_same_pose(position, p) for p in self._sent):
+            self._acknowledged = self._acknowledged or _same_pose(position, self._sent[-1])
+        elif self._acknowledged:
             self.state.camera = "moved"
-        elif self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
+            return
+        if self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
             # The canvas changed shape (the panel docked, a window resized, a first report): the framing
             # was fitted to another width.
             self.frame(self._renderer)
 
     def _sending(self, position) -> None:
         self._sent = [*self._sent[-7:], np.asarray(position, dtype=float)]
+        self._acknowledged = False
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
         self._framed_aspect = NARROW_ASPECT  # the initial camera's
@@ -90,9 +95,14 @@ class BrowserScreen:
 
     def frame(self, renderer: SceneRenderer) -> None:
         position, self._framed_aspect = renderer.frame_camera(self.client.camera)
-        self._sending(position)
+        if position is not None:
+            self._sending(position)
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
+
+
+def _same_pose(position: np.ndarray, sent: np.ndarray) -> bool:
+    return bool(np.abs(position - sent).max() <= 1e-3 * max(1.0, abs(sent[2])))
 
 
 def _inside(box: tuple[float, float, float, float], framed: tuple[float, float, float, float] | None) -> bool:

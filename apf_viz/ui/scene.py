@@ -609,9 +609,10 @@ class SceneRenderer:
         initial.position = position
         initial.look_at = look_at
 
-    def frame_camera(self, camera) -> tuple[tuple[float, float, float], float]:
+    def frame_camera(self, camera) -> tuple[tuple[float, float, float] | None, float]:
         """Move a connected browser's camera to the whole run (position first: it drags look_at along),
-        fitted to that browser's canvas. Returns the position sent and the aspect it was fitted to."""
+        fitted to that browser's canvas. Returns the position sent (None if none could be) and the
+        aspect it was fitted to."""
         aspect = camera_aspect(camera)
         position, look_at, fov = self.camera_pose(aspect)
         try:
@@ -619,7 +620,7 @@ class SceneRenderer:
             camera.position = position
             camera.look_at = look_at
         except AssertionError:
-            pass  # the browser has not reported its camera yet; its initial pose is already right
+            return None, aspect  # the browser has not reported its camera yet; its initial pose is right
         return position, aspect
 
 
