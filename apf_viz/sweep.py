@@ -307,14 +307,11 @@ def cost(cell: Cell) -> float:
     """A run's expected time, in arbitrary units (about 80 µs each here): moves grow as k·D and each
     costs a little more in a bigger crowd (measured, README: k = 40 → 0.6 s, 100 → 1.8 s, 300 → 21 s,
     1,000 → 8 min), plus a fixed part per run (a task's round trip, tens of milliseconds)."""
-    side = max(3, math.isqrt(3 * cell.k) + 1)
-    d = max(cell.k, side) if not cell.robots else max(cell.k, *_extent(cell.robots), *_extent(cell.pattern))
+    from apf_viz.core.budget import paper_D
+
+    # A generated start is not drawn just to be weighed: its box's side, or k, is its D.
+    d = paper_D(cell.robots, cell.pattern) if cell.robots else max(cell.k, math.isqrt(3 * cell.k) + 1)
     return 500.0 + (cell.k * d) ** 1.2
-
-
-def _extent(points: Sequence[tuple[int, int]]) -> tuple[int, int]:
-    xs, ys = [p[0] for p in points], [p[1] for p in points]
-    return max(xs) - min(xs), max(ys) - min(ys)
 
 
 def _describe(cell: Cell) -> str:

@@ -33,6 +33,7 @@ SCHEDULE_FORMAT = "apf-viz-schedule"
 SCHEDULE_VERSION = 2
 Phase = Literal["look", "compute", "move"]
 PHASES: tuple[Phase, ...] = ("look", "compute", "move")
+_PHASE_CODE = {p: i for i, p in enumerate(PHASES)}
 # A schedule line is one event or round: a file of many million lines is the adversary of a long run.
 # Parsed lines are kept as two integers each (line number, code), not as objects: 16 bytes a line.
 MAX_SCHEDULE_BYTES = 200_000_000
@@ -96,7 +97,7 @@ class Schedule:
 
     def add(self, number: int, line: Line) -> None:
         if isinstance(line, Activation) and line.robot >= 0:
-            self._add_activation(number, line.robot, PHASES.index(line.phase))
+            self._add_activation(number, line.robot, _PHASE_CODE[line.phase])
             return
         self._numbers.append(number)
         self._codes.append(-1 - len(self._others))
@@ -122,16 +123,6 @@ class Schedule:
                 yield n, None, tuple(line.round)
             else:
                 yield n, line.robot, line.phase
-
-    def lines(self) -> list[Line]:
-        """The lines as models (for writing; a followed schedule never builds them)."""
-        return [
-            Round(round=list(what)) if r is None else Activation(robot=r, phase=what)  # type: ignore[arg-type]
-            for _, r, what in self
-        ]
-
-
-_PHASE_CODE = {p: i for i, p in enumerate(PHASES)}
 
 
 def _parse_line(raw: str, where: str, schedule: Schedule, n: int) -> None:
@@ -229,7 +220,7 @@ class ScheduleError(InputError):
 def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Iterator[int]:
     """Drive ``engine`` by the schedule, line by line, until its end or the run's end; yields each line
     number after it ran. A robot whose activation changes nothing is activated as written. (The flips
-    and light semantics are the engine's: :func:`schedule_adversary` says which to build it with.)"""
+    and light semantics are the engine's: :func:`adversary_flips` says which flips to build it with.)"""
     if schedule.k != engine.k:
         raise InputError(f"{where}: a schedule for {schedule.k} robots, but the run has {engine.k}")
     lc_atomic = engine.light_semantics == "lc-atomic"
