@@ -95,6 +95,14 @@ class PanelContext:
 
         return wrapped
 
+    def step(self, event) -> None:
+        """Step (the button or the key): one event, or in Manual this browser's selected robot's next
+        phase; why nothing ran goes to the browser that asked."""
+        s = self.session
+        s.pause()
+        if not s.step(self.browser):
+            tell(event.client, "Step", s.why_not_step())
+
     def from_browser(self, fn: Callable, title: str = "apf-viz") -> Callable:
         """:meth:`guard`, for a control's update: programmatic updates (``event.client is None``, a value
         refreshed from the session) never feed back into it."""

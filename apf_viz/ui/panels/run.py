@@ -6,7 +6,7 @@ from __future__ import annotations
 from viser._messages import GuiSliderMark
 
 from apf_viz.demos import scenarios
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.run_controller import MAX_SPEED
@@ -69,9 +69,7 @@ class RunFolder:
     def _on_control(self, event) -> None:
         value, s = event.target.value, self.ctx.session
         if value == "Step":
-            s.pause()
-            if not s.step(self.ctx.browser):
-                tell(event.client, "Step", s.why_not_step())
+            self.ctx.step(event)
         elif value == "Back":
             s.back()
         elif value in ("Play", "Pause"):

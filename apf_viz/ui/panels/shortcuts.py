@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
 
 # (label, key, what it does). A presenter's clicker sends PageDown / PageUp. The arrows (and W A S D Q E)
@@ -24,10 +24,9 @@ SHORTCUTS = (
 
 class Shortcuts:
     def __init__(self, gui, ctx: PanelContext) -> None:
-        self.ctx = ctx
         actions: dict[str, Callable] = {
             "Play / Pause": lambda e: ctx.session.toggle_play(),
-            "Step": self._step,
+            "Step": ctx.step,
             "Back": lambda e: ctx.session.back(),
             "Next stage": lambda e: ctx.session.run_until("stage"),
             "Previous stage": lambda e: ctx.session.back_to_stage(),
@@ -37,12 +36,6 @@ class Shortcuts:
         for label, key, text in SHORTCUTS:
             command = gui.add_command(label, description=text, hotkey=key)
             command.on_trigger(ctx.guard(actions[label], label))
-
-    def _step(self, event) -> None:
-        s = self.ctx.session
-        s.pause()
-        if not s.step(self.ctx.browser):
-            tell(event.client, "Step", s.why_not_step())
 
     def refresh(self, view: SessionView) -> None:
         pass  # a shortcut shows nothing of its own

@@ -64,7 +64,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         numbers=screen.numbers if screen.numbers is not None else len(robots) <= NUMBERS_UP_TO,
         collision=crash[:2] if crash else None,
         collided=crash[2] if crash else (),
-        fatal=story.fatal_decisions(e, crash[2], list(run.config.robots)) if crash else ("", None),
+        fatal=story.fatal_decisions(e, crash[2], list(run.config.robots), pts) if crash else ("", None),
         waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
         scenario_note=screen.scenario_note,
@@ -124,9 +124,9 @@ def for_browser(
     if sel is None or sel >= e.k or screen.mode != "run":
         return replace(view, follows_presenter=source is presenter and browser is not presenter)
     st = e.state
-    pts = e.current_points()
+    pts = [r.position for r in view.robots]  # the run's robots as they are now (Run mode)
     start = list(run.config.robots)
-    seen = seen_robots(e, sel, start) if st.snapshot[sel] is not None else []
+    seen = seen_robots(e, sel, start, "held", pts) if st.snapshot[sel] is not None else []
     if st.snapshot[sel] is not None:  # what it saw, not what is there now
         rays = tuple((pts[sel], s.seen_at) for s in seen)
         ghosts = tuple((s.seen_at, s.seen_light) for s in seen if s.changed)

@@ -48,11 +48,14 @@ def _p(p: Point) -> str:
     return f"({p[0]}, {p[1]})"
 
 
-def seen_robots(engine: Engine, robot: int, start: list[Point], which: Which = "held") -> list[SeenRobot]:
+def seen_robots(
+    engine: Engine, robot: int, start: list[Point], which: Which = "held", now: list[Point] | None = None
+) -> list[SeenRobot]:
     """The robots of ``robot``'s snapshot, in the snapshot's order: the one it holds (``held``; empty if
     it holds none) or the one its latest decision was computed on (``decided``; empty before it).
 
-    ``start``: the run's start positions (a robot that has not moved since the start stands there)."""
+    ``start``: the run's start positions (a robot that has not moved since the start stands there);
+    ``now``: the current positions, when the caller has them already."""
     st = engine.state
     if which == "held":
         snap, ids, look = st.snapshot[robot], st.seen[robot], int(st.look_step[robot])
@@ -60,8 +63,8 @@ def seen_robots(engine: Engine, robot: int, start: list[Point], which: Which = "
         snap, ids, look = st.decided[robot], st.decided_seen[robot], int(st.decided_look[robot])
     if snap is None or ids is None or look < 1 or look > engine.step_index:
         return []
-    at_look = _positions_at(engine, set(ids) | {robot}, look, start)
-    pts = engine.current_points()
+    pts = now if now is not None else engine.current_points()
+    at_look = _positions_at(engine, set(ids) | {robot}, look, start, pts)
     places = in_frame(snap.offsets(), at_look[robot], engine.y_up[robot])
     light_at = {p: s.light for p, s in zip(places, snap.robots, strict=True)}
     by_place = {at_look[j]: j for j in ids}
@@ -72,16 +75,19 @@ def seen_robots(engine: Engine, robot: int, start: list[Point], which: Which = "
     ]
 
 
-def changes(engine: Engine, robot: int, start: list[Point], which: Which = "held") -> list[SeenRobot]:
+def changes(
+    engine: Engine, robot: int, start: list[Point], which: Which = "held", now: list[Point] | None = None
+) -> list[SeenRobot]:
     """The robots of that snapshot that have moved or changed light since its Look: what makes it stale."""
-    return [s for s in seen_robots(engine, robot, start, which) if s.changed]
+    return [s for s in seen_robots(engine, robot, start, which, now) if s.changed]
 
 
-def _positions_at(engine: Engine, robots: set[int], look: int, start: list[Point]) -> dict[int, Point]:
+def _positions_at(
+    engine: Engine, robots: set[int], look: int, start: list[Point], pts: list[Point]
+) -> dict[int, Point]:
     """Where each of ``robots`` stood at the Look of step ``look`` (1-based: the Look is in step
     ``look - 1``): now, unless it moved since; then at its last move before the Look, or its start."""
     steps = engine.history.steps
-    pts = engine.current_points()
     moved = {
         ev.robot
         for s in steps[look : engine.step_index]

@@ -31,7 +31,7 @@ def why_view(e: Engine, r: int, pts: list[Point], start: list[Point]) -> WhyView
         x, y = x - dx, y - dy
     regions = tuple(_to_global(m, (x, y), up) for m in explained.regions)
     now = e.decide(e.look(r))  # what it would decide on the present view
-    changed = changes(e, r, start, "decided")
+    changed = changes(e, r, start, "decided", pts)
     return WhyView(
         r,
         explained,
