@@ -37,6 +37,7 @@ from apf_viz.core.schedule import (
     Schedule,
     ScheduleError,
     adversary_flips,
+    check_robots,
     follow,
     load_schedule,
     schedule_of_steps,
@@ -181,10 +182,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
 def _schedule_adversary(args: argparse.Namespace, robots: RobotsFile, schedule: Schedule):
     """The flips and light semantics of a run that follows a schedule: the schedule's own, whatever
     --seed says; a contradiction with the robots file or --light-semantics is refused."""
-    if schedule.k != len(robots.robots):  # before any warning about its flips
-        raise InputError(
-            f"{args.schedule}: a schedule for {schedule.k} robots, but the run has {len(robots.robots)}"
-        )
+    check_robots(schedule, len(robots.robots), str(args.schedule))  # before any warning about its flips
     y_up, warning = adversary_flips(schedule, robots.y_up, args.flips, str(args.schedule), str(args.robots))
     if warning:
         print(f"apf-viz: warning: {warning}", file=sys.stderr)

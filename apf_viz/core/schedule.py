@@ -217,12 +217,17 @@ class ScheduleError(InputError):
     """A line the run cannot follow (the run so far is kept)."""
 
 
+def check_robots(schedule: Schedule, k: int, where: str = "schedule") -> None:
+    """Refuse, before any step, a schedule written for another number of robots."""
+    if schedule.k != k:
+        raise InputError(f"{where}: a schedule for {schedule.k} robots, but the run has {k}")
+
+
 def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Iterator[int]:
     """Drive ``engine`` by the schedule, line by line, until its end or the run's end; yields each line
     number after it ran. A robot whose activation changes nothing is activated as written. (The flips
     and light semantics are the engine's: :func:`adversary_flips` says which flips to build it with.)"""
-    if schedule.k != engine.k:
-        raise InputError(f"{where}: a schedule for {schedule.k} robots, but the run has {engine.k}")
+    check_robots(schedule, engine.k, where)
     lc_atomic = engine.light_semantics == "lc-atomic"
     k = engine.k
     for n, robot, what in schedule:
