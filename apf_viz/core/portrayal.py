@@ -192,6 +192,8 @@ class Portrayed(Protocol):
 
     def overlays(self, config: Configuration) -> Overlays: ...
 
+    def stage(self, config: Configuration) -> str: ...
+
     def explain(self, view: Snapshot, pattern: Pattern) -> Explanation: ...
 
 
@@ -210,6 +212,14 @@ def overlays_of(algorithm: Algorithm, config: Configuration) -> Overlays:
     """The algorithm's overlays of this configuration, or none."""
     own = getattr(algorithm, "overlays", None)
     return own(config) if callable(own) else Overlays()
+
+
+def stage_of(algorithm: Algorithm, config: Configuration) -> str:
+    """The stage of this configuration, ``overlays_of(...).stage``: by the algorithm's own ``stage``
+    where it gives one, which names the stage without drawing the marks (the timeline asks after every
+    move)."""
+    own = getattr(algorithm, "stage", None)
+    return own(config) if callable(own) else overlays_of(algorithm, config).stage
 
 
 def explain(algorithm: Algorithm, view: Snapshot, pattern: Pattern) -> Explanation:

@@ -15,18 +15,29 @@ TARGET_COLORS: dict[str, Color] = {
     "preview": (160, 220, 160),
     "drawing": (240, 120, 190),
 }
-# The engine's marks, one colour each.
+# The engine's marks, one colour each. Chosen with the lights (Okabe & Ito's colour-blind-safe set) so
+# that the marks of a failure picture stay apart for every viewer: leader (vermillion disc), collision
+# (magenta burst), selected (black ring) and "will never act" (grey square) differ in colour under
+# simulated protan-, deutan- and tritanopia and in shape (tests/test_palette.py). A pending move is
+# magenta like the collision it may become.
 MARK_COLORS: dict[str, Color] = {
     "ray": (250, 200, 0),
-    "ghost": (120, 60, 200),
-    "never": (150, 0, 0),
+    "ghost": (110, 110, 110),
+    "never": (120, 120, 120),
     "outline": (50, 50, 50),
-    "pending": (230, 40, 40),
-    "axis": (255, 0, 0),
-    "collision": (230, 0, 0),
+    "pending": (150, 0, 110),
+    "axis": (190, 0, 190),
+    "collision": (190, 0, 190),
     "last": (140, 90, 40),  # brown and black: no light of the paper's legend is either
     "selected": (0, 0, 0),
     "region": (40, 120, 255),
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),
+}
+# The shape each of those marks is drawn in (viser's point shapes), so that shape alone tells them apart.
+MARK_SHAPES: dict[str, str] = {
+    "collision": "sparkle",
+    "never": "square",
+    "selected": "circle",
+    "last": "circle",
 }

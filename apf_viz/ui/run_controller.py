@@ -14,9 +14,11 @@ from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
 from apf_viz.core.history import StepRecord
+from apf_viz.core.portrayal import Configuration, stage_of
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.ui.move_series import MoveSeries
 from apf_viz.ui.run_config import RunConfig
+from apf_viz.ui.stage_log import StageLog
 
 # Steps per second: the Speed slider's top. Play never spends more than a share of each frame stepping
 # (ui/app.py STEP_SHARE), so a speed the engine cannot reach plays as fast as it can at full frame rate.
@@ -48,6 +50,11 @@ class RunController:
     def series(self) -> MoveSeries:
         return self._series
 
+    @property
+    def stages(self) -> StageLog:
+        """Where each of the algorithm's stages began in this run (the timeline's marks)."""
+        return self._stages
+
     # ------------------------------------------------------------------ building
     def _rebuild(
         self,
@@ -60,6 +67,12 @@ class RunController:
         self.engine = engine if engine is not None else config.engine(self.plugins)
         self.config = config
         self._series = MoveSeries(self.engine.start)
+        algorithm, pattern, start = self.engine.algorithm, config.pattern, config.robots
+        self._stages = StageLog(
+            self.engine.start,
+            [algorithm.lights[0]] * self.engine.k,
+            lambda pts, lights: stage_of(algorithm, Configuration(pts, lights, pattern, start)),
+        )
         self._playing = False
         # A replayed trace is followed step by step until the person branches (Branch here).
         self.following = engine is not None and engine.history.length > 0

@@ -22,7 +22,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
-from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
+from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS
 from apf_viz.ui.presenter import SessionView
 
 ROBOT_RADIUS = 0.3
@@ -224,7 +224,9 @@ class SceneRenderer:
         numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
         self._labels("/numbers", numbers if view.numbers else [])
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
-        self._points("/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.25, "circle")
+        self._points(
+            "/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"]
+        )
         self._targets(view)
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
@@ -293,9 +295,9 @@ class SceneRenderer:
         self._points("/robots/y_axes", nose, (40, 40, 40), 0.16, "diamond")
 
     def _rings(self, view: SessionView, pts: np.ndarray) -> None:
-        """Rings under the robots, widest at the bottom: will never act (dark red, a deadlock), acted last
-        (brown), and the phase (yellow: looked, orange: computed; none when idle). The selected robot's
-        (black) is its browser's own (:meth:`_selection`)."""
+        """Rings under the robots, widest at the bottom: will never act (a grey square, a deadlock),
+        acted last (brown), and the phase (yellow: looked, orange: computed; none when idle). The
+        selected robot's (black) is its browser's own (:meth:`_selection`)."""
         phases = np.array([r.phase if view.phase_rings else "idle" for r in view.robots])
         for phase in ("looked", "computed"):
             at = pts[phases == phase] if len(phases) else pts[:0]
@@ -307,7 +309,11 @@ class SceneRenderer:
         self._points("/ring/last", _xyz(at, _LAYER["last"]), MARK_COLORS["last"], _SIZE["last"], "circle")
         never = pts[[r for r in view.never_act if r < len(pts)]] if view.never_act else pts[:0]
         self._points(
-            "/ring/never", _xyz(never, _LAYER["never"]), MARK_COLORS["never"], _SIZE["never"], "circle"
+            "/ring/never",
+            _xyz(never, _LAYER["never"]),
+            MARK_COLORS["never"],
+            _SIZE["never"],
+            MARK_SHAPES["never"],
         )
 
     def _ghosts(self, view: SessionView) -> None:

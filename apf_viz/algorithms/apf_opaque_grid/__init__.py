@@ -124,6 +124,9 @@ class ApfOpaqueGrid:
     def overlays(self, config: Configuration) -> Overlays:
         return portrayal.overlays(config)
 
+    def stage(self, config: Configuration) -> str:
+        return portrayal.stage(config.positions, config.lights)
+
     @classmethod
     def parse(cls, name: str) -> ApfOpaqueGrid:
         """Build from a registry name: the two variants, or ``apf-opaque-grid@R1,R2`` (``@`` alone: none)."""

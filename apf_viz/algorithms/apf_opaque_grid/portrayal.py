@@ -11,17 +11,17 @@ from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Cells, Configuration, Frame, LightStyle, Line, Mark, Overlays
 
 LEGEND: dict[str, LightStyle] = {
-    "off": LightStyle((150, 150, 150), "no role yet (every robot starts off)"),
-    "terminal1": LightStyle((50, 110, 255), "Phase 1: a terminal robot of the leftmost line L_1"),
-    "symmetric": LightStyle((160, 80, 220), "Phase 1: L_1's terminal pair, R_I symmetric about K"),
-    "decider": LightStyle((0, 190, 200), "Phase 2: one of the two robots that decide the leader"),
-    "call": LightStyle((255, 150, 0), "Phase 2: answers the deciders (R_I symmetric, closest to K)"),
-    "leader1": LightStyle((255, 80, 170), "Phase 2: elected, walking to a corner to become leader"),
-    "leader": LightStyle((220, 30, 30), "Phase 3: the leader r₀; its position fixes the frame"),
-    "done": LightStyle((40, 170, 60), "Phase 3: on its target"),
+    "off": LightStyle((195, 195, 195), "no role yet (every robot starts off)"),
+    "terminal1": LightStyle((86, 180, 233), "Phase 1: a terminal robot of the leftmost line L_1"),
+    "symmetric": LightStyle((0, 114, 178), "Phase 1: L_1's terminal pair, R_I symmetric about K"),
+    "decider": LightStyle((204, 121, 167), "Phase 2: one of the two robots that decide the leader"),
+    "call": LightStyle((230, 159, 0), "Phase 2: answers the deciders (R_I symmetric, closest to K)"),
+    "leader1": LightStyle((240, 228, 66), "Phase 2: elected, walking to a corner to become leader"),
+    "leader": LightStyle((213, 94, 0), "Phase 3: the leader r₀; its position fixes the frame"),
+    "done": LightStyle((0, 158, 115), "Phase 3: on its target"),
 }
 
-K_COLOR = (200, 0, 200)
+K_COLOR = (0, 130, 140)
 
 STAGES = {
     1: "Phase 1: leader election (Algorithm 1)",
@@ -31,16 +31,47 @@ STAGES = {
 }
 
 
-def stage(lights: tuple[str, ...]) -> str:
-    """The stage the lights show (the robots themselves dispatch on what each sees, docs/ALGORITHM.md)."""
+def stage(positions: tuple[Point, ...], lights: tuple[str, ...]) -> str:
+    """The stage the configuration shows: the paper's phase, then the step within it that a lecture
+    stops at (Next stage stops at every change). The robots themselves dispatch on what each sees
+    (docs/ALGORITHM.md); this reading is for the screen only."""
     present = set(lights)
     if present == {"done"}:
         return STAGES[4]
     if present & {"leader", "done"}:
-        return STAGES[3]
-    if present & {"decider", "call", "leader1"}:
-        return STAGES[2]
-    return STAGES[1]
+        return f"{STAGES[3]} — {_phase3_step(positions, lights)}"
+    if "leader1" in present:
+        return f"{STAGES[2]} — leader elected (leader1), walking to its corner"
+    if "call" in present:
+        return f"{STAGES[2]} — a robot closest to K answers with call"
+    if "decider" in present:
+        return f"{STAGES[2]} — two deciders stand on L_1"
+    if "symmetric" in present:
+        return f"{STAGES[1]} — L_1's terminal pair is symmetric about K"
+    if "terminal1" in present:
+        return f"{STAGES[1]} — L_1's terminal robots light terminal1"
+    return f"{STAGES[1]} — every robot off"
+
+
+def _phase3_step(positions: tuple[Point, ...], lights: tuple[str, ...]) -> str:
+    """Lining up on the leader's row, then one stop per robot that reaches its target, then the
+    leader's last walk (Algorithm 3)."""
+    others = len(lights) - 1
+    done = lights.count("done")
+    if "leader" not in lights or done == others:
+        return "the leader walks to the last target"
+    if done:
+        return f"{done} of {others} robots on their targets"
+    lx, row = positions[lights.index("leader")]
+    lined = {x for (x, y), lt in zip(positions, lights, strict=True) if y == row and lt != "leader"}
+    if lined and lx + 1 not in lined:  # the line grows from the leader's side and leaves from it
+        return "the line is complete; its left end leaves for the first target"
+    return f"the leader at its corner; {len(lined)} of {others} robots lined up on its row"
+
+
+def phase_of(stage: str) -> str:
+    """The phase a stage belongs to (its text before the dash): the timeline labels phases only."""
+    return stage.split(" — ")[0].split(":")[0]
 
 
 def line_K(positions: tuple[Point, ...], lights: tuple[str, ...]) -> float | None:
@@ -109,4 +140,4 @@ def overlays(config: Configuration) -> Overlays:
         y0 = min(p[1] for p in config.start) - 1
         preview = tuple((x0 + x, y0 + y) for x, y in targets)
         marks.append(Cells(preview, "pattern, not yet placed", "preview"))
-    return Overlays(tuple(marks), stage(config.lights))
+    return Overlays(tuple(marks), stage(config.positions, config.lights))

@@ -3,6 +3,7 @@ point a camera, tell a browser something and verify the run."""
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 
@@ -10,11 +11,23 @@ from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.ui.session import Session
 from apf_viz.ui.verifier import Status, Verifier
 
+# Each browser's last notification under each title: a new one replaces it, so that a key pressed ten
+# times (Next stage) shows one message, the latest, instead of a pile over the canvas.
+_shown: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
 
 def tell(client, title: str, body: str, error: bool = False) -> None:
-    """A notification for one browser (None: a programmatic change, told to nobody)."""
-    if client is not None:
-        client.add_notification(title, body, auto_close_seconds=8.0, color="red" if error else "blue")
+    """A notification for one browser (None: a programmatic change, told to nobody); it closes itself,
+    and replaces the browser's previous one under the same title."""
+    if client is None:
+        return
+    mine = _shown.setdefault(client, {})
+    previous = mine.pop(title, None)
+    if previous is not None and not previous._impl.removed:
+        previous.remove()
+    mine[title] = client.add_notification(
+        title, body, auto_close_seconds=8.0, color="red" if error else "blue"
+    )
 
 
 class SharedVerifier:

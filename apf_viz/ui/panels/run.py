@@ -6,7 +6,8 @@ from __future__ import annotations
 from viser._messages import GuiSliderMark
 
 from apf_viz.demos import scenarios
-from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.shortcuts import NOTE_TITLES
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.run_controller import MAX_SPEED
@@ -87,8 +88,7 @@ class RunFolder:
                 self.ctx.frame(client)
             return
         result = self.ctx.session.run_until("move" if value == "Next move" else "stage")
-        if client is not None:
-            client.add_notification(value, result, auto_close_seconds=5.0)
+        tell(client, NOTE_TITLES[value], result)
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:

@@ -22,6 +22,10 @@ SHORTCUTS = (
 )  # and P, presentation mode (ui/panels/presentation.py)
 
 
+# A stop's message replaces the previous stop's, whichever way the lecture went (ui/panels/context.tell).
+NOTE_TITLES = {"Next stage": "Stage", "Previous stage": "Stage", "Next move": "Move"}
+
+
 class Shortcuts:
     def __init__(self, gui, ctx: PanelContext) -> None:
         actions: dict[str, Callable] = {
@@ -35,7 +39,7 @@ class Shortcuts:
         }
         for label, key, text in SHORTCUTS:
             command = gui.add_command(label, description=text, hotkey=key)
-            command.on_trigger(ctx.guard(actions[label], label))
+            command.on_trigger(ctx.guard(actions[label], NOTE_TITLES.get(label, label)))
 
     def refresh(self, view: SessionView) -> None:
         pass  # a shortcut shows nothing of its own

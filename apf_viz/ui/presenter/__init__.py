@@ -75,7 +75,15 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         compare=_twin_view(run, screen) if screen.twin is not None and running else None,
         divergence=screen.twin.divergence(e) if screen.twin is not None and running else None,
         trace_note=story.trace_note(run.trace_options),
-        timeline_marks=story.loop_marks(run.trace_options, e.history.length, run.config.scheduler),
+        timeline_marks=tuple(
+            sorted(
+                run.stages.marks(e.history, e.history.length)
+                + story.loop_marks(run.trace_options, e.history.length, run.config.scheduler),
+                key=lambda mark: mark[0],
+            )
+        )
+        if running
+        else (),
         **numbers,
         mode=screen.mode,
         draft_count=len(screen.editor.pattern) if screen.mode != "edit-robots" else len(screen.editor.robots),

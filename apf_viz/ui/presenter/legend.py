@@ -31,14 +31,21 @@ def symbol_html(text: str) -> str:
 
 
 def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
-    """A legend swatch drawn as the canvas draws the mark: a disc, a square, a ring or a line."""
+    """A legend swatch drawn as the canvas draws the mark: a disc, a square, a ring, a square ring, a
+    line or a burst."""
     outline = MARK_COLORS["outline"]
     style = {
         "disc": f"border-radius:50%;background:rgb{tuple(color)};border:1.5px solid rgb{outline}",
         "square": f"border-radius:1px;background:rgb{tuple(color)}",
         "ring": f"border-radius:50%;border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
         "line": f"height:3px;margin-bottom:4px;background:rgb{tuple(color)}",
-    }[shape]
+        "square-ring": f"border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
+    }.get(shape)
+    if style is None:  # the collision's burst: viser's "sparkle" point, drawn as the glyph it resembles
+        return (
+            f'<span style="display:inline-block;flex:none;width:13px;line-height:13px;text-align:center;'
+            f'font-size:15px;color:rgb{tuple(color)}">✦</span>'
+        )
     return f'<span style="display:inline-block;flex:none;width:13px;height:13px;{style}"></span>'
 
 
@@ -82,8 +89,12 @@ def legend_html(view: SessionView) -> str:
             "a robot it saw, in the light it saw, since changed",
         ),
         (_swatch(c["region"], "square"), "Why: regions tested", "the regions its last rule tested"),
-        (_swatch(c["collision"]), "collision", "the cell and robots of a collision"),
-        (_swatch(c["never"], "ring"), "will never act", "stuck: no robot's next cycle changes anything"),
+        (_swatch(c["collision"], "burst"), "collision", "the cell and robots of a collision"),
+        (
+            _swatch(c["never"], "square-ring"),
+            "will never act",
+            "stuck: no robot's next cycle changes anything",
+        ),
         (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
     ]
     row = "display:flex;align-items:center;gap:5px;min-width:0"

@@ -80,7 +80,8 @@ class SessionView:
     compare: SessionView | None = None  # Compare: the same adversary under the second algorithm
     divergence: tuple[int, str] | None = None  # Compare: the first event where the two differ
     trace_note: str = ""  # what a loaded trace's header says it shows (a verdict, a gap, a loop)
-    timeline_marks: tuple[tuple[int, str], ...] = ()  # steps of the timeline worth a mark (a loop)
+    # Steps of the timeline worth a mark: where each stage began (labelled where the phase changes), a loop.
+    timeline_marks: tuple[tuple[int, str | None], ...] = ()
     stale: tuple[int, ...] = ()  # robots the selected robot's held snapshot shows other than they are now
     scheduler: str = "async"  # the run's scheduler (by name)
     playing: bool = False
