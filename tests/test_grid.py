@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from apf_viz.core.grid import Direction, visible_from, visible_from_naive
+from apf_viz.core.grid import Direction, hiders, visible_from, visible_from_naive
 
 points_sets = st.sets(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=1, max_size=40)
 
@@ -87,3 +87,18 @@ def test_visible_in_a_crowd_by_minimum_per_direction_equals_the_lattice_walk(poi
         visible = visible_in_crowd(table_index(arr - arr[i]), i, scratch)
         assert visible.tolist() == sorted(visible_from_naive(points, i))
     assert (scratch == np.iinfo(np.int64).max).all()  # left as it was found
+
+
+@given(points_sets, st.data())
+def test_each_hidden_robot_is_hidden_by_a_visible_robot_on_its_segment(points, data):
+    pts = sorted(points)
+    i = data.draw(st.integers(0, len(pts) - 1))
+    hidden = hiders(pts, i)
+    seen = set(visible_from_naive(pts, i))
+    assert set(hidden) == set(range(len(pts))) - seen - {i}
+    (x0, y0) = pts[i]
+    for j, h in hidden.items():
+        assert h in seen
+        (xh, yh), (xj, yj) = pts[h], pts[j]
+        assert (xh - x0) * (yj - y0) == (yh - y0) * (xj - x0)  # on the line of sight
+        assert 0 < (xh - x0) * (xj - x0) + (yh - y0) * (yj - y0) < (xj - x0) ** 2 + (yj - y0) ** 2  # between

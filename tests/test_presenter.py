@@ -5,6 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
+from apf_viz.core.formats import InputError
 from apf_viz.ui.app import demo_session
 from apf_viz.ui.presenter import for_browser, present, present_run
 from apf_viz.ui.presenter.staleness import changes
@@ -55,7 +58,8 @@ def test_the_stale_facts_name_the_robots_that_changed_and_where():
     s = stale_session()
     v = s.view()
     assert v.selected == 2 and v.stale == (1,)
-    assert v.ghosts == (((3, 0), "off"),)  # where it was seen, in the light seen
+    assert v.ghosts == (((3, 0), "off", 1, False),)  # where it was seen, in the light seen, numbered
+    assert v.stale_holders == (2,)  # its mark, and no other robot's: none other holds a stale snapshot
     assert "robot 1" in v.caption and "(3, 0)" in v.caption and "(2, 0)" in v.caption
     assert "robot 0" not in v.caption.split("Stale")[-1]  # robot 0 did not change
     fresh = stale_session()
@@ -218,3 +222,99 @@ def test_a_deadlock_says_what_each_robot_waits_on():
         assert str(r) in listed
     assert sum(len(line.split(" — ")[0].split(", ")) for line in v.waits.splitlines()) == e.k
     assert v.waits in v.banner
+
+
+def test_the_selected_robot_sees_what_it_hides_and_a_light_only_change_has_its_own_ghost():
+    # Robots in a row: robot 0 sees robot 1 only; robot 1 hides robot 2 (and 2 hides 3 behind it).
+    s = Session([(0, 0), (1, 0), (2, 0), (3, 0)], [(0, 0), (1, 0), (2, 0), (3, 0)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    s.selected = 0
+    v = s.view()
+    assert v.hidden == (2, 3) and v.hiders == ((1, 2), (1, 3))
+    s.click((0, 0))  # robot 0 looks: it now holds a snapshot of robot 1 alone
+    s.selected = 0
+    assert s.view().hidden == (2, 3)
+
+
+def test_a_robot_that_only_changed_light_leaves_a_badge_ghost():
+    s = Session([(0, 0), (0, 3)], [(0, 0), (0, 1)], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    s.click((0, 3))  # robot 1 looks: it sees robot 0 (off)
+    s.click((0, 0))  # robot 0 looks: nothing to its left
+    s.click((0, 0))  # robot 0 computes: it is done, a light change without a move
+    s.selected = 1
+    v = s.view()
+    assert v.ghosts == (((0, 0), "off", 0, True),)  # on the robot itself: drawn as a badge
+    assert v.stale_holders == (1,)
+
+
+def _every_predicate_of_every_demo():
+    from apf_viz.core.portrayal import explain
+    from apf_viz.demos import scenarios
+
+    found = {}
+    for name in scenarios():
+        s = demo_session()
+        s.load_scenario(name)
+        e = s.engine
+        for _ in range(3000):
+            if e.finished or not (s.step() if not s.run.following else e.redo() is not None):
+                break
+            for r in range(e.k):
+                d = e.state.decided[r]
+                if d is not None:
+                    for p in explain(e.algorithm, d, e.pattern).predicates:
+                        found[(p.symbol, p.value if isinstance(p.value, bool) else "·", p.meaning)] = p.value
+    return found
+
+
+def test_why_reads_every_test_of_every_demo_positively():
+    from apf_viz.ui.presenter.why import found_row
+
+    predicates = _every_predicate_of_every_demo()
+    assert sum(isinstance(v, bool) and not v for v in predicates.values()) > 10  # false tests are read
+    for (symbol, _, meaning), value in predicates.items():
+        found, test = found_row(symbol, value, meaning)
+        if isinstance(value, bool):
+            assert found.startswith("✔ ") and "not so:" not in found, (symbol, value, meaning, found)
+            words = found.lower()
+            assert not (words.startswith("✔ no ") and " not " in words), found  # no double negative
+            assert "≠ ∅" not in found and "= ∅" not in found  # the symbols go to the test column
+
+
+def test_a_trail_is_each_robots_last_moves_ending_where_it_stands():
+    from apf_viz.ui.presenter.story import trails
+
+    s = demo_session()
+    e = s.engine
+    path: list[list] = [[p] for p in e.start]
+    while e.step_index < 200:
+        s.step()
+        for r, p in enumerate(e.current_points()):
+            if p != path[r][-1]:
+                path[r].append(p)
+    now = e.current_points()
+    for moves in (1, 3, 8):
+        got = trails(e, moves, now)
+        for r in range(e.k):
+            want = tuple(path[r][-(moves + 1) :]) if len(path[r]) > 1 else ()
+            assert got[r] == want, (r, moves)
+    assert trails(e, 0, now) == ()
+
+
+def test_the_lockstep_escape_ends_with_a_banner_and_its_walk_drawn():
+    s = demo_session()
+    s.load_scenario("The L2 lockstep counterexample")
+    assert s.view().banner == "" and any(s.view().trails) is False  # at its start: nothing walked yet
+    s.seek(10**9)
+    v = s.view()
+    assert v.outcome is None and v.banner.startswith("## ↻ ESCAPE: it never ends")
+    assert "robot 0 left the box at (-19, -1)" in v.banner
+    walkers = [r for r, t in enumerate(v.trails) if t]
+    assert walkers == [0, 1] and all(len(v.trails[r]) >= 20 for r in walkers)
+    assert all(t[-1] == v.robots[r].position for r, t in enumerate(v.trails) if t)
+    s.set_trails(0)  # the person's setting does not hide the walk of an endless trace
+    assert s.view().trails == v.trails
+    for bad in (-1, 51, float("nan"), 2.5e9):
+        with pytest.raises(InputError):
+            s.set_trails(bad)

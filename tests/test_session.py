@@ -74,7 +74,7 @@ def test_ghosts_show_a_stale_snapshot():
     assert s.engine.current_points()[0] == (-1, 0)
     s.selected = 2
     v = s.view()
-    assert v.ghosts == (((0, 0), "off"),)  # where robot 2 saw robot 0, in the light it saw
+    assert [g[:3] for g in v.ghosts] == [((0, 0), "off", 0)]  # where robot 2 saw robot 0, in the light seen
     assert (
         "Stale" in v.caption
         and "robot 0: seen at (0, 0), now at (-1, 0); seen with light off, now terminal1" in v.caption
@@ -116,7 +116,7 @@ def test_a_robot_seen_after_several_moves_is_placed_where_it_stood_at_the_look()
         s.click((2, 0))  # robot 1 slides again, to (1, 0)
     s.selected = 2
     v = s.view()
-    assert ((2, 0), "off") in v.ghosts
+    assert ((2, 0), "off", 1) in [g[:3] for g in v.ghosts]
     assert "robot 1: seen at (2, 0), now at (1, 0)" in v.caption
 
 
@@ -291,14 +291,29 @@ def test_last_event_says_who_did_what_and_the_last_actor_is_marked():
     v = s.view()
     assert v.last_events[0] == "robot 2 · Look: sees 3 robots" and v.last_actor == 2
     s.click((5, 1))
-    assert s.view().last_events[0] == "robot 2 · Compute → light off, move left — compact-left.slide"
+    assert s.view().last_events[0] == "robot 2 · Compute: stays off, move left — compact-left.slide"
     s.click((5, 1))
     v = s.view()
     assert v.last_events[:3] == (
         "robot 2 · Move → (4, 1)",
-        "robot 2 · Compute → light off, move left — compact-left.slide",
+        "robot 2 · Compute: stays off, move left — compact-left.slide",
         "robot 2 · Look: sees 3 robots",
     )
+
+
+def test_a_compute_says_the_light_it_left_and_a_flipped_robots_move_in_both_frames():
+    # Robot 1's y-axis is flipped: "down" in its frame is up on screen.
+    s = Session([(0, 0), (0, 2)], [(0, 0), (0, 1)], y_up=[True, False], algorithm="compact-left")
+    s.set_scheduler("Manual")
+    s.click((0, 0))
+    s.click((0, 0))  # robot 0: nothing to its left or below: done, a light change
+    assert s.view().last_events[0] == "robot 0 · Compute: off → done, stay — compact-left.done"
+    from apf_viz.core.grid import Direction
+    from apf_viz.ui.presenter.story import move_words
+
+    assert move_words(Direction.UP, y_up=False) == "move down (its own frame; up on screen)"
+    assert move_words(Direction.LEFT, y_up=False) == "move left"
+    assert move_words(None, y_up=True) == "stay"
 
 
 def test_next_move_and_next_stage_run_until_something_happens():

@@ -330,11 +330,15 @@ def test_why_panel_lists_the_predicates_and_the_canvas_shades_the_regions(browse
     assert why is not None and why.explanation is not None
     page.get_by_text(f"Robot {r} · rule").wait_for()
     page.get_by_text(why.explanation.decision.rule_id, exact=True).first.wait_for()
-    table = page.locator("table").filter(has_text="tested").first
+    table = page.locator("table").filter(has_text="what it found").first
     table.wait_for()
     text = table.inner_text()
-    assert ("yes" in text or "no" in text) and "meaning" in text
+    assert "✔" in text and "✘" not in text  # every test read as a statement that holds
     assert any(n.startswith("/why/") for n in app.drawn())
+    if why.regions:  # numbered in the panel as on the canvas, each in its own colour
+        page.get_by_text("Regions it tested").wait_for()
+        tags = [h.text for n, h in app.drawn().items() if n.startswith("/why/labels/") and h.visible]
+        assert sorted(t.split(" · ")[0] for t in tags) == [str(i + 1) for i in range(len(tags))]
     shot(page, "why-panel")
     page.set_viewport_size({"width": 1024, "height": 768})
     time.sleep(1.0)

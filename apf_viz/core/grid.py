@@ -190,6 +190,24 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
     return order[first]
 
 
+def hiders(points: Sequence[Point], i: int) -> dict[int, int]:
+    """Each robot that robot ``i`` cannot see, with the robot that hides it: the nearest robot on the
+    same line of sight (primitive direction), which ``i`` sees. Exact integer arithmetic, O(k)."""
+    x0, y0 = points[i]
+    nearest: dict[tuple[int, int], tuple[int, int]] = {}  # direction → (distance, robot)
+    by_robot: dict[int, tuple[tuple[int, int], int]] = {}
+    for j, (x, y) in enumerate(points):
+        if j == i:
+            continue
+        dx, dy = x - x0, y - y0
+        g = math.gcd(dx, dy)
+        direction = (dx // g, dy // g)
+        by_robot[j] = (direction, g)
+        if direction not in nearest or g < nearest[direction][0]:
+            nearest[direction] = (g, j)
+    return {j: nearest[d][1] for j, (d, g) in by_robot.items() if nearest[d][1] != j}
+
+
 def visible_from_naive(points: list[Point], i: int) -> list[int]:
     """Oracle: walk every interior lattice point of every segment (O(k · span)); tests only."""
     occupied = set(points)

@@ -23,6 +23,9 @@ TARGET_COLORS: dict[str, Color] = {
 MARK_COLORS: dict[str, Color] = {
     "ray": (250, 200, 0),
     "ghost": (110, 110, 110),
+    "hidden": (236, 236, 236),  # the pale disc over a robot the selected one cannot see
+    "hider": (40, 40, 40),
+    "hidden_line": (170, 170, 170),
     "never": (120, 120, 120),
     "outline": (50, 50, 50),
     "pending": (150, 0, 110),
@@ -30,10 +33,27 @@ MARK_COLORS: dict[str, Color] = {
     "collision": (190, 0, 190),
     "last": (140, 90, 40),  # brown and black: no light of the paper's legend is either
     "selected": (0, 0, 0),
-    "region": (40, 120, 255),
+    "region": (0, 114, 178),  # the first of REGION_COLORS: the legend's swatch
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),
 }
+# The regions a Why explanation tested, each its own colour (in order: the rule's first test first), so
+# that "1" on the canvas and "1" in the panel are the same region at a glance. Okabe & Ito again.
+REGION_COLORS: tuple[Color, ...] = (
+    (0, 114, 178),
+    (230, 159, 0),
+    (0, 158, 115),
+    (204, 121, 167),
+    (86, 180, 233),
+    (213, 94, 0),
+)
+
+
+def region_color(i: int) -> Color:
+    """The colour of the i-th region Why shows (0-based)."""
+    return REGION_COLORS[i % len(REGION_COLORS)]
+
+
 # The shape each of those marks is drawn in (viser's point shapes), so that shape alone tells them apart.
 MARK_SHAPES: dict[str, str] = {
     "collision": "sparkle",

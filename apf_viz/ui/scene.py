@@ -22,8 +22,9 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
-from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS
+from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS, region_color
 from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.presenter.legend import SYMBOL
 
 ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
@@ -51,8 +52,11 @@ _LAYER = {
     "ghost_outline": 0.075,
     "ghost": 0.085,
     "outline": 0.1,
+    "fog": 0.13,  # over a robot the selected one cannot see, and on the robot that hides it
     "nose": 0.14,
 }
+GHOST_BADGE_OFFSET = (-0.34, 0.34)  # a light-only ghost, beside the robot it is the ghost of
+STALE_MARK = "stale"  # beside every robot holding a snapshot that others' moves or lights have made stale
 _SIZE = {  # disc diameters in cells: each ring shows as the band between its disc and the next
     "selected": 1.22,
     "never": 1.1,
@@ -123,6 +127,7 @@ class SceneRenderer:
             self.scene.configure_default_lights(enabled=True, cast_shadow=False)
         self._sprite_lights: set[str] = set()
         self._ghost_lights: set[str] = set()
+        self._trail_lights: set[str] = set()
         self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
@@ -223,11 +228,16 @@ class SceneRenderer:
         self._rings(view, pts)
         numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
         self._labels("/numbers", numbers if view.numbers else [])
+        stale = [
+            (STALE_MARK, (float(pts[r][0]) - 0.55, float(pts[r][1]) - 0.6, 0.7)) for r in view.stale_holders
+        ]
+        self._labels("/stale", stale)
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
         self._points(
             "/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"]
         )
         self._targets(view)
+        self._trails(view)
         # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
         # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
         pending = self._pending(view)
@@ -242,6 +252,21 @@ class SceneRenderer:
         if self.layer == "all":
             self._selection(view)
 
+    def _trails(self, view: SessionView) -> None:
+        """Each robot's recent path as segments in its light's colour, under the robots, one line set
+        per light (as robots are one point cloud per light)."""
+        palette = light_colors(view)
+        by_light: dict[str, list[np.ndarray]] = {}
+        for robot, path in zip(view.robots, view.trails, strict=False):
+            if len(path) > 1:
+                at = _xyz(self._local(path), 0.04)
+                by_light.setdefault(robot.light, []).append(np.stack([at[:-1], at[1:]], axis=1))
+        for light in set(self._trail_lights) | set(by_light):
+            self._trail_lights.add(light)
+            parts = by_light.get(light, [])
+            segs = np.concatenate(parts) if parts else np.zeros((0, 2, 3), dtype=np.float32)
+            self._segments(f"/trails/{light}", segs, palette.get(light, (0, 0, 0)), 4.0)
+
     def _selection(self, view: SessionView) -> None:
         """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested."""
         sel = view.selected
@@ -254,6 +279,7 @@ class SceneRenderer:
             "circle",
         )
         self._ghosts(view)
+        self._hidden(view)
         self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
         self._why_regions(view)
 
@@ -268,6 +294,7 @@ class SceneRenderer:
         self._colors.clear()
         self._sprite_lights.clear()
         self._ghost_lights.clear()
+        self._trail_lights.clear()
         self._grid_key = None
 
     def _robots(self, view: SessionView, pts: np.ndarray) -> None:
@@ -318,19 +345,52 @@ class SceneRenderer:
 
     def _ghosts(self, view: SessionView) -> None:
         """Where the selected robot saw robots that have moved or changed light since: a disc in the light
-        it saw, on a violet outline, one point cloud per light seen."""
-        places = self._local([p for p, _ in view.ghosts])
-        lights = np.array([light for _, light in view.ghosts], dtype=object)
+        it saw, on a grey outline, numbered with the robot's number and a prime ("3′": robot 3, then). A
+        robot that only changed light is still where it was seen: its ghost is a small badge at the
+        robot's upper left, so that the robot does not cover it."""
+        places = self._local([g.at for g in view.ghosts])
+        badge = np.array([g.light_only for g in view.ghosts], dtype=bool)
+        places[badge] += np.array(GHOST_BADGE_OFFSET, dtype=np.float32)
+        lights = np.array([g.light for g in view.ghosts], dtype=object)
         palette = light_colors(view)
-        self._points(
-            "/ghosts/outline", _xyz(places, _LAYER["ghost_outline"]), MARK_COLORS["ghost"], 0.62, "circle"
-        )
-        for light in set(self._ghost_lights) | set(lights.tolist()):
-            self._ghost_lights.add(light)
-            at = places[lights == light] if len(lights) else places[:0]
+        for kind, which, size in (("full", ~badge, 1.0), ("badge", badge, 0.6)):
             self._points(
-                f"/ghosts/{light}", _xyz(at, _LAYER["ghost"]), palette.get(light, (0, 0, 0)), 0.44, "circle"
+                f"/ghosts/{kind}/outline",
+                _xyz(places[which], _LAYER["ghost_outline"] + (0.06 if kind == "badge" else 0)),
+                MARK_COLORS["ghost"],
+                0.62 * size,
+                "circle",
             )
+            for light in set(self._ghost_lights) | set(lights.tolist()):
+                self._ghost_lights.add(light)
+                pick = which & (lights == light) if len(lights) else which
+                self._points(
+                    f"/ghosts/{kind}/{light}",
+                    _xyz(places[pick], _LAYER["ghost"] + (0.06 if kind == "badge" else 0)),
+                    palette.get(light, (0, 0, 0)),
+                    0.44 * size,
+                    "circle",
+                )
+        numbers = [
+            (f"{g.robot}′", (float(x) + 0.2, float(y) + 0.22, 0.7))
+            for g, (x, y) in zip(view.ghosts, places.tolist(), strict=True)
+        ]
+        self._labels("/ghosts/numbers", numbers)
+
+    def _hidden(self, view: SessionView) -> None:
+        """The robots the selected robot cannot see, greyed (a pale disc over their light), and on each
+        robot that hides one a small dark square with a thin grey line on to what it hides."""
+        where = {i: r.position for i, r in enumerate(view.robots)}
+        hidden = self._local([where[j] for j in view.hidden if j in where])
+        self._points("/hidden", _xyz(hidden, _LAYER["fog"]), MARK_COLORS["hidden"], 0.42, "circle")
+        pairs = [(where[h], where[j]) for h, j in view.hiders if h in where and j in where]
+        hiders = self._local(sorted({a for a, _ in pairs}))
+        self._points("/hiders", _xyz(hiders, _LAYER["fog"]), MARK_COLORS["hider"], 0.2, "square")
+        segs = np.zeros((len(pairs), 2, 3), dtype=np.float32)
+        if pairs:
+            segs[:, 0, :] = _xyz(self._local([a for a, _ in pairs]), 0.03)
+            segs[:, 1, :] = _xyz(self._local([b for _, b in pairs]), 0.03)
+        self._segments("/hides", segs, MARK_COLORS["hidden_line"], 1.5)
 
     # ------------------------------------------------------------------ origin
     def _place_origin(self, robots: np.ndarray, view: SessionView) -> None:
@@ -527,16 +587,23 @@ class SceneRenderer:
         if self._last.get("/why") == (regions, None, None):
             return
         self._last["/why"] = (regions, None, None)
-        for name in [n for n in self._handles if n.startswith("/why/area")]:
+        for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line"))]:
             self._handles.pop(name).remove()  # type: ignore[attr-defined]
         x0, y0, x1, y1 = self.bounds
         box = (x0 - 3, y0 - 3, x1 + 3, y1 + 3)
-        segments, labels = [], []
+        labels = []
         for i, mark in enumerate(regions):
+            tag = f"{i + 1} · {mark.label}"  # the number the Why panel gives it, beside its swatch
             if isinstance(mark, Line):
                 seg = self._line(mark)
-                segments.append(seg[0])
-                labels.append((mark.label, tuple(seg[0, 1])))
+                self._handles[f"/why/line{i}"] = self.scene.add_line_segments(
+                    f"{self.prefix}/why/line{i}",
+                    seg[:1].astype(np.float32),
+                    region_color(i),
+                    thickness=3.0,
+                    thickness_units="screen",
+                )
+                labels.append((tag, tuple(seg[0, 1])))
             elif isinstance(mark, HalfPlane | Band):
                 lo, hi = self._extent(mark)
                 rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)
@@ -561,15 +628,16 @@ class SceneRenderer:
                     f"{self.prefix}/why/area{i}",
                     vertices,
                     np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
-                    color=MARK_COLORS["region"],
+                    color=region_color(i),
                     opacity=REGION_OPACITY,
                     side="double",
                     cast_shadow=False,
                     receive_shadow=False,
                 )
-                labels.append((mark.label, self._region_label_at(mark, rect)))
-        segs = np.array(segments, dtype=np.float32).reshape(-1, 2, 3)
-        self._segments("/why/lines", segs, MARK_COLORS["region"], 2.0)
+                # The label inside the run's bounds, which the camera frames; the shading reaches beyond.
+                inner = (max(rect[0], x0), max(rect[1], y0), min(rect[2], x1), min(rect[3], y1))
+                inside = inner[0] < inner[2] and inner[1] < inner[3]
+                labels.append((tag, self._region_label_at(mark, inner if inside else rect)))
         self._labels("/why/labels", labels)
 
     def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:
@@ -656,17 +724,22 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
 
 
 # The canvas shows plain text: the paper's sub- and superscripts as Unicode where Unicode has them.
-_SUBSCRIPTS = {"L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "j": "ⱼ", "n": "ₙ"}
+_SUBSCRIPTS = {
+    "L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "2": "₂", "j": "ⱼ", "n": "ₙ",
+    "−": "₋",
+}  # fmt: skip
 _SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
 
 
 def canvas_symbol(text: str) -> str:
-    """``H_L^O`` → ``Hₗᴼ``, ``L_I`` → ``Lᵢ``; a letter Unicode cannot lower or raise keeps its mark."""
+    """``H_L^O`` → ``Hₗᴼ``, ``L_H1`` → ``Lₕ₁``: the panel's typesetting (the same symbols as
+    :func:`~apf_viz.ui.presenter.legend.symbol_html`) in Unicode. A symbol Unicode cannot set whole
+    (there is no subscript B) is written as the paper's source writes it, ``H_B^C``, never half set."""
 
-    def sub(m: re.Match) -> str:
-        return _SUBSCRIPTS.get(m.group(1), m.group(0))
+    def typeset(m: re.Match) -> str:
+        sub, sup = m.group(2).strip("{}"), m.group(3) or ""
+        if all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup):
+            return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
+        return m.group(0)
 
-    def sup(m: re.Match) -> str:
-        return _SUPERSCRIPTS.get(m.group(1), m.group(0))
-
-    return re.sub(r"\^([A-Za-z])", sup, re.sub(r"_([A-Za-z0-9])", sub, text))
+    return SYMBOL.sub(typeset, text)

@@ -24,6 +24,7 @@ class SharedScreen:
     click_advances: bool = True  # Manual: a click runs the robot's next phase; False: it only selects
     scenario_note: str = ""  # what the Demo scenario being shown shows, until another run starts
     twin: Twin | None = None  # Compare: a second algorithm stepping with the run
+    trails: int = 0  # draw each robot's last this-many moves (0: none)
 
 
 @dataclass

@@ -35,6 +35,7 @@ from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
 from apf_viz.ui.presenter import SessionView, for_browser, present, present_run, stage_of
+from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, Mode, SharedScreen
@@ -567,6 +568,14 @@ class Session:
     def set_numbers(self, on: bool) -> None:
         with self.lock:
             self.screen.numbers = bool(on)
+
+    def set_trails(self, moves: float) -> None:
+        """Draw each robot's last ``moves`` moves (0: none); a browser may send anything: a whole number
+        from 0 to MAX_TRAIL, else refused."""
+        if not isinstance(moves, int | float) or moves != moves or not 0 <= moves <= MAX_TRAIL:
+            raise InputError(f"trails {moves!r}: choose a whole number of moves from 0 to {MAX_TRAIL}")
+        with self.lock:
+            self.screen.trails = int(moves)
 
 
 def _with_schedule_adversary(

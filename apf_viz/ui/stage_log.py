@@ -18,6 +18,8 @@ StageOf = Callable[[tuple[Point, ...], tuple[str, ...]], str]
 # Above this many robots only light changes are read: naming the stage costs O(k), and a move of one
 # robot in a thousand rarely changes it. Stages that moves alone begin are then marked late or not at all.
 MOVES_READ_UP_TO_K = 200
+# Labels on the timeline at least this share of its length apart (a label is about a fifth of the slider).
+LABEL_GAP = 0.2
 
 
 def headline(stage: str) -> str:
@@ -58,13 +60,20 @@ class StageLog:
 
     def marks(self, history: History, step: int) -> tuple[tuple[int, str | None], ...]:
         """The timeline's marks: every stage change after the start, labelled where the headline
-        changes (by its first word: "Phase 2", "Formed"), unlabelled within one headline."""
+        changes ("Phase 2", "Formed": its text before a colon), unlabelled within one headline."""
         out: list[tuple[int, str | None]] = []
-        previous = ""
+        previous, labelled = "", None  # the index in ``out`` of the last labelled mark
         for at, stage in self.changes(history, step):
             head = headline(stage)
-            if at > 0:
-                out.append((at, head.split(":")[0] if head != previous else None))
+            if at > 0 and head != previous:
+                if labelled is not None and at - out[labelled][0] < LABEL_GAP * step:
+                    # Labels this close print over each other: the later phase keeps its label (it
+                    # names what follows), the earlier mark stays, unlabelled.
+                    out[labelled] = (out[labelled][0], None)
+                labelled = len(out)
+                out.append((at, head.split(":")[0]))
+            elif at > 0:
+                out.append((at, None))
             previous = head
         return tuple(out)
 

@@ -10,6 +10,7 @@ from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import symbol_html
+from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_controller import MAX_SPEED
 
 
@@ -139,6 +140,11 @@ class HistoryFolder:
                 "Numbers", initial_value=True, hint="each robot's number beside it"
             )
             self.numbers.on_update(ctx.from_browser(lambda e: s.set_numbers(bool(self.numbers.value))))
+            self.trails = gui.add_slider(
+                "Trails", min=0, max=MAX_TRAIL, step=1, initial_value=0,
+                hint="draw each robot's last N moves (0: none)",
+            )  # fmt: skip
+            self.trails.on_update(ctx.from_browser(lambda e: s.set_trails(self.trails.value)))
 
     def refresh(self, view: SessionView) -> None:
         self.timeline.max = max(1, view.history_length)
@@ -149,6 +155,8 @@ class HistoryFolder:
         self.stats.content = view.stats
         if self.numbers.value != view.numbers:
             self.numbers.value = view.numbers
+        if self.trails.value != view.trail_setting:
+            self.trails.value = view.trail_setting
         marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
         if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
             self.timeline._marks = marks or None

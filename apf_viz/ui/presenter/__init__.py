@@ -19,8 +19,8 @@ from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of
 from apf_viz.ui.presenter import story
-from apf_viz.ui.presenter.staleness import seen_robots
-from apf_viz.ui.presenter.views import RobotView, SessionView, WhyView
+from apf_viz.ui.presenter.staleness import hidden_from, seen_robots, stale_holders
+from apf_viz.ui.presenter.views import Ghost, RobotView, SessionView, WhyView
 from apf_viz.ui.presenter.why import why_markdown, why_view
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, SharedScreen
@@ -28,6 +28,10 @@ from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, SharedScreen
 __all__ = ["RobotView", "SessionView", "WhyView", "for_browser", "present", "present_run"]
 
 _PHASE_NAMES = ("idle", "looked", "computed")  # indexed by Phase
+# Up to this many robots the screen marks every robot holding a stale snapshot, and greys the robots the
+# selected one cannot see: each costs a walk of the history since each holder's Look (or O(k) per frame);
+# a crowd is read through the selected robot's caption instead.
+SIGHT_MARKS_UP_TO = 60
 _COMPUTED = int(Phase.COMPUTED)
 
 
@@ -67,6 +71,11 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         fatal=story.fatal_decisions(e, crash[2], list(run.config.robots), pts) if crash else ("", None),
         waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
+        trails=story.trails(e, _trail_moves(run, screen), pts) if running else (),
+        trail_setting=screen.trails,
+        stale_holders=tuple(stale_holders(e, list(run.config.robots), pts))
+        if running and e.k <= SIGHT_MARKS_UP_TO
+        else (),
         scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
         set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
@@ -94,13 +103,27 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         playing=run.playing,
         why_text=why_markdown(None),
     )
-    return replace(view, **_sentences(view, crash[0] if crash else None, stuck))
+    position = run.trace_position
+    at_end = position is not None and position[0] >= position[1]
+    endless = story.endless_words(run.trace_options) if at_end and _walks(run) else ""
+    return replace(view, **_sentences(view, crash[0] if crash else None, stuck, endless))
 
 
-def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
+def _trail_moves(run: RunController, screen: SharedScreen) -> int:
+    """The moves of each robot's trail: the person's choice; a trace of a walk that never ends (a
+    livelock, an escape) shows its walkers' paths in any case."""
+    return max(screen.trails, story.LOOP_TRAIL if _walks(run) else 0)
+
+
+def _walks(run: RunController) -> bool:
+    """The run follows a trace of a walk that never ends."""
+    return run.following and run.trace_options.get("verdict") in story.ENDLESS
+
+
+def _sentences(view: SessionView, crash: str | None, stuck: bool, endless: str = "") -> dict[str, str]:
     """The panels' sentences about the run, from the facts of its view."""
     out = {
-        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0] or view.waits)
+        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0] or view.waits, endless)
         if view.mode == "run"
         else "",
         "stats": story.stats(view.algorithm, view.__dict__),
@@ -137,15 +160,20 @@ def for_browser(
     seen = seen_robots(e, sel, start, "held", pts) if st.snapshot[sel] is not None else []
     if st.snapshot[sel] is not None:  # what it saw, not what is there now
         rays = tuple((pts[sel], s.seen_at) for s in seen)
-        ghosts = tuple((s.seen_at, s.seen_light) for s in seen if s.changed)
+        ghosts = tuple(
+            Ghost(s.seen_at, s.seen_light, s.robot, s.seen_at == s.now_at) for s in seen if s.changed
+        )
     else:
         rays, ghosts = tuple((pts[sel], pts[j]) for j in e.visible(sel).tolist()), ()
+    hidden = hidden_from(e, sel, start, pts) if e.k <= SIGHT_MARKS_UP_TO else {}
     why = why_view(e, sel, pts, start)
     return replace(
         view,
         selected=sel,
         rays=rays,
         ghosts=ghosts,
+        hidden=tuple(sorted(hidden)),
+        hiders=tuple(sorted((hider, j) for j, hider in hidden.items())),
         why=why,
         why_text=why_markdown(why),
         caption=story.caption(e, sel, e.y_up[sel], seen),

@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from apf_viz.ui.presenter.views import SessionView
 
 # H_L^O → H<sub>L</sub><sup>O</sup>; L_I → L<sub>I</sub>; the paper's symbols as a reader knows them.
-_SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")
+SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")
 
 
 def symbol_html(text: str) -> str:
@@ -27,7 +27,7 @@ def symbol_html(text: str) -> str:
         sup = f"<sup>{m.group(3)}</sup>" if m.group(3) else ""
         return f"{m.group(1)}<sub>{sub}</sub>{sup}"
 
-    return _SYMBOL.sub(typeset, html.escape(text))
+    return SYMBOL.sub(typeset, html.escape(text))
 
 
 def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
@@ -85,10 +85,25 @@ def legend_html(view: SessionView) -> str:
         (_swatch(c["ray"], "line"), "rays: what it saw", "to its snapshot; idle: what it would see now"),
         (
             _swatch(c["ghost"], "ring"),
-            "ghost: seen there",
-            "a robot it saw, in the light it saw, since changed",
+            "ghost 3′: seen there",
+            "robot 3 as the selected robot saw it, in the light it saw, since changed (a light-only change:"
+            " a small badge beside the robot)",
         ),
-        (_swatch(c["region"], "square"), "Why: regions tested", "the regions its last rule tested"),
+        (
+            '<b style="font-size:0.85em">stale</b>',
+            "snapshot out of date",
+            "holds a snapshot in which another robot has moved or relit since",
+        ),
+        (
+            _swatch(c["hidden"], "disc"),
+            "hidden from selected",
+            "greyed: the selected robot does not see it; a small dark square marks the robot that hides it",
+        ),
+        (
+            _swatch(c["region"], "square"),
+            "Why: regions tested",
+            "the regions its last rule tested, each its own colour, numbered as in Why",
+        ),
         (_swatch(c["collision"], "burst"), "collision", "the cell and robots of a collision"),
         (
             _swatch(c["never"], "square-ring"),

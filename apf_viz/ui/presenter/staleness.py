@@ -15,7 +15,7 @@ from __future__ import annotations
 from typing import Literal, NamedTuple
 
 from apf_viz.core.engine import Engine
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, hiders
 from apf_viz.core.portrayal import in_frame
 
 Which = Literal["held", "decided"]
@@ -80,6 +80,23 @@ def changes(
 ) -> list[SeenRobot]:
     """The robots of that snapshot that have moved or changed light since its Look: what makes it stale."""
     return [s for s in seen_robots(engine, robot, start, which, now) if s.changed]
+
+
+def hidden_from(engine: Engine, robot: int, start: list[Point], now: list[Point]) -> dict[int, int]:
+    """The robots ``robot`` does not see, each with the robot that hides it: at the Look of the
+    snapshot it holds (positions as they stood then), or, holding none, now."""
+    st = engine.state
+    look = int(st.look_step[robot])
+    if st.snapshot[robot] is None or look < 1 or look > engine.step_index:
+        return hiders(now, robot)
+    at_look = _positions_at(engine, set(range(engine.k)), look, start, now)
+    return hiders([at_look[j] for j in range(engine.k)], robot)
+
+
+def stale_holders(engine: Engine, start: list[Point], now: list[Point]) -> list[int]:
+    """Every robot holding a snapshot in which another robot has since moved or changed light."""
+    holding = [r for r in range(engine.k) if engine.state.snapshot[r] is not None]
+    return [r for r in holding if changes(engine, r, start, "held", now)]
 
 
 def _positions_at(

@@ -15,16 +15,23 @@ MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counte
 _ICONS = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}
 
 
-def describe_event(ev, stays: bool = False) -> str:
-    """One event in words: "robot 3 · Move → (1, 0)", "robot 1 · Compute → light leader1, stay — A1.off.on-K"
-    (``stays``: the Move of a decision to stay)."""
+_FLIPPED = {"up": "down", "down": "up", "left": "left", "right": "right"}
+
+
+def describe_event(ev, stays: bool = False, was: str | None = None, y_up: bool = True) -> str:
+    """One event in words: "robot 3 · Move → (1, 0)", "robot 1 · Compute: off → leader1, stay — A1.off.on-K"
+    (``stays``: the Move of a decision to stay; ``was``: the light before a Compute, when known;
+    ``y_up``: the robot's flip, to say a vertical move in its own frame as well as on screen)."""
     head = f"robot {ev.robot} · "
     if ev.phase == "look":
         return head + f"Look: sees {len(ev.sees or ())} robots"
     if ev.phase == "compute":
-        move = f", move {ev.move.value}" if ev.move is not None else ", stay"
         rule = f" — {ev.rule_id or ev.rule}" if (ev.rule_id or ev.rule) else ""
-        return head + f"Compute → light {ev.light}{move}{rule}"
+        if was is None:
+            light = f"light {ev.light}"
+        else:
+            light = f"{was} → {ev.light}" if was != ev.light else f"stays {ev.light}"
+        return head + f"Compute: {light}, {move_words(ev.move, y_up)}{rule}"
     if ev.collision:
         return head + f"Move → ({ev.to[0]}, {ev.to[1]}): COLLISION"
     if stays:
@@ -32,23 +39,74 @@ def describe_event(ev, stays: bool = False) -> str:
     return head + f"Move → ({ev.to[0]}, {ev.to[1]})"
 
 
+def move_words(move, y_up: bool) -> str:
+    """A decided move (global frame) as the robot meant it and as the screen shows it: "move left",
+    "move up (its own frame; down on screen)" for a robot whose y-axis the adversary flipped."""
+    if move is None:
+        return "stay"
+    on_screen = move.value
+    own = on_screen if y_up else _FLIPPED[on_screen]
+    return f"move {own}" if own == on_screen else f"move {own} (its own frame; {on_screen} on screen)"
+
+
 def last_events(e: Engine, n: int = 8) -> tuple[str, ...]:
-    """The last ``n`` events, newest first, in words: who did what."""
+    """The last ``n`` events, newest first, in words: who did what. A robot's newest Compute says the
+    light it left: the light it held at the Look it decided on (only its own Compute sets its light)."""
     st = e.state
     out: list[str] = []
     window = e.history.steps[max(0, e.step_index - n) : e.step_index]
     latest_seen: set[int] = set()
+    computed: set[int] = set()  # robots whose newest Compute is already described
     for step in reversed(window):
         for ev in reversed(step.events):
-            stays = False
-            if ev.phase == "move" and ev.robot not in latest_seen and st.decided[ev.robot] is not None:
+            stays, was = False, None
+            r = ev.robot
+            if ev.phase == "move" and r not in latest_seen and st.decided[r] is not None:
                 # Its latest event: the decision it moved on is the one on its latest decided snapshot.
-                stays = e.decide(st.decided[ev.robot]).move is None
-            latest_seen.add(ev.robot)
-            out.append(describe_event(ev, stays))
+                stays = e.decide(st.decided[r]).move is None
+            if ev.phase == "compute":
+                if r not in computed and st.decided[r] is not None:
+                    was = st.decided[r].light
+                computed.add(r)
+            latest_seen.add(r)
+            out.append(describe_event(ev, stays, was, bool(e.y_up[r])))
             if len(out) == n:
                 return tuple(out)
     return tuple(out)
+
+
+MAX_TRAIL = 50  # moves per robot a trail can show
+LOOP_TRAIL = 24  # a livelock's or an escape's trace shows this many moves of each walker anyway
+# A trail reads the history backwards from now; it stops after this many steps whatever it found (a
+# robot that has not moved for a long time has a short trail rather than costing a frame).
+TRAIL_STEPS = 20_000
+
+
+def trails(e: Engine, moves: int, now: Sequence[Point]) -> tuple[tuple[Point, ...], ...]:
+    """Each robot's path over its last ``moves`` moves, oldest first, ending where it stands; a robot
+    that has not moved has an empty path. Read backwards from now: each Move lands where the robot stood
+    until its next one, so the distinct landings, newest first, are the path reversed."""
+    if moves <= 0:
+        return ()
+    paths: list[list[Point]] = [[tuple(p)] for p in now]  # type: ignore[misc]
+    open_ = set(range(e.k))
+    steps = e.history.steps
+    first = max(0, e.step_index - TRAIL_STEPS)
+    for i in range(e.step_index - 1, first - 1, -1):
+        for ev in reversed(steps[i].events):
+            if ev.phase == "move" and not ev.collision and ev.robot in open_:
+                path = paths[ev.robot]
+                if tuple(ev.to) != path[-1]:
+                    path.append(tuple(ev.to))  # type: ignore[arg-type]
+                    if len(path) > moves:
+                        open_.discard(ev.robot)
+        if not open_:
+            break
+    if first == 0:  # the whole history was read: the robots still open began at their start
+        for r in open_:
+            if tuple(e.start[r]) != paths[r][-1]:
+                paths[r].append(tuple(e.start[r]))  # type: ignore[arg-type]
+    return tuple(tuple(reversed(p)) if len(p) > 1 else () for p in paths)
 
 
 def last_actor(e: Engine) -> int | None:
@@ -129,13 +187,39 @@ def wait_for(e: Engine) -> str:
     )
 
 
-def banner(outcome: str | None, collision_words: str | None, stuck: bool, why: str = "") -> str:
-    """The outcome as a heading, and where it happened."""
+ENDLESS = ("livelock", "escape")  # a checker's verdicts on runs that never end
+
+
+def endless_words(options: Mapping[str, object]) -> str:
+    """A livelock's or an escape's trace at its end, in words: the run has not ended, and never would."""
+    verdict = options.get("verdict")
+    problems = options.get("problems")
+    where = f" ({problems[0]})" if isinstance(problems, list) and problems else ""
+    if verdict == "escape":
+        return (
+            f"The robots walk away for ever{where}: the checker stops where a robot leaves the box around "
+            "the start and the pattern, and the adversary can repeat the same cycles without end. The "
+            "trails show the walk."
+        )
+    return (
+        f"The same configurations come back for ever{where}: the loop marked on the timeline repeats "
+        "without end under this adversary. The trails show the loop."
+    )
+
+
+def banner(
+    outcome: str | None, collision_words: str | None, stuck: bool, why: str = "", endless: str = ""
+) -> str:
+    """The outcome as a heading, and where it happened; ``endless``: a livelock's or an escape's trace
+    played to its end (the engine sees a run still going)."""
     if outcome is None:
+        if endless:
+            verdict = "ESCAPE" if endless.startswith("The robots walk away") else "LIVELOCK"
+            return f"## ↻ {verdict}: it never ends\n\n{endless}"
         return ""
-    detail = f"\n\n{collision_words} (red on the grid)" if collision_words else ""
+    detail = f"\n\n{collision_words} (the magenta burst on the grid)" if collision_words else ""
     if stuck:
-        detail = "\n\nNo next cycle of any robot changes anything: all (ringed dark red) will never act"
+        detail = "\n\nNo next cycle of any robot changes anything: all (each in a grey square) will never act"
     if outcome == "formed":
         detail = "\n\nEvery robot is on a target cell of the pattern."
     if why:

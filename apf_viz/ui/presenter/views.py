@@ -23,6 +23,16 @@ class RobotView(NamedTuple):
     next_event: str
 
 
+class Ghost(NamedTuple):
+    """Where the selected robot saw ``robot``, in the light it saw; ``light_only`` when it has not moved
+    since (only its light changed: the ghost stands on the robot itself)."""
+
+    at: Point
+    light: str
+    robot: int
+    light_only: bool = False
+
+
 @dataclass(frozen=True)
 class WhyView:
     """The selected robot's last decision and its evidence; regions already in the global frame."""
@@ -60,7 +70,12 @@ class SessionView:
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
     selected: int | None = None  # this browser's (or, following, the presenter's) selected robot
     rays: tuple[tuple[Point, Point], ...] = ()  # to what the selected robot saw (its snapshot) or sees now
-    ghosts: tuple[tuple[Point, str], ...] = ()  # where a robot was seen, in the light seen, if changed since
+    ghosts: tuple[Ghost, ...] = ()  # where a robot was seen, in the light seen, if changed since
+    hidden: tuple[int, ...] = ()  # robots the selected robot does not see (its snapshot's, or now)
+    hiders: tuple[tuple[int, int], ...] = ()  # (hider, hidden): the robot between that hides each one
+    trails: tuple[tuple[Point, ...], ...] = ()  # each robot's recent path, oldest first (empty: none)
+    trail_setting: int = 0  # the Trails slider: moves per trail the person chose
+    stale_holders: tuple[int, ...] = ()  # every robot holding a snapshot that shows others as they were
     why: WhyView | None = None
     caption: str = ""
     move_series: tuple[tuple[int, int], ...] = field(default=())

@@ -11,6 +11,7 @@ from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line, Mark, explain, in_frame
+from apf_viz.ui.palette import region_color
 from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.presenter.staleness import changes
 from apf_viz.ui.presenter.views import WhyView
@@ -44,12 +45,65 @@ def why_view(e: Engine, r: int, pts: list[Point], start: list[Point]) -> WhyView
     )
 
 
-def _value(value: object) -> str:
-    if value is True:
-        return "✔ yes"
-    if value is False:
-        return "✘ no"
-    return html.escape(str(value))
+_MATH = set("∅=≠∩∖∪⊂")
+# How a phrase that describes a test's true case reads when the test came out false: the first rule
+# whose pattern starts (or, for " … ", occurs in) the phrase rewrites it; otherwise "not so: …".
+_NEGATIONS: tuple[tuple[str, str], ...] = (
+    ("r on ", "r not on "),
+    ("r in ", "r not in "),
+    ("r is ", "r is not "),
+    ("r leftmost", "r not leftmost"),
+    ("two ", "not two "),
+    ("another robot", "no other robot"),
+    ("another ", "no other "),
+    ("a robot", "no robot"),
+    ("no robot", "a robot"),
+    ("no ", "a "),
+    ("an ", "no "),
+    ("a ", "no "),
+    ("I am ", "I am not "),
+    ("I can ", "I cannot "),
+    ("I see ", "I do not see "),
+    ("every ", "not every "),
+    ("all ", "not all "),
+    (" is not ", " is "),
+    (" is ", " is not "),
+    (" has ", " has not "),
+    (" holds ", " does not hold "),
+    (" shows ", " does not show "),
+    (" answered", " has not answered"),
+    (" reads ", " does not read "),
+    (" moved ", " has not moved "),
+)
+
+
+def negated(phrase: str) -> str:
+    """The phrase of a test's true case, read for its false case: "another robot on my row" → "no other
+    robot on my row", "I am on K" → "I am not on K"."""
+    if phrase.startswith("a robot ") and " is not " in phrase:  # not "no robot … is not done"
+        return "every robot " + phrase[len("a robot ") :].replace(" is not ", " is ", 1)
+    for pattern, replacement in _NEGATIONS:
+        if pattern.startswith(" "):
+            if pattern in phrase:
+                return phrase.replace(pattern, replacement, 1)
+        elif phrase.startswith(pattern):
+            return replacement + phrase[len(pattern) :]
+    return f"not so: {phrase}"
+
+
+def found_row(symbol: str, value: object, meaning: str) -> tuple[str, str]:
+    """One predicate as (what the robot found, the paper's test): a statement that holds, read
+    positively, beside the paper's symbol and its value. A test written in symbols ("H_B^C(r) ∖ {r} ≠
+    ∅") is read through its meaning; one written in words is itself the statement."""
+    if not isinstance(value, bool):
+        return f"{symbol_html(symbol)}: <b>{html.escape(str(value))}</b>", symbol_html(meaning)
+    mathy = bool(_MATH & set(symbol))
+    words = meaning if mathy else symbol
+    found = words if value else negated(words)
+    test = f"{symbol_html(symbol)} is {'true' if value else 'false'}" if mathy else symbol_html(meaning)
+    if not mathy and not value:
+        test = f'<span style="color:#666">(had it held: {symbol_html(meaning)})</span>' if meaning else ""
+    return f"✔ {symbol_html(found)}", test
 
 
 def why_markdown(why: WhyView | None) -> str:
@@ -78,12 +132,11 @@ def why_markdown(why: WhyView | None) -> str:
         )
     if why.explanation.predicates:
         rows = "".join(
-            f"<tr><td>{symbol_html(p.symbol)}</td><td>{_value(p.value)}</td>"
-            f"<td>{symbol_html(p.meaning)}</td></tr>"
+            "<tr><td>{}</td><td>{}</td></tr>".format(*found_row(p.symbol, p.value, p.meaning))
             for p in why.explanation.predicates
         )
         lines.append(
-            '<table style="font-size:0.9em"><tr><th>tested</th><th>value</th><th>meaning</th></tr>'
+            '<table style="font-size:0.9em"><tr><th>what it found, in order</th><th>the test</th></tr>'
             f"{rows}</table>"
         )
     elif not d.rule_id:
@@ -91,9 +144,14 @@ def why_markdown(why: WhyView | None) -> str:
     else:
         lines.append("_No predicates are listed for this rule._")
     if why.regions:
+        listed = " ".join(
+            f'<span style="white-space:nowrap"><span style="display:inline-block;width:11px;height:11px;'
+            f'background:rgb{region_color(i)};opacity:0.75"></span> {i + 1} {symbol_html(m.label)}</span>'
+            for i, m in enumerate(why.regions)
+        )
         lines.append(
-            "Regions it looked at are shaded blue on the grid, in its own frame, where it stood when it "
-            "looked (they stay there when it moves)."
+            f"Regions it tested, shaded and numbered on the grid in the same colours: {listed}. They are in "
+            "its own frame, where it stood when it looked (they stay there when it moves)."
         )
     if why.now is not None:
         n = why.now
