@@ -621,8 +621,9 @@ def test_compare_steps_a_second_algorithm_with_the_run_and_names_the_first_diver
     v = s.view()
     assert v.compare is not None and v.compare.outcome == "collision" and v.outcome != "collision"
     assert v.compare.event <= v.event and v.divergence is not None
-    at, what = v.divergence
-    assert 0 < at <= 41 and " | " in what
+    at, what, robot = v.divergence
+    assert 0 < at <= 41 and " | " in what and what.startswith(f"robot {robot} ")
+    assert v.diverged == robot and v.compare.diverged == robot  # marked in both runs
     s.seek(0)
     v = s.view()
     assert v.compare.event == 0 and v.divergence is None  # back in time: before the divergence

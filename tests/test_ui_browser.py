@@ -253,11 +253,22 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
     (OUT / "saved-screenshot.png").write_bytes(bytes(data))
     box = page.locator("canvas").first.bounding_box()
     assert image.ndim == 3 and image.shape[2] == 3  # the transparent canvas flattened onto white
-    assert abs(image.shape[1] / image.shape[0] - box["width"] / box["height"]) < 0.05
-    rgb = image.astype(np.int32)
-    assert np.median(rgb) > 230  # the page's white background, not black
-    green = (rgb[:, :, 1] > rgb[:, :, 0] + 50) & (rgb[:, :, 1] > rgb[:, :, 2] + 50)
+    # For a slide: the canvas at its own resolution, the legend beside it, the caption under it.
+    w, h = round(box["width"]), round(box["height"])
+    assert image.shape[1] > w + 200 and image.shape[0] > h
+    canvas, column = image[:h, :w].astype(np.int32), image[:, w + 1 :].astype(np.int32)
+    assert np.median(canvas) > 230  # the page's white background, not black
+    green = (canvas[:, :, 1] > canvas[:, :, 0] + 50) & (canvas[:, :, 1] > canvas[:, :, 2] + 50)
     assert green.sum() > 200, "the pattern's target cells are not in the saved image"
+    for light in app.session.view().lights_in_use:  # each light in use has its swatch in the legend
+        color = np.array(app.session.view().legend[light].color)
+        assert (np.abs(column - color).max(axis=2) <= 2).sum() > 20, light
+    dark_text = (image[h:].astype(np.int32).max(axis=2) < 80).sum()
+    assert dark_text > 300  # the caption's words under the picture
+    page.get_by_label("With legend, caption").uncheck()
+    name, data = downloaded(page, page.get_by_role("button", name="Save screenshot"))
+    plain = iio.imread(bytes(data), extension=".png")
+    assert abs(plain.shape[1] / plain.shape[0] - box["width"] / box["height"]) < 0.05  # the view alone
     page.close()
 
 
@@ -869,6 +880,17 @@ def test_a_lecture_runs_from_the_keyboard(browser, app):
     assert app.session.view().stage == second
     (screen,) = [x for x in app.screens.values()]
     assert screen.state.camera == "framed"  # the keys drove the run, not the camera
+    for _ in range(5):  # each PageDown's message replaces the last: one on the canvas, not five
+        page.keyboard.press("PageDown")
+        time.sleep(0.3)
+    wait_for(lambda: page.locator(".mantine-Notification-root").count() == 1)
+    # A Demo picked from the panel's dropdown, then the keys again, without a click on the canvas.
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="Robots already on K").click()
+    wait_for(lambda: app.session.engine.step_index == 0 and "K" in app.session.view().scenario_note)
+    wait_for(lambda: page.evaluate("document.activeElement === document.body"))  # the panel let go
+    page.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 1)
     page.close()
 
 

@@ -10,11 +10,20 @@ know about it.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import NamedTuple
 
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.history import Event
 from apf_viz.ui.run_config import RunConfig
+
+
+class Divergence(NamedTuple):
+    """The first event at which the two runs differ: its number, both sides in words, and its robot."""
+
+    event: int
+    what: str
+    robot: int
 
 
 class Twin:
@@ -27,7 +36,7 @@ class Twin:
         self.engine: Engine | None = None
         self._config: RunConfig | None = None
         # (history generations, steps compared, events in them, the divergence found): scanned once.
-        self._divergence: tuple[tuple[int, int], int, int, tuple[int, str] | None] = ((-1, -1), 0, 0, None)
+        self._divergence: tuple[tuple[int, int], int, int, Divergence | None] = ((-1, -1), 0, 0, None)
 
     def follow(self, run: Engine, config: RunConfig) -> Engine:
         """The twin at the run's step (rebuilt when the run's configuration changed)."""
@@ -42,7 +51,7 @@ class Twin:
             twin.apply(run.history.steps.record(twin.step_index))
         return twin
 
-    def divergence(self, run: Engine) -> tuple[int, str] | None:
+    def divergence(self, run: Engine) -> Divergence | None:
         """(event number, what differs) of the first event at which the two configurations differ: a
         Compute that sets another light, or a Move to another point; None while they agree."""
         twin = self.engine
@@ -58,7 +67,7 @@ class Twin:
             for a, b in pairs:
                 events += 1
                 if _differs(a, b):
-                    found = (events, f"{describe(a)} | {describe(b)}")
+                    found = Divergence(events, f"{describe(a)} | {describe(b)}", a.robot)
                     break
             checked += 1
         self._divergence = (key, checked, events, found)

@@ -33,6 +33,7 @@ MARK_COLORS: dict[str, Color] = {
     "collision": (190, 0, 190),
     "last": (140, 90, 40),  # brown and black: no light of the paper's legend is either
     "selected": (0, 0, 0),
+    "diverged": (86, 180, 233),  # Compare: the robot whose event first differs, a diamond in both runs
     "region": (0, 114, 178),  # the first of REGION_COLORS: the legend's swatch
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),

@@ -15,7 +15,6 @@ compiles its shader again. docs/PERFORMANCE.md has the measurements.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable
 from typing import Literal
 
@@ -24,7 +23,7 @@ import numpy as np
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS, region_color
 from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.presenter.legend import SYMBOL
+from apf_viz.ui.presenter.legend import canvas_symbol
 
 ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least
@@ -45,6 +44,7 @@ _VISER_POINT_SCALE = 0.5
 # shift one against another. Flat and unlit: a light's colour on the canvas is its legend swatch.
 Z = 0.12  # the robots' discs
 _LAYER = {
+    "diverged": 0.015,  # Compare's diverging robot: a diamond under everything
     "selected": 0.02,  # rings, widest at the bottom
     "never": 0.03,
     "last": 0.04,
@@ -232,6 +232,10 @@ class SceneRenderer:
             (STALE_MARK, (float(pts[r][0]) - 0.55, float(pts[r][1]) - 0.6, 0.7)) for r in view.stale_holders
         ]
         self._labels("/stale", stale)
+        split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
+        self._points("/diverged", _xyz(split, _LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
+        here = [("diverges here", (float(x) + 0.45, float(y) - 0.2, 0.7)) for x, y in split.tolist()]
+        self._labels("/diverged_label", here)
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
         self._points(
             "/collision", _xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"]
@@ -721,25 +725,3 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     if not (math.isfinite(x) and math.isfinite(y)):
         return None  # a browser may send any ray
     return (round(x), round(y))
-
-
-# The canvas shows plain text: the paper's sub- and superscripts as Unicode where Unicode has them.
-_SUBSCRIPTS = {
-    "L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "2": "₂", "j": "ⱼ", "n": "ₙ",
-    "−": "₋",
-}  # fmt: skip
-_SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
-
-
-def canvas_symbol(text: str) -> str:
-    """``H_L^O`` → ``Hₗᴼ``, ``L_H1`` → ``Lₕ₁``: the panel's typesetting (the same symbols as
-    :func:`~apf_viz.ui.presenter.legend.symbol_html`) in Unicode. A symbol Unicode cannot set whole
-    (there is no subscript B) is written as the paper's source writes it, ``H_B^C``, never half set."""
-
-    def typeset(m: re.Match) -> str:
-        sub, sup = m.group(2).strip("{}"), m.group(3) or ""
-        if all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup):
-            return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
-        return m.group(0)
-
-    return SYMBOL.sub(typeset, text)

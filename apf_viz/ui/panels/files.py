@@ -12,7 +12,9 @@ from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.presenter.legend import slide_caption, slide_legend
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
+from apf_viz.ui.slide import compose
 
 
 def load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
@@ -53,6 +55,12 @@ class FilesFolder:
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)
+            self.explained = gui.add_checkbox(
+                "With legend, caption",
+                initial_value=True,
+                hint="the screenshot gets the legend of what it shows beside it and the stage, last event "
+                "and outcome under it, for a slide",
+            )
             self.record = gui.add_button("Record GIF")
             self.record.on_click(self._on_record)
 
@@ -79,7 +87,8 @@ class FilesFolder:
         return self.ctx.session.engine.state.events
 
     def _screenshot(self, event) -> None:
-        """The clicking browser's view as it is now, as a PNG download named after the event shown."""
+        """The clicking browser's view as it is now, at its canvas's resolution (collapse the panel for the
+        whole window), as a PNG named after the event shown; with the legend and caption if asked."""
         client = event.client
         if client is None:
             return
@@ -89,6 +98,9 @@ class FilesFolder:
         except (TimeoutError, RuntimeError) as err:  # viser's errors for no frame / a lost browser
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return
+        if self.explained.value:
+            view = self.ctx.session.view(self.ctx.browser)
+            rgba = compose(rgba, slide_caption(view), slide_legend(view))
         client.send_file_download(name, png_on_white(rgba), save_immediately=True)
 
     def _on_record(self, event) -> None:

@@ -13,6 +13,11 @@ from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_controller import MAX_SPEED
 
+RELEASE_FOCUS = (
+    '<img alt="" src="data:,{n}" style="display:none" '
+    'onerror="document.activeElement && document.activeElement.blur && document.activeElement.blur()">'
+)
+
 
 class RunFolder:
     """What a lecture needs on the panel's first screen: the Demo, Step / Back / Play / Reset, the jumps,
@@ -24,6 +29,11 @@ class RunFolder:
             self.demo = gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—")
             self.demo.on_update(ctx.from_browser(self._on_demo))
             self.demo_note = gui.add_markdown("")
+            # After a Demo is picked, the keyboard belongs to the lecture again: viser ignores hotkeys while
+            # a field has focus, and the dropdown keeps it. A constant handler in this browser's own panel
+            # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
+            self._release = gui.add_html("")
+            self._releases = 0
             self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             self.controls.on_click(self._on_control)
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
@@ -67,6 +77,12 @@ class RunFolder:
         """A ready scenario; what it shows stays under the dropdown, for the room to read."""
         if self.demo.value != "—":
             self.ctx.session.load_scenario(self.demo.value)
+            self.release_focus()
+
+    def release_focus(self) -> None:
+        """Take the keyboard focus off the panel's fields in this browser, so that its keys drive the run."""
+        self._releases += 1
+        self._release.content = RELEASE_FOCUS.format(n=self._releases)
 
     def _on_control(self, event) -> None:
         value, s = event.target.value, self.ctx.session

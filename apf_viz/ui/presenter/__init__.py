@@ -82,7 +82,8 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         following_what=run.following_what,
         click_advances=screen.click_advances,
         compare=_twin_view(run, screen) if screen.twin is not None and running else None,
-        divergence=screen.twin.divergence(e) if screen.twin is not None and running else None,
+        divergence=(split := screen.twin.divergence(e) if screen.twin is not None and running else None),
+        diverged=split.robot if split is not None else None,
         trace_note=story.trace_note(run.trace_options),
         timeline_marks=tuple(
             sorted(
@@ -103,6 +104,8 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         playing=run.playing,
         why_text=why_markdown(None),
     )
+    if view.compare is not None and view.diverged is not None:  # marked in both runs
+        view = replace(view, compare=replace(view.compare, diverged=view.diverged))
     position = run.trace_position
     at_end = position is not None and position[0] >= position[1]
     endless = story.endless_words(run.trace_options) if at_end and _walks(run) else ""

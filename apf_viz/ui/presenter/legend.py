@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 from apf_viz.core.portrayal import Cells, Frame
 from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
+from apf_viz.ui.slide import Entry
 
 if TYPE_CHECKING:
     from apf_viz.ui.presenter.views import SessionView
@@ -40,6 +41,7 @@ def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
         "ring": f"border-radius:50%;border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
         "line": f"height:3px;margin-bottom:4px;background:rgb{tuple(color)}",
         "square-ring": f"border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
+        "diamond": f"background:rgb{tuple(color)};transform:rotate(45deg) scale(0.8)",
     }.get(shape)
     if style is None:  # the collision's burst: viser's "sparkle" point, drawn as the glyph it resembles
         return (
@@ -111,6 +113,7 @@ def legend_html(view: SessionView) -> str:
             "stuck: no robot's next cycle changes anything",
         ),
         (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
+        (_swatch(c["diverged"], "diamond"), "diverges here", "Compare: the robot whose event first differs"),
     ]
     row = "display:flex;align-items:center;gap:5px;min-width:0"
     clip = "white-space:nowrap;overflow:hidden;text-overflow:ellipsis"
@@ -151,3 +154,61 @@ def lecture_html(view: SessionView) -> str:
         f"<div>Event {view.event} · {last}</div>{outcome}"
         f'<div style="margin-top:6px">{lights}</div></div>'
     )
+
+
+def slide_legend(view: SessionView) -> list[Entry]:
+    """The legend of a saved slide: the lights in use, then only the marks the picture shows."""
+    c = MARK_COLORS
+    out = [
+        Entry(view.legend[light].color, "disc", light, plain(view.legend[light].meaning))
+        for light in view.lights_in_use
+        if light in view.legend
+    ]
+    marks = (
+        (bool(view.targets), Entry(TARGET_COLORS["placed"], "square", "target cells")),
+        (view.selected is not None, Entry(c["selected"], "ring", f"selected: robot {view.selected}")),
+        (bool(view.ghosts), Entry(c["ghost"], "ring", "ghost: where the selected robot saw a robot")),
+        (bool(view.hidden), Entry(c["hidden"], "disc", "greyed: hidden from the selected robot")),
+        (bool(view.stale_holders), Entry(c["ghost"], "square", "“stale”: acts on an out-of-date snapshot")),
+        (view.collision is not None, Entry(c["collision"], "burst", "collision")),
+        (bool(view.never_act), Entry(c["never"], "square", "will never act")),
+    )
+    return out + [entry for shown, entry in marks if shown]
+
+
+def slide_caption(view: SessionView) -> list[str]:
+    """A saved slide's caption: the stage, the last event, the outcome located."""
+    lines = [plain(view.stage)] if view.stage else []
+    last = view.last_events[0] if view.last_events else "the start"
+    lines.append(f"Event {view.event} · {plain(last)} · {len(view.robots)} robots, {view.algorithm}")
+    if view.outcome:
+        where = f": {plain(view.collision[0])}" if view.collision else ""
+        lines.append(f"{view.outcome.upper()}{where}")
+    return lines
+
+
+def plain(text: str) -> str:
+    """The paper's symbols as plain text (``L_1`` → ``L₁``), as the canvas writes them."""
+    return canvas_symbol(text)
+
+
+# The canvas shows plain text: the paper's sub- and superscripts as Unicode where Unicode has them.
+_SUBSCRIPTS = {
+    "L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "2": "₂", "j": "ⱼ", "n": "ₙ",
+    "−": "₋",
+}  # fmt: skip
+_SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
+
+
+def canvas_symbol(text: str) -> str:
+    """``H_L^O`` → ``Hₗᴼ``, ``L_H1`` → ``Lₕ₁``: the panel's typesetting (the same symbols as
+    :func:`~apf_viz.ui.presenter.legend.symbol_html`) in Unicode. A symbol Unicode cannot set whole
+    (there is no subscript B) is written as the paper's source writes it, ``H_B^C``, never half set."""
+
+    def typeset(m: re.Match) -> str:
+        sub, sup = m.group(2).strip("{}"), m.group(3) or ""
+        if all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup):
+            return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
+        return m.group(0)
+
+    return SYMBOL.sub(typeset, text)

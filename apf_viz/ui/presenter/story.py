@@ -300,7 +300,7 @@ def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, 
     if divergence is None:
         split = "Same configurations so far."
     else:
-        at, what = divergence
+        at, what, _ = divergence
         split = f"First divergence at event **{at}**: A {what.split(' | ')[0]}; B {what.split(' | ')[1]}"
     return f"{side('A', a)}  \n{side('B', b)}  \n{split}"
 

@@ -9,6 +9,7 @@ from typing import NamedTuple
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Explanation, LightStyle, Mark, Overlays
+from apf_viz.ui.compare import Divergence
 from apf_viz.ui.screen_state import Mode
 
 
@@ -93,7 +94,8 @@ class SessionView:
     following_what: str = "the trace"  # what Step follows while trace_position is set
     click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
     compare: SessionView | None = None  # Compare: the same adversary under the second algorithm
-    divergence: tuple[int, str] | None = None  # Compare: the first event where the two differ
+    divergence: Divergence | None = None  # Compare: the first event where the two differ, its robot
+    diverged: int | None = None  # Compare: the robot of that event, marked in both runs
     trace_note: str = ""  # what a loaded trace's header says it shows (a verdict, a gap, a loop)
     # Steps of the timeline worth a mark: where each stage began (labelled where the phase changes), a loop.
     timeline_marks: tuple[tuple[int, str | None], ...] = ()
