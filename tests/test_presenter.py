@@ -318,3 +318,21 @@ def test_the_lockstep_escape_ends_with_a_banner_and_its_walk_drawn():
     for bad in (-1, 51, float("nan"), 2.5e9):
         with pytest.raises(InputError):
             s.set_trails(bad)
+
+
+@pytest.mark.parametrize(
+    ("scenario", "said"),
+    [
+        ("The literal paper collides", "robot 3 decided this move at step 40 on what it saw at step 38"),
+        ("The literal paper deadlocks", "A2.leader1.wait"),
+        ("The L2 lockstep counterexample", "ESCAPE: it never ends"),
+    ],
+)
+def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, said):
+    from apf_viz.ui.presenter.legend import lecture_html
+
+    s = demo_session()
+    s.load_scenario(scenario)
+    assert said not in lecture_html(s.view())
+    s.seek(10**9)
+    assert said in lecture_html(s.view())

@@ -27,6 +27,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
+from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
 from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect
 from apf_viz.ui.session import Session
 
@@ -94,7 +95,8 @@ class BrowserScreen:
         self.state.framed_bounds = renderer.bounds
 
     def frame(self, renderer: SceneRenderer) -> None:
-        position, self._framed_aspect = renderer.frame_camera(self.client.camera)
+        room = PRESENTATION_TOP_ROOM if self.panels.presenting else 0.0
+        position, self._framed_aspect = renderer.frame_camera(self.client.camera, room)
         if position is not None:
             self._sending(position)
         self.state.camera = "framed"

@@ -666,15 +666,17 @@ class SceneRenderer:
 
     # ------------------------------------------------------------------ camera
     def camera_pose(
-        self, aspect: float = NARROW_ASPECT
+        self, aspect: float = NARROW_ASPECT, top_room: float = 0.0
     ) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
         """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between), for
         a canvas ``aspect`` = width / height (the field of view is vertical, so a narrow canvas needs the
-        camera higher to fit the run's width)."""
+        camera higher to fit the run's width); ``top_room``: the share of the canvas's height to leave
+        free at the top (presentation mode's caption floats there)."""
         x0, y0, x1, y1 = self.bounds
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
         fov = float(np.deg2rad(50))
-        extent = max(y1 - y0 + 4, (x1 - x0 + 4) / max(aspect, 0.2), 10)
+        extent = max((y1 - y0 + 4) / (1 - top_room), (x1 - x0 + 4) / max(aspect, 0.2), 10)
+        cy += top_room * extent / 2  # the run in the middle of the canvas's lower part
         h = extent / (2 * np.tan(fov / 2))
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
@@ -687,12 +689,12 @@ class SceneRenderer:
         initial.position = position
         initial.look_at = look_at
 
-    def frame_camera(self, camera) -> tuple[tuple[float, float, float] | None, float]:
+    def frame_camera(self, camera, top_room: float = 0.0) -> tuple[tuple[float, float, float] | None, float]:
         """Move a connected browser's camera to the whole run (position first: it drags look_at along),
-        fitted to that browser's canvas. Returns the position sent (None if none could be) and the
-        aspect it was fitted to."""
+        fitted to that browser's canvas (``top_room``: :meth:`camera_pose`). Returns the position sent
+        (None if none could be) and the aspect it was fitted to."""
         aspect = camera_aspect(camera)
-        position, look_at, fov = self.camera_pose(aspect)
+        position, look_at, fov = self.camera_pose(aspect, top_room)
         try:
             camera.fov = fov
             camera.position = position

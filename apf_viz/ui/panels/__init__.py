@@ -70,6 +70,11 @@ class Panels:
         self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
 
+    @property
+    def presenting(self) -> bool:
+        """This browser is in presentation mode (its camera leaves room for the caption)."""
+        return self.presentation.on
+
     def refresh(self, view: SessionView) -> None:
         for folder in self.folders:
             folder.refresh(view)

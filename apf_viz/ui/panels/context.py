@@ -91,6 +91,7 @@ class PanelContext:
     frame_all: Callable[[], None]  # point every browser's camera at the whole run
     verifier: SharedVerifier
     toggle_presentation: Callable = lambda event=None: None  # set by the browser's Presentation
+    presenting: Callable[[], bool] = lambda: False  # set by the browser's Presentation
 
     def guard(self, fn: Callable, title: str = "apf-viz") -> Callable:
         """Run a callback; bad input, or what it has to say (a returned string), is told to the browser

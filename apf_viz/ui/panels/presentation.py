@@ -7,6 +7,11 @@ from __future__ import annotations
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import lecture_html
+from apf_viz.ui.recorder import canvas_size
+
+# The caption floats over the top of the canvas, this share of its height; a framed camera leaves that
+# room free (ui/app.py), so the caption never covers the run.
+PRESENTATION_TOP_ROOM = 0.35
 
 
 class Presentation:
@@ -19,6 +24,7 @@ class Presentation:
         )
         command.on_trigger(ctx.guard(self.toggle))
         ctx.toggle_presentation = self.toggle
+        ctx.presenting = lambda: self.on
 
     @property
     def on(self) -> bool:
@@ -30,11 +36,14 @@ class Presentation:
             self.panel = self.gui.add_panel()
             with self.panel.add_tab("Lecture"):
                 self.html = self.gui.add_html("")
-            self.panel.float(x=12, y=12, width=560)
+            height = canvas_size(event.client)[0] if event is not None and event.client is not None else 768
+            self.panel.float(x=12, y=8, width=560, height=int(PRESENTATION_TOP_ROOM * height) - 12)
         else:
             self.panel.remove()
             self.panel = self.html = None
             self.gui.main_panel.expand()
+        if event is not None and event.client is not None:
+            self.ctx.frame(event.client)  # the caption's room at the top comes and goes
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:

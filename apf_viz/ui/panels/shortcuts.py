@@ -32,14 +32,22 @@ class Shortcuts:
             "Play / Pause": lambda e: ctx.session.toggle_play(),
             "Step": ctx.step,
             "Back": lambda e: ctx.session.back(),
-            "Next stage": lambda e: ctx.session.run_until("stage"),
-            "Previous stage": lambda e: ctx.session.back_to_stage(),
+            "Next stage": lambda e: self._stop(ctx, ctx.session.run_until("stage")),
+            "Previous stage": lambda e: self._stop(ctx, ctx.session.back_to_stage()),
             "Next move": lambda e: ctx.session.run_until("move"),
             "Frame run": lambda e: ctx.frame(e.client) if e.client is not None else None,
         }
         for label, key, text in SHORTCUTS:
             command = gui.add_command(label, description=text, hotkey=key)
             command.on_trigger(ctx.guard(actions[label], NOTE_TITLES.get(label, label)))
+
+    @staticmethod
+    def _stop(ctx: PanelContext, said: str) -> str | None:
+        """What a stage stop has to tell: nothing in presentation mode when it reached a stage (the
+        caption on the canvas names it; a message would cover it), else the message."""
+        view = ctx.session.view(ctx.browser)
+        reached = said.startswith(view.stage) or bool(view.outcome and said.startswith(view.outcome))
+        return None if reached and ctx.presenting() else said
 
     def refresh(self, view: SessionView) -> None:
         pass  # a shortcut shows nothing of its own

@@ -145,11 +145,22 @@ def lecture_html(view: SessionView) -> str:
     outcome = ""
     if view.outcome:
         where = f"<div>{html.escape(view.collision[0])}</div>" if view.collision else ""
+        why = view.fatal[0] or view.waits  # the lecture's point: whose stale decision, or who waits on what
+        if why:
+            where += (
+                f'<div style="color:#444;font-size:0.9em">{symbol_html(why).replace(chr(10), "<br>")}</div>'
+            )
         outcome = (
-            f'<div style="font-size:1.5em;font-weight:bold;margin:6px 0">{view.outcome.upper()}</div>{where}'
+            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{view.outcome.upper()}</div>{where}'
+        )
+    elif view.banner.startswith("## ↻"):  # a walk that never ends, at the end of its trace
+        verdict, _, words = view.banner.removeprefix("## ").partition("\n\n")
+        outcome = (
+            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(verdict)}</div>'
+            f'<div style="color:#444;font-size:0.9em">{html.escape(words)}</div>'
         )
     return (
-        f'<div style="font-size:1.25em;line-height:1.35">'
+        f'<div style="font-size:1.1em;line-height:1.3">'
         f"<div><b>{symbol_html(view.stage)}</b></div>"
         f"<div>Event {view.event} · {last}</div>{outcome}"
         f'<div style="margin-top:6px">{lights}</div></div>'
