@@ -744,9 +744,10 @@ def test_a_camera_moved_by_hand_is_that_browsers_own_until_frame_run(browser, ap
     assert screen.state.camera == "framed"
 
 
-def inside_canvas(app: App, page, client_id, cells) -> list:
+def inside_canvas(app: App, page, client_id, cells, top_room: float = 0.0) -> list:
     """The cells a browser's own camera (as it is now) projects outside its canvas, half a cell of
-    margin included: robots and targets must be whole."""
+    margin included: robots and targets must be whole (``top_room``: a share of the canvas's height at
+    its top that must stay free, presentation mode's caption)."""
     camera = app.screens[client_id].client.camera
     p, target = np.array(camera.position, dtype=float), np.array(camera.look_at, dtype=float)
     f = (target - p) / np.linalg.norm(target - p)
@@ -762,9 +763,44 @@ def inside_canvas(app: App, page, client_id, cells) -> list:
             d = np.array([x + dx, y + dy, 0.0]) - p
             ndc_x = (d @ r) / ((d @ f) * t * (box["width"] / box["height"]))
             ndc_y = (d @ u) / ((d @ f) * t)
-            if not (-1 <= ndc_x <= 1 and -1 <= ndc_y <= 1):
+            if not (-1 <= ndc_x <= 1 and -1 <= ndc_y <= 1 - 2 * top_room):
                 out.append(cell)
     return out
+
+
+def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser, app):
+    """The issue's walk-through: PageDown from the start to FORMED, each stop one of the paper's stages,
+    named in the caption, with the whole run in view below it (screenshots: test-output/lecture-*)."""
+    from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
+    from apf_viz.ui.presenter.legend import symbol_html
+
+    played = demo_session()
+    while played.step():
+        pass
+    stops = [at for at, _ in played.run.stages.marks(played.engine.history, played.engine.history.length)]
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    wait_for(lambda: len(app.screens) == 1)
+    (cid,) = app.screens
+    screen = app.screens[cid]
+    page.keyboard.press("p")
+    wait_for(lambda: screen.panels.presenting)
+    for i, at in enumerate(stops):
+        page.keyboard.press("PageDown")
+        wait_for(lambda at=at: app.session.engine.step_index == at)
+        stage = app.session.view().stage
+        caption = screen.panels.presentation.html
+        wait_for(lambda stage=stage: symbol_html(stage) in caption.content)
+        app.request_render()
+        time.sleep(1.0)  # the camera's pose reaches the browser
+        cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
+        assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], (i, stage)
+        assert page.locator(".mantine-Notification-root").filter(has_text="Stage").count() == 0
+        shot(page, f"lecture-stop-{i:02d}")
+    assert app.session.engine.outcome == "formed" and "FORMED" in screen.panels.presentation.html.content
+    page.close()
 
 
 @pytest.mark.parametrize("size", [(1400, 900), (1024, 768)])
