@@ -607,7 +607,13 @@ class SceneRenderer:
                     thickness=3.0,
                     thickness_units="screen",
                 )
-                labels.append((tag, tuple(seg[0, 1])))
+                # Inside the framed run: the line itself runs on to the canvas's edge.
+                at = (
+                    (x1 - 3.0, float(seg[0, 1, 1]) + 0.15)
+                    if mark.axis == "y"
+                    else (float(seg[0, 1, 0]) + 0.2, y1)
+                )
+                labels.append((tag, (*at, 0.1)))
             elif isinstance(mark, HalfPlane | Band):
                 lo, hi = self._extent(mark)
                 rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)

@@ -16,7 +16,7 @@ from apf_viz.core.history import History
 
 StageOf = Callable[[tuple[Point, ...], tuple[str, ...]], str]
 # Above this many robots only light changes are read: naming the stage costs O(k), and a move of one
-# robot in a thousand rarely changes it. Stages that moves alone begin are then marked late or not at all.
+# robot in a thousand rarely changes it. A stage begun by moves alone is then marked late or not at all.
 MOVES_READ_UP_TO_K = 200
 # Labels on the timeline at least this share of its length apart (a label is about a fifth of the slider).
 LABEL_GAP = 0.2

@@ -213,13 +213,17 @@ _SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
 
 def canvas_symbol(text: str) -> str:
     """``H_L^O`` → ``Hₗᴼ``, ``L_H1`` → ``Lₕ₁``: the panel's typesetting (the same symbols as
-    :func:`~apf_viz.ui.presenter.legend.symbol_html`) in Unicode. A symbol Unicode cannot set whole
-    (there is no subscript B) is written as the paper's source writes it, ``H_B^C``, never half set."""
+    :func:`symbol_html`) in Unicode. A label with a symbol Unicode cannot set whole (there is no
+    subscript B) is written as the paper's source writes it, ``H_B^C``: never half set."""
+
+    def settable(m: re.Match) -> bool:
+        sub, sup = m.group(2).strip("{}"), m.group(3) or ""
+        return all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup)
 
     def typeset(m: re.Match) -> str:
         sub, sup = m.group(2).strip("{}"), m.group(3) or ""
-        if all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup):
-            return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
-        return m.group(0)
+        return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
 
+    if not all(settable(m) for m in SYMBOL.finditer(text)):
+        return text  # one label, one notation: all as the source writes them
     return SYMBOL.sub(typeset, text)
