@@ -202,12 +202,14 @@ def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
     s.compare_with("apf-opaque-grid-literal")
     while s.step():
         pass
-    at, what = s.view().divergence
+    at, what, robot = s.view().divergence
     s.seek_event(at)
     v = s.view()
-    assert v.event == at and v.divergence == (at, what)
-    robot = what.split(" | ")[0].split(" · ")[0]  # "robot 1"
-    assert v.last_events[0].startswith(robot + " · ")  # the run's side of the difference is the last event
+    assert v.event == at and v.divergence == (at, what, robot)
+    assert v.last_events[0].startswith(
+        f"robot {robot} · "
+    )  # the run's side of the difference is the last event
+    assert v.diverged == robot == v.compare.diverged  # marked in both runs
 
 
 def test_a_deadlock_says_what_each_robot_waits_on():

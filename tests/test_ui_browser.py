@@ -792,7 +792,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
         wait_for(lambda at=at: app.session.engine.step_index == at)
         stage = app.session.view().stage
         caption = screen.panels.presentation.html
-        wait_for(lambda stage=stage: symbol_html(stage) in caption.content)
+        wait_for(lambda stage=stage, caption=caption: symbol_html(stage) in caption.content)
         app.request_render()
         time.sleep(1.0)  # the camera's pose reaches the browser
         cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)

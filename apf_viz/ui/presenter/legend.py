@@ -51,6 +51,13 @@ def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
     return f'<span style="display:inline-block;flex:none;width:13px;height:13px;{style}"></span>'
 
 
+# The words the panels use, defined once.
+WORDS = (
+    "<b>(x, y)</b>: a cell in the screen's grid coordinates (x to the right, y up as drawn); robots agree "
+    "on x only, and a robot's own y may point down (its diamond). An <b>event</b> is one Look, Compute or "
+    "Move of one robot (the Event counter); a <b>step</b> is one choice of the scheduler (the timeline): "
+    "one event under ASYNC, a round's Looks, Computes or Moves under FSYNC and SSYNC."
+)
 UPSIDE_DOWN = (
     "Robots agree only on left and right, so a pattern formed upside down (mirrored in y) counts as formed."
 )
@@ -127,7 +134,8 @@ def legend_html(view: SessionView) -> str:
     columns = "display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:2px 8px"
     grid = f'<div style="{columns}">{body}</div>'
     return (
-        f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div></div>'
+        f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div>'
+        f'<div style="margin-top:4px;color:#555">{WORDS}</div></div>'
     )
 
 
