@@ -183,6 +183,71 @@ class _NoEvidence(Evidence):
 NO_EVIDENCE: Evidence = _NoEvidence()
 
 
+# ------------------------------------------------------------------------------------------ pseudocode
+@dataclass(frozen=True)
+class CodeLine:
+    """One line of an algorithm as its paper writes it. ``key`` names it ("A1.4"; a resolution's line
+    "G2@A1.8"); ``number`` is the paper's line number ("" for a procedure's header or a resolution's
+    line); ``depth`` its indentation. A resolution's line carries its name and why; a paper line a
+    resolution rewrites is ``replaced`` (the screen strikes it through)."""
+
+    key: str
+    number: str
+    depth: int
+    text: str
+    resolution: str = ""
+    why: str = ""
+    replaced: bool = False
+
+
+@dataclass(frozen=True)
+class CodeBlock:
+    """One algorithm of the paper: its title and lines (procedure headers included)."""
+
+    title: str
+    lines: tuple[CodeLine, ...]
+
+
+@dataclass(frozen=True)
+class Pseudocode:
+    """An algorithm's paper, line by line, and which line(s) each rule id acts on."""
+
+    blocks: tuple[CodeBlock, ...]
+    rules: dict[str, tuple[str, ...]]  # rule id (or a composite id in context) → line keys
+    outside: dict[str, str] = field(default_factory=dict)  # rule ids with no line, each with the reason
+    unreached: dict[str, str] = field(default_factory=dict)  # lines no rule reaches, each with the reason
+
+    def lines_of(self, rule_id: str) -> tuple[str, ...]:
+        """The lines a decision's rule id acts on: the composite id's own where given, else its parts'."""
+        if rule_id in self.rules:
+            return self.rules[rule_id]
+        out: list[str] = []
+        for part in rule_id.split("/"):
+            out += [k for k in self.rules.get(part, ()) if k not in out]
+        return tuple(out)
+
+    def line(self, key: str) -> tuple[CodeBlock, int] | None:
+        """The block holding a line and its index there."""
+        for block in self.blocks:
+            for i, line in enumerate(block.lines):
+                if line.key == key:
+                    return block, i
+        return None
+
+    def enclosing(self, key: str) -> tuple[str, ...]:
+        """The conditions a line sits in, innermost first: each earlier line of smaller depth."""
+        found = self.line(key)
+        if found is None:
+            return ()
+        block, i = found
+        depth, out = block.lines[i].depth, []
+        for line in reversed(block.lines[:i]):
+            if line.depth < depth and line.number:
+                out.append(line.key)
+                depth = line.depth
+        return tuple(out)
+
+
 # ------------------------------------------------------------------------------------------ the protocol
 @runtime_checkable
 class Portrayed(Protocol):
@@ -193,6 +258,8 @@ class Portrayed(Protocol):
     def overlays(self, config: Configuration) -> Overlays: ...
 
     def stage(self, config: Configuration) -> str: ...
+
+    def pseudocode(self) -> Pseudocode: ...
 
     def explain(self, view: Snapshot, pattern: Pattern) -> Explanation: ...
 
@@ -212,6 +279,12 @@ def overlays_of(algorithm: Algorithm, config: Configuration) -> Overlays:
     """The algorithm's overlays of this configuration, or none."""
     own = getattr(algorithm, "overlays", None)
     return own(config) if callable(own) else Overlays()
+
+
+def pseudocode_of(algorithm: Algorithm) -> Pseudocode | None:
+    """The algorithm's paper, line by line, where it gives one."""
+    own = getattr(algorithm, "pseudocode", None)
+    return own() if callable(own) else None
 
 
 def stage_of(algorithm: Algorithm, config: Configuration) -> str:

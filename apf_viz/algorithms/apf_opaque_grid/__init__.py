@@ -8,7 +8,7 @@ the robot's own light and the lights it sees (docs/ALGORITHM.md, "Phase dispatch
 
 from __future__ import annotations
 
-from apf_viz.algorithms.apf_opaque_grid import portrayal, watches
+from apf_viz.algorithms.apf_opaque_grid import paper, portrayal, watches
 from apf_viz.algorithms.apf_opaque_grid.pattern_formation import (
     embedded_targets,
     pattern_formation_leader,
@@ -36,7 +36,15 @@ from apf_viz.algorithms.apf_opaque_grid.resolutions import (
     parse_resolutions,
 )
 from apf_viz.core.algorithm import NOTHING, Decision, Pattern
-from apf_viz.core.portrayal import NO_EVIDENCE, Configuration, Evidence, Explanation, LightStyle, Overlays
+from apf_viz.core.portrayal import (
+    NO_EVIDENCE,
+    Configuration,
+    Evidence,
+    Explanation,
+    LightStyle,
+    Overlays,
+    Pseudocode,
+)
 from apf_viz.core.view import Snapshot
 
 LIGHTS = ("off", "terminal1", "symmetric", "decider", "call", "leader1", "leader", "done")
@@ -126,6 +134,10 @@ class ApfOpaqueGrid:
 
     def stage(self, config: Configuration) -> str:
         return portrayal.stage(config.positions, config.lights)
+
+    def pseudocode(self) -> Pseudocode:
+        """The paper's algorithms with this variant's resolutions in place (the Paper panel)."""
+        return paper.pseudocode(self.resolutions)
 
     @classmethod
     def parse(cls, name: str) -> ApfOpaqueGrid:
