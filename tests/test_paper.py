@@ -93,3 +93,32 @@ def test_each_rule_text_cites_the_lines_the_panel_highlights():
             cited += 1
             assert said.group(1) == citation(FULL, rule), rule
     assert cited >= 25
+
+
+def test_the_paper_panel_marks_the_decisions_line_and_its_conditions():
+    from apf_viz.ui.presenter.paper import paper_html
+
+    text = paper_html(FULL, (4, "A1.terminal1.dominant"), "apf-opaque-grid")
+    assert "Algorithm 1" in text and "Robot 4" in text
+    hit = text.split("data-hit", 1)[1].split("</div></div>", 1)[0]
+    assert "r.light ← leader1" in hit  # line 15, the decision's action
+    assert text.count("#fff6cc") == len(FULL.enclosing("A1.15"))  # its five enclosing conditions
+    assert "[G2]" in text and "[G1]" in text  # this variant's resolution lines, named
+    literal = paper_html(LITERAL, (4, "A1.terminal1.dominant"), "apf-opaque-grid-literal")
+    assert "[G2]" not in literal and "[G1]" not in literal  # gone with the literal paper
+    none = paper_html(FULL, (2, "done"), "apf-opaque-grid")
+    assert "has no line in the paper" in none and "never acts again" in none
+    assert "gives no pseudocode" in paper_html(None, None, "compact-left")
+
+
+def test_the_view_shows_the_selected_robots_decision_else_the_runs_last():
+    s = demo_session()
+    for _ in range(30):
+        s.step()
+    run_last = s.view().paper_decision
+    assert run_last is not None and run_last[1] in s.view().paper_text
+    s.selected = next(
+        r for r in range(s.engine.k) if s.engine.state.decided[r] is not None and r != run_last[0]
+    )
+    v = s.view()
+    assert v.paper_decision[0] == s.selected and f"Robot {s.selected}:" in v.paper_text

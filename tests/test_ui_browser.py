@@ -966,3 +966,29 @@ def test_go_to_the_fatal_decision_of_a_collision(browser, app):
     wait_for(lambda: app.session.engine.step_index == computed)
     wait_for(lambda: "· Compute" in page.locator("p", has_text="Last event:").first.inner_text())
     page.close()
+
+
+def test_the_paper_panel_highlights_the_line_of_a_phase_2_decision_beside_the_canvas(browser, app):
+    """At 1024×768: the demo stepped to a Phase 2 decision; the Paper folder shows Algorithm 2 with that
+    decision's line highlighted, in view beside the canvas (screenshot: test-output/paper-phase2)."""
+    s = app.session
+    while not (s.view().paper_decision or (0, ""))[1].startswith("A2."):
+        assert s.step()
+    robot, rule = s.view().paper_decision
+    paper = s.engine.algorithm.pseudocode()
+    (key,) = paper.lines_of(rule)[:1]
+    block, i = paper.line(key)
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    page.get_by_text(f"Robot {robot}: {rule}").wait_for()
+    hit = page.locator("[data-hit]").first
+    hit.scroll_into_view_if_needed()
+    assert "Algorithm 2" in page.locator("b", has_text="Algorithm 2").first.inner_text()
+    box, canvas = hit.bounding_box(), page.locator("canvas").first.bounding_box()
+    assert box["y"] >= 0 and box["y"] + box["height"] <= 768  # the highlighted line on screen …
+    assert canvas["width"] > 500 and canvas["x"] + canvas["width"] <= box["x"] + 5  # … beside the canvas
+    assert block.lines[i].text.split(" ")[0] in hit.inner_text()
+    shot(page, "paper-phase2")
+    page.close()

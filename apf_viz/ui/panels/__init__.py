@@ -19,6 +19,7 @@ from apf_viz.ui.panels.edit import MODE_LABELS, MODES, EditFolder
 from apf_viz.ui.panels.files import FilesFolder, load_demo
 from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
+from apf_viz.ui.panels.paper import PaperFolder
 from apf_viz.ui.panels.presentation import Presentation
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
@@ -36,6 +37,7 @@ FOLDERS = (
     RunFolder,
     SelectedFolder,
     WhyFolder,
+    PaperFolder,
     HistoryFolder,
     LegendFolder,
     AdversaryFolder,

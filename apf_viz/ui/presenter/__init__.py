@@ -17,8 +17,9 @@ from apf_viz.core.budget import paper_D
 from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
-from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of
+from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of, pseudocode_of
 from apf_viz.ui.presenter import story
+from apf_viz.ui.presenter.paper import paper_html
 from apf_viz.ui.presenter.staleness import hidden_from, seen_robots, stale_holders
 from apf_viz.ui.presenter.views import Ghost, RobotView, SessionView, WhyView
 from apf_viz.ui.presenter.why import why_markdown, why_view
@@ -103,6 +104,10 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         scheduler=run.config.scheduler,
         playing=run.playing,
         why_text=why_markdown(None),
+        paper_decision=story.last_decision(e),
+    )
+    view = replace(
+        view, paper_text=paper_html(pseudocode_of(e.algorithm), view.paper_decision, view.algorithm)
     )
     if view.compare is not None and view.diverged is not None:  # marked in both runs
         view = replace(view, compare=replace(view.compare, diverged=view.diverged))
@@ -170,8 +175,18 @@ def for_browser(
         rays, ghosts = tuple((pts[sel], pts[j]) for j in e.visible(sel).tolist()), ()
     hidden = hidden_from(e, sel, start, pts) if e.k <= SIGHT_MARKS_UP_TO else {}
     why = why_view(e, sel, pts, start)
+    decided = why.explanation.decision.rule_id if why.explanation is not None else ""
+    paper = (
+        {
+            "paper_decision": (sel, decided),
+            "paper_text": paper_html(pseudocode_of(e.algorithm), (sel, decided), view.algorithm),
+        }
+        if decided
+        else {}
+    )
     return replace(
         view,
+        **paper,
         selected=sel,
         rays=rays,
         ghosts=ghosts,

@@ -109,6 +109,19 @@ def trails(e: Engine, moves: int, now: Sequence[Point]) -> tuple[tuple[Point, ..
     return tuple(tuple(reversed(p)) if len(p) > 1 else () for p in paths)
 
 
+LAST_DECISION_STEPS = 200  # how far back the Paper panel looks for the run's last Compute
+
+
+def last_decision(e: Engine) -> tuple[int, str] | None:
+    """(robot, rule id) of the run's latest Compute within the last LAST_DECISION_STEPS steps."""
+    steps = e.history.steps
+    for i in range(e.step_index - 1, max(-1, e.step_index - 1 - LAST_DECISION_STEPS), -1):
+        for ev in reversed(steps[i].events):
+            if ev.phase == "compute" and ev.rule_id:
+                return ev.robot, ev.rule_id
+    return None
+
+
 def last_actor(e: Engine) -> int | None:
     if e.step_index == 0:
         return None

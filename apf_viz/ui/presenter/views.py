@@ -109,6 +109,10 @@ class SessionView:
     counts: str = ""  # Edit: targets or robots drawn
     next_phases: str = ""  # Manual: who is next for what
     why_text: str = ""  # the Why panel
+    # The Paper panel: the decision whose line it highlights — (robot, rule id): the selected robot's last,
+    # else the run's last Compute — and the panel's HTML.
+    paper_decision: tuple[int, str] | None = None
+    paper_text: str = ""
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection
