@@ -389,6 +389,29 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return {"verified": 0, "budget": 4}.get(result.verdict, 1)
 
 
+def _cmd_lecture(args: argparse.Namespace) -> int:
+    """Every stop of the lecture in order, headless: its condition met or not, at which event; exit 1 if
+    any was not (a lecturer checks the evening before)."""
+    from apf_viz.lecture import load_lecture
+    from apf_viz.ui.lecturer import Lecturer
+    from apf_viz.ui.session import Session
+
+    lecture = load_lecture(args.file)
+    print(f"{args.file}: {lecture.title} — {len(lecture.stops)} stops", flush=True)
+    failed = 0
+    blank = Session([(0, 0)], [(0, 0)])  # the first stop loads its scenario (no viser is imported)
+    for reached in Lecturer(blank, lecture).check():
+        stop = lecture.stops[reached.index]
+        where = "its scenario's start" if stop.scenario else "where the stop before left the run"
+        until = stop.until.describe() if stop.until else where
+        mark = "ok " if reached.met else "NOT"
+        note = f" — {reached.note}" if reached.note else ""
+        print(f"  {mark} stop {reached.index + 1}: {stop.title} (to {until}; event {reached.event}){note}")
+        failed += not reached.met
+    print(f"{len(lecture.stops) - failed} of {len(lecture.stops)} stops reached", flush=True)
+    return EXIT_NOT_FORMED if failed else 0
+
+
 def _cmd_serve(args: argparse.Namespace) -> int:
     from apf_viz.ui.app import serve  # viser is imported only when the UI is wanted
 
@@ -608,6 +631,11 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
     chk.set_defaults(func=_cmd_check)
 
+    lec = command("lecture", "check a guided lecture: run every stop headless, report each condition")
+    lec.add_argument("action", choices=["check"], help="what to do with the lecture")
+    lec.add_argument("file", type=Path, help="the lecture file (JSON; demo_patterns/lectures/ has examples)")
+    lec.set_defaults(func=_cmd_lecture)
+
     serve = command("serve", "serve the visualiser (the default command)")
     _add_serve_options(serve)
     serve.set_defaults(func=_cmd_serve)
@@ -625,6 +653,7 @@ def _add_serve_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--robots", type=Path, help="start file (default: the built-in demo)")
     p.add_argument("--pattern", type=Path, help="pattern file (default: the built-in demo)")
     p.add_argument("--trace", type=Path, help="open this trace, to step through it")
+    p.add_argument("--lecture", type=Path, help="open this guided lecture at its first stop (PageDown: next)")
     _add_run_options(p, list(SCHEDULERS))
 
 

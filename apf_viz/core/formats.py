@@ -245,6 +245,17 @@ def _validate(model: type[BaseModel], data: Any, where: str) -> Any:
         raise InputError(f"{where}: {_one_line(e)}") from None
 
 
+def parse_json_model(model: type[BaseModel], text: str, where: str) -> Any:
+    """A pydantic model from JSON text; every problem an :class:`InputError` of one line naming
+    ``where`` and the field."""
+    return _validate(model, _parse_json(text, where), where)
+
+
+def read_text(path: Path | str, limit: int) -> str:
+    """A UTF-8 file of at most ``limit`` bytes, whatever ``stat`` says (:func:`_read_text`)."""
+    return _read_text(path, limit)
+
+
 def parse_robots(text: str, where: str = "robots") -> RobotsFile:
     return _validate(RobotsFile, _parse_json(text, where), where)
 

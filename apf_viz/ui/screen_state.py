@@ -25,6 +25,8 @@ class SharedScreen:
     scenario_note: str = ""  # what the Demo scenario being shown shows, until another run starts
     twin: Twin | None = None  # Compare: a second algorithm stepping with the run
     trails: int = 0  # draw each robot's last this-many moves (0: none)
+    # A guided lecture's stop on screen: (the lecture and where in it, the stop's title, its words).
+    lecture: tuple[str, str, str] | None = None
 
 
 @dataclass

@@ -31,9 +31,11 @@ from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
+from apf_viz.lecture import MAX_LECTURE_BYTES, Lecture, parse_lecture
 from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
+from apf_viz.ui.lecturer import Lecturer, Reached
 from apf_viz.ui.presenter import SessionView, for_browser, present, present_run, stage_of
 from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_config import RunConfig
@@ -95,6 +97,7 @@ class Session:
         self.presenter = BrowserState()
         self._browsers: dict[Hashable, BrowserState] = {}
         self._presenter_of: Hashable | None = None
+        self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
 
     # ------------------------------------------------------------------ browsers
     def join(self, browser: Hashable) -> BrowserState:
@@ -564,6 +567,45 @@ class Session:
     def return_to_set_aside(self) -> None:
         """Back to the recorded steps the last branch dropped; Step then follows them."""
         self.run.return_to_set_aside()
+
+    # ------------------------------------------------------------------ a guided lecture
+    def start_lecture(self, lecture: Lecture | None) -> str:
+        """Follow ``lecture`` (None: stop following one) from its first stop."""
+        self.lecturer = Lecturer(self, lecture) if lecture is not None else None
+        self.screen.lecture = None
+        return self.next_stop() if lecture is not None else "no lecture: PageDown stops at the run's stages"
+
+    def load_lecture(self, filename: str, content: bytes) -> str:
+        """A lecture file uploaded (checked whole first: a bad one leaves the run and lecture as they are)."""
+        if len(content) > MAX_LECTURE_BYTES:
+            raise InputError(f"{filename}: file is too large (more than {MAX_LECTURE_BYTES:,} bytes)")
+        try:
+            text = content.decode("utf-8")
+        except UnicodeDecodeError:
+            raise InputError(f"{filename}: not UTF-8 text") from None
+        return self.start_lecture(parse_lecture(text, filename))
+
+    def next_stop(self) -> str:
+        """The lecture's next stop (PageDown): run to its condition; what happened, for a notification."""
+        if self.lecturer is None:
+            return "no lecture loaded"
+        return self._at_stop(self.lecturer.next(), "the lecture's last stop")
+
+    def previous_stop(self) -> str:
+        if self.lecturer is None:
+            return "no lecture loaded"
+        return self._at_stop(self.lecturer.previous(), "the lecture's first stop")
+
+    def _at_stop(self, reached: Reached | None, edge: str) -> str:
+        lecturer = self.lecturer
+        assert lecturer is not None
+        if reached is None:
+            return f"already at {edge}"
+        stop = lecturer.lecture.stops[reached.index]
+        where = f"{lecturer.lecture.title} · stop {reached.index + 1} of {len(lecturer.lecture.stops)}"
+        self.screen.lecture = (where, stop.title, stop.say)
+        said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
+        return said if reached.met else f"{said}; not reached: {reached.note}"
 
     def set_numbers(self, on: bool) -> None:
         with self.lock:

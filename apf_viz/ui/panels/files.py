@@ -45,6 +45,7 @@ class FilesFolder:
                 ("Upload pattern", s.load_pattern),
                 ("Upload trace", s.load_trace),
                 ("Upload schedule", s.load_schedule),
+                ("Upload lecture", s.load_lecture),
             ):
                 gui.add_upload_button(label, mime_type="*/*").on_upload(self._uploader(loader))
             for label, name, make in (

@@ -6,6 +6,7 @@ from __future__ import annotations
 from viser._messages import GuiSliderMark
 
 from apf_viz.demos import scenarios
+from apf_viz.lecture import lectures
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
 from apf_viz.ui.presenter import SessionView
@@ -34,6 +35,14 @@ class RunFolder:
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
             self._release = gui.add_html("")
             self._releases = 0
+            self.lecture = gui.add_dropdown(
+                "Lecture", ("—", *lectures()), initial_value="—",
+                hint="a guided lecture: PageDown / Next stop runs to each stop and shows its words",
+            )  # fmt: skip
+            self.lecture.on_update(ctx.from_browser(self._on_lecture, "Lecture"))
+            self.words = gui.add_markdown("")
+            self.stops = gui.add_button_group("Stops", ("Previous stop", "Next stop"), visible=False)
+            self.stops.on_click(ctx.guard(self._on_stop, "Lecture"))
             self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
             self.controls.on_click(self._on_control)
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
@@ -74,10 +83,24 @@ class RunFolder:
             self.ctx.session.seek(step)
 
     def _on_demo(self, event) -> None:
-        """A ready scenario; what it shows stays under the dropdown, for the room to read."""
+        """A ready scenario; what it shows stays under the dropdown, for the room to read. Picking one
+        leaves a lecture being followed."""
         if self.demo.value != "—":
+            if self.ctx.session.lecturer is not None:
+                self.ctx.session.start_lecture(None)
             self.ctx.session.load_scenario(self.demo.value)
             self.release_focus()
+
+    def _on_lecture(self, event) -> str:
+        """A shipped lecture from the list (never a path), from its first stop; "—" leaves it."""
+        name = self.lecture.value
+        said = self.ctx.session.start_lecture(lectures()[name] if name != "—" else None)
+        self.release_focus()
+        return said
+
+    def _on_stop(self, event) -> str:
+        s = self.ctx.session
+        return s.next_stop() if event.target.value == "Next stop" else s.previous_stop()
 
     def release_focus(self) -> None:
         """Take the keyboard focus off the panel's fields in this browser, so that its keys drive the run."""
@@ -120,10 +143,23 @@ class RunFolder:
         if not view.scenario_note and self.demo.value != "—":
             self.demo.value = "—"  # another run replaced the scenario
         self.banner.content = view.banner
+        self._refresh_lecture(view)
         fatal = view.fatal[1] is not None
         if self.fatal.visible != fatal:
             self.fatal.visible = fatal
         self._refresh_trace(view)
+
+    def _refresh_lecture(self, view: SessionView) -> None:
+        words = ""
+        if view.lecture is not None:
+            where, title, say = view.lecture
+            words = f"<small>{where}</small>  \n**{symbol_html(title)}**  \n{symbol_html(say)}"
+        if self.words.content != words:
+            self.words.content = words
+        if self.stops.visible != (view.lecture is not None):
+            self.stops.visible = view.lecture is not None
+        if view.lecture is None and self.lecture.value != "—":  # the lecture was left
+            self.lecture.value = "—"
 
     def _refresh_trace(self, view: SessionView) -> None:
         following = view.trace_position is not None

@@ -15,8 +15,8 @@ SHORTCUTS = (
     ("Play / Pause", "space", "play the run, or pause it"),
     ("Step", "enter", "one event (Manual: the selected robot's next phase)"),
     ("Back", "backspace", "one event back"),
-    ("Next stage", "pagedown", "run until the algorithm's stage changes"),
-    ("Previous stage", "pageup", "back to where the previous stage began"),
+    ("Next stage", "pagedown", "run until the algorithm's stage changes (a lecture: its next stop)"),
+    ("Previous stage", "pageup", "back to where the previous stage began (a lecture: its previous stop)"),
     ("Next move", "M", "run until some robot moves"),
     ("Frame run", "F", "point this browser's camera at the whole run"),
 )  # and P, presentation mode (ui/panels/presentation.py)
@@ -32,14 +32,23 @@ class Shortcuts:
             "Play / Pause": lambda e: ctx.session.toggle_play(),
             "Step": ctx.step,
             "Back": lambda e: ctx.session.back(),
-            "Next stage": lambda e: self._stop(ctx, ctx.session.run_until("stage")),
-            "Previous stage": lambda e: self._stop(ctx, ctx.session.back_to_stage()),
+            "Next stage": lambda e: self._next(ctx, forward=True),
+            "Previous stage": lambda e: self._next(ctx, forward=False),
             "Next move": lambda e: ctx.session.run_until("move"),
             "Frame run": lambda e: ctx.frame(e.client) if e.client is not None else None,
         }
         for label, key, text in SHORTCUTS:
             command = gui.add_command(label, description=text, hotkey=key)
             command.on_trigger(ctx.guard(actions[label], NOTE_TITLES.get(label, label)))
+
+    def _next(self, ctx: PanelContext, forward: bool) -> str | None:
+        """PageDown / PageUp: a guided lecture's next or previous stop when one is loaded, else the run's
+        next or previous stage."""
+        s = ctx.session
+        if s.lecturer is not None:
+            said = s.next_stop() if forward else s.previous_stop()
+            return None if ctx.presenting() and "not reached" not in said else said
+        return self._stop(ctx, s.run_until("stage") if forward else s.back_to_stage())
 
     @staticmethod
     def _stop(ctx: PanelContext, said: str) -> str | None:

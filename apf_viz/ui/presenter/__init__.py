@@ -105,6 +105,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         playing=run.playing,
         why_text=why_markdown(None),
         paper_decision=story.last_decision(e),
+        lecture=screen.lecture,
     )
     view = replace(
         view, paper_text=paper_html(pseudocode_of(e.algorithm), view.paper_decision, view.algorithm)

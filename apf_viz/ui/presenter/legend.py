@@ -167,8 +167,16 @@ def lecture_html(view: SessionView) -> str:
             f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(verdict)}</div>'
             f'<div style="color:#444;font-size:0.9em">{html.escape(words)}</div>'
         )
+    words = ""
+    if view.lecture is not None:  # a guided lecture: its stop's words first, large
+        where, title, say = view.lecture
+        words = (
+            f'<div style="color:#666;font-size:0.85em">{html.escape(where)}</div>'
+            f'<div style="font-size:1.25em;font-weight:bold">{symbol_html(title)}</div>'
+            f'<div style="margin-bottom:6px">{symbol_html(say)}</div>'
+        )
     return (
-        f'<div style="font-size:1.1em;line-height:1.3">'
+        f'<div style="font-size:1.1em;line-height:1.3">{words}'
         f"<div><b>{symbol_html(view.stage)}</b></div>"
         f"<div>Event {view.event} · {last}</div>{outcome}"
         f'<div style="margin-top:6px">{lights}</div></div>'

@@ -113,6 +113,7 @@ class SessionView:
     # else the run's last Compute — and the panel's HTML.
     paper_decision: tuple[int, str] | None = None
     paper_text: str = ""
+    lecture: tuple[str, str, str] | None = None  # a guided lecture's stop: (where, title, words)
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection

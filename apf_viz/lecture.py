@@ -1,0 +1,103 @@
+"""A guided lecture: an ordered list of stops, each naming a Demo scenario (or going on with the run),
+a condition to run to, what to select and compare, and the words to say. A pydantic model read from JSON
+(shipped examples in ``demo_patterns/lectures/``, user files uploadable); a stop names scenarios and
+algorithms only through the built-in lists, never a path or code. :class:`~apf_viz.ui.lecturer.Lecturer`
+walks a session through it."""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from apf_viz.core.formats import InputError, parse_json_model, read_text
+from apf_viz.demos import demo_files, scenarios
+
+MAX_LECTURE_BYTES = 1_000_000
+MAX_EVENT = 10_000_000  # a stop runs at most this far (a lecture is checked the evening before)
+
+Outcome = Literal["formed", "collision", "stuck", "limit", "end"]  # "end": the run can go no further
+
+
+class Until(BaseModel):
+    """What a stop runs to: exactly one of an event number, a stage (words of the algorithm's stage
+    name), the first time a rule id fires (``A1.off.terminal``; a part of a composite id counts) or an
+    outcome."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    event: int | None = Field(default=None, ge=0, le=MAX_EVENT)
+    stage: str | None = Field(default=None, min_length=1, max_length=200)
+    rule: str | None = Field(default=None, min_length=1, max_length=120)
+    outcome: Outcome | None = None
+
+    @model_validator(mode="after")
+    def _exactly_one(self) -> Until:
+        given = [k for k in ("event", "stage", "rule", "outcome") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of event, stage, rule, outcome")
+        return self
+
+    def describe(self) -> str:
+        if self.event is not None:
+            return f"event {self.event}"
+        if self.stage is not None:
+            return f"the stage “{self.stage}”"
+        if self.rule is not None:
+            return f"rule {self.rule} fires"
+        return f"the outcome {self.outcome}"
+
+
+class Stop(BaseModel):
+    """One stop: where (a Demo scenario, else the run as the previous stop left it), until when, what
+    to select or compare, and the words (a few sentences; the paper's symbols as ``L_1``, ``H_L^O``)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    title: str = Field(min_length=1, max_length=120)
+    say: str = Field(min_length=1, max_length=2000)
+    scenario: str | None = Field(default=None, max_length=120)
+    until: Until | None = None
+    select: int | None = Field(default=None, ge=0, le=100_000)
+    compare: str | None = Field(default=None, max_length=200)
+
+    @model_validator(mode="after")
+    def _known_scenario(self) -> Stop:
+        if self.scenario is not None and self.scenario not in scenarios():
+            raise ValueError(f"no Demo scenario called {self.scenario[:80]!r}")
+        return self
+
+
+class Lecture(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    format: Literal["apf-viz-lecture"]
+    version: Literal[1]
+    title: str = Field(min_length=1, max_length=200)
+    stops: list[Stop] = Field(min_length=1, max_length=200)
+
+    @model_validator(mode="after")
+    def _starts_somewhere(self) -> Lecture:
+        if self.stops[0].scenario is None:
+            raise ValueError("stops[0]: the first stop names a scenario (the lecture's start)")
+        return self
+
+
+def parse_lecture(text: str, where: str = "lecture") -> Lecture:
+    """A lecture from JSON text; every problem one line naming the field (``stops[3].until: …``)."""
+    return parse_json_model(Lecture, text, where)
+
+
+def load_lecture(path: Path | str) -> Lecture:
+    return parse_lecture(read_text(path, MAX_LECTURE_BYTES), str(path))
+
+
+@cache
+def lectures() -> dict[str, Lecture]:
+    """The shipped lectures, by title, in file-name order."""
+    out: dict[str, Lecture] = {}
+    for path in sorted(demo_files("lectures").values()):
+        lecture = load_lecture(path)
+        if lecture.title in out:
+            raise InputError(f"{path}: a second lecture called {lecture.title!r}")
+        out[lecture.title] = lecture
+    return out

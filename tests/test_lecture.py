@@ -1,0 +1,103 @@
+"""Guided lectures (issue #24): the file format, the stops a session walks through, and the check a
+lecturer runs the evening before."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from apf_viz.cli import main
+from apf_viz.core.formats import InputError
+from apf_viz.demos import demo_files
+from apf_viz.lecture import lectures, parse_lecture
+from apf_viz.ui.app import demo_session
+
+SHIPPED = demo_files("lectures")
+
+
+def lecture_json(**stop) -> str:
+    first = {"title": "start", "say": "words", "scenario": "Heart from 10 robots"}
+    stops = [first] + ([{"title": "next", "say": "more", **stop}] if stop else [])
+    return json.dumps({"format": "apf-viz-lecture", "version": 1, "title": "t", "stops": stops})
+
+
+@pytest.mark.parametrize("name", sorted(SHIPPED))
+def test_each_shipped_lecture_passes_the_check(name, capsys):
+    assert main(["lecture", "check", str(SHIPPED[name])]) == 0
+    out = capsys.readouterr().out
+    assert "NOT" not in out and out.strip().endswith("stops reached")
+
+
+def test_the_shipped_lectures_are_the_issues_two_at_least():
+    assert {"The algorithm in 12 stops", "Where the paper breaks under ASYNC"} <= set(lectures())
+    assert len(lectures()["The algorithm in 12 stops"].stops) == 12
+
+
+def test_a_stop_that_is_never_reached_fails_the_check_with_exit_1(tmp_path, capsys):
+    bad = tmp_path / "late.json"
+    bad.write_text(lecture_json(until={"stage": "a stage no algorithm names"}))
+    assert main(["lecture", "check", str(bad)]) == 1
+    out = capsys.readouterr().out
+    assert "NOT stop 2" in out and "the run ended (formed)" in out
+
+
+@pytest.mark.parametrize(
+    ("stop", "said"),
+    [
+        (
+            {"until": {"event": 3, "stage": "x"}},
+            "stops[1].until: give exactly one of event, stage, rule, outcome",
+        ),
+        ({"scenario": "../../etc/passwd"}, "stops[1]: no Demo scenario called '../../etc/passwd'"),
+        ({"until": {"outcome": "exploded"}}, "stops[1].until.outcome:"),
+        ({"select": -1}, "stops[1].select:"),
+        ({"script": "rm -rf /"}, "stops[1].script:"),
+    ],
+)
+def test_a_malformed_lecture_is_one_line_naming_the_field_and_exit_2(tmp_path, capsys, stop, said):
+    bad = tmp_path / "bad.json"
+    bad.write_text(lecture_json(**stop))
+    with pytest.raises(SystemExit) as exit_:
+        main(["lecture", "check", str(bad)])
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and said in err and "Traceback" not in err
+
+
+def test_next_and_previous_stop_walk_the_session_and_replay_from_the_scenario():
+    s = demo_session()
+    s.start_lecture(lectures()["The algorithm in 12 stops"])
+    assert s.screen.lecture[0] == "The algorithm in 12 stops · stop 1 of 12"
+    events = []
+    for _ in range(4):
+        s.next_stop()
+        events.append(s.engine.state.events)
+    assert events == sorted(events) and s.screen.lecture[0].endswith("stop 5 of 12")
+    s.previous_stop()  # replayed from the heart's start: the same event as when it was reached
+    assert s.engine.state.events == events[-2] and s.screen.lecture[0].endswith("stop 4 of 12")
+    assert s.view().lecture == s.screen.lecture  # the view carries the words to the caption
+    s.start_lecture(None)
+    assert s.view().lecture is None
+
+
+def test_an_uploaded_lecture_that_is_malformed_keeps_the_run_and_the_lecture():
+    s = demo_session()
+    s.start_lecture(lectures()["The algorithm in 12 stops"])
+    s.next_stop()
+    before = (s.engine.state.events, s.screen.lecture)
+    with pytest.raises(InputError, match=r"mine\.json: stops"):
+        s.load_lecture("mine.json", lecture_json(until={}).encode())
+    with pytest.raises(InputError, match="not UTF-8"):
+        s.load_lecture("mine.json", b"\xff\xfe")
+    assert (s.engine.state.events, s.screen.lecture) == before
+    said = s.load_lecture("mine.json", lecture_json(until={"rule": "A1.off.terminal"}).encode())
+    assert said.startswith("stop 1") and s.screen.lecture[0] == "t · stop 1 of 2"
+
+
+def test_parse_lecture_refuses_a_first_stop_without_a_scenario():
+    text = json.dumps(
+        {"format": "apf-viz-lecture", "version": 1, "title": "t", "stops": [{"title": "a", "say": "b"}]}
+    )
+    with pytest.raises(InputError, match="the first stop names a scenario"):
+        parse_lecture(text)
