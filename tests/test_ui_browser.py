@@ -992,3 +992,42 @@ def test_the_paper_panel_highlights_the_line_of_a_phase_2_decision_beside_the_ca
     assert block.lines[i].text.split(" ")[0] in hit.inner_text()
     shot(page, "paper-phase2")
     page.close()
+
+
+def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
+    """The shipped lecture from the Lecture dropdown, then PageDown to its last stop in presentation mode:
+    each stop's words on the canvas and the whole run in view (screenshots: test-output/lecture12-*)."""
+    from apf_viz.lecture import lectures
+    from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
+    from apf_viz.ui.presenter.legend import symbol_html
+
+    lecture = lectures()["The algorithm in 12 stops"]
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    page.set_default_timeout(60_000)
+    page.goto(f"http://127.0.0.1:{app.port}")
+    page.get_by_label("Event").wait_for()
+    wait_for(lambda: len(app.screens) == 1)
+    (cid,) = app.screens
+    screen = app.screens[cid]
+    page.get_by_role("combobox", name="Lecture").click()
+    page.get_by_role("option", name=lecture.title).click()
+    wait_for(lambda: app.session.screen.lecture is not None)
+    page.wait_for_function("document.activeElement === document.body")  # the keys are the lecture's
+    page.keyboard.press("p")
+    wait_for(lambda: screen.panels.presenting)
+    for i, stop in enumerate(lecture.stops):
+        if i:
+            page.keyboard.press("PageDown")
+        wait_for(lambda i=i: app.session.lecturer.position == i)
+        caption = screen.panels.presentation.html
+        wait_for(lambda stop=stop, caption=caption: symbol_html(stop.title) in caption.content)
+        app.request_render()
+        time.sleep(1.0)
+        cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
+        assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], stop.title
+        shot(page, f"lecture12-{i + 1:02d}")
+    assert app.session.engine.outcome == "formed"
+    page.keyboard.press("PageUp")  # back one stop: replayed from the heart's start
+    wait_for(lambda: app.session.lecturer.position == len(lecture.stops) - 2)
+    assert app.session.engine.outcome is None
+    page.close()
