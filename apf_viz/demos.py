@@ -21,11 +21,14 @@ def demo_dir() -> Path:
     return shipped if shipped.is_dir() else _PACKAGE.parent / "demo_patterns"
 
 
+NOT_PATTERNS = ("scenarios.json", "figures.json")  # lists of demo_patterns/, not patterns
+
+
 def demo_files(sub: str = "", suffix: str = ".json") -> dict[str, Path]:
     """The demo files of ``demo_patterns/`` (or of its sub-folder ``sub``), by name without the suffix.
-    The scenario list itself is not a pattern."""
+    The scenario and figure lists are not patterns."""
     folder = demo_dir() / sub if sub else demo_dir()
-    return {p.stem: p for p in sorted(folder.glob(f"*{suffix}")) if p.name != "scenarios.json"}
+    return {p.stem: p for p in sorted(folder.glob(f"*{suffix}")) if p.name not in NOT_PATTERNS}
 
 
 class Scenario(BaseModel):

@@ -13,7 +13,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from apf_viz.core.formats import InputError, parse_json_model, read_text
-from apf_viz.demos import demo_files, scenarios
+from apf_viz.demos import demo_dir, demo_files, scenarios
 
 MAX_LECTURE_BYTES = 1_000_000
 MAX_EVENT = 10_000_000  # a stop runs at most this far (a lecture is checked the evening before)
@@ -101,3 +101,39 @@ def lectures() -> dict[str, Lecture]:
             raise InputError(f"{path}: a second lecture called {lecture.title!r}")
         out[lecture.title] = lecture
     return out
+
+
+class Figure(BaseModel):
+    """One of the paper's figures as a scenario: the Demo scenario that reproduces it, the event at which
+    its picture holds, the robots' lights then (how many show each; what the caption describes) and the
+    caption, in the paper's words."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    label: str
+    caption: str
+    scenario: str
+    event: int = Field(ge=0, le=MAX_EVENT)
+    lights: dict[str, int]
+
+    def as_lecture(self) -> Lecture:
+        """A one-stop lecture: its caption on screen as a stop's words."""
+        stop = Stop(
+            title=f"Figure “{self.label}”",
+            say=self.caption,
+            scenario=self.scenario,
+            until=Until(event=self.event),
+        )
+        return Lecture(format="apf-viz-lecture", version=1, title="The paper's figures", stops=[stop])
+
+
+class _Figures(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    note: str = ""
+    figures: list[Figure]
+
+
+@cache
+def figures() -> dict[str, Figure]:
+    """The paper's figures reproduced (``demo_patterns/figures.json``), by label, in the paper's order."""
+    parsed = _Figures.model_validate_json((demo_dir() / "figures.json").read_text(encoding="utf-8"))
+    return {f.label: f for f in parsed.figures}

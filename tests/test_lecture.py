@@ -101,3 +101,17 @@ def test_parse_lecture_refuses_a_first_stop_without_a_scenario():
     )
     with pytest.raises(InputError, match="the first stop names a scenario"):
         parse_lecture(text)
+
+
+@pytest.mark.parametrize("label", list(__import__("apf_viz.lecture", fromlist=["figures"]).figures()))
+def test_each_figure_of_the_paper_holds_at_its_stated_event(label):
+    from collections import Counter
+
+    from apf_viz.lecture import figures
+
+    figure = figures()[label]
+    s = demo_session()
+    said = s.start_lecture(figure.as_lecture())
+    assert "not reached" not in said and s.engine.state.events == figure.event
+    assert dict(Counter(s.engine.state.lights)) == figure.lights, figure.caption
+    assert s.screen.lecture[2] == figure.caption  # the caption on screen
