@@ -115,3 +115,14 @@ def test_each_figure_of_the_paper_holds_at_its_stated_event(label):
     assert "not reached" not in said and s.engine.state.events == figure.event
     assert dict(Counter(s.engine.state.lights)) == figure.lights, figure.caption
     assert s.screen.lecture[2] == figure.caption  # the caption on screen
+
+
+def test_the_example_in_docs_lectures_passes_the_check(tmp_path, capsys):
+    import re
+    from pathlib import Path
+
+    doc = (Path(__file__).parents[1] / "docs" / "LECTURES.md").read_text(encoding="utf-8")
+    example = tmp_path / "example.json"
+    example.write_text(re.search(r"```json\n(.*?)```", doc, re.S).group(1))
+    assert main(["lecture", "check", str(example)]) == 0
+    assert "3 of 3 stops reached" in capsys.readouterr().out
