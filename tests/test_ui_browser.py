@@ -6,6 +6,7 @@ also read the shared Session to check that a click reached the engine.
 
 from __future__ import annotations
 
+import html
 import json
 import time
 from collections.abc import Iterator
@@ -1030,4 +1031,31 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     page.keyboard.press("PageUp")  # back one stop: replayed from the heart's start
     wait_for(lambda: app.session.lecturer.position == len(lecture.stops) - 2)
     assert app.session.engine.outcome is None
+    page.close()
+
+
+def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app):
+    import io
+    import zipfile
+
+    from apf_viz.lecture import lectures
+
+    lecture = lectures()["Where the paper breaks under ASYNC"]
+    page = open_page(browser, app)
+    page.get_by_role("combobox", name="Lecture").click()
+    page.get_by_role("option", name=lecture.title).click()
+    wait_for(lambda: app.session.screen.lecture is not None)
+    open_folder(page, "Files")
+    with page.expect_download(timeout=120_000) as download:
+        page.get_by_role("button", name="Export lecture").click()
+    archive = zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
+    names = sorted(archive.namelist())
+    assert names == sorted(["index.html", *(f"stop-{i:02d}.png" for i in range(1, len(lecture.stops) + 1))])
+    index = archive.read("index.html").decode()
+    assert all(html.escape(stop.title) in index for stop in lecture.stops)
+    slide = iio.imread(archive.read("stop-02.png"), extension=".png")
+    canvas = page.locator("canvas").first.bounding_box()
+    assert slide.shape[1] > canvas["width"] + 200  # the picture with its legend beside it
+    (OUT / "lecture-export-stop-02.png").write_bytes(archive.read("stop-02.png"))
+    assert app.session.lecturer.position == 0  # back where the lecture stood
     page.close()

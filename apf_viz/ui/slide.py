@@ -27,7 +27,8 @@ SOFT = (90, 90, 90)
 
 @dataclass(frozen=True)
 class Entry:
-    """One legend line: a swatch (its colour and shape: "disc", "ring", "square", "burst") and words."""
+    """One legend line: a swatch (its colour and shape: "disc", "ring", "square", "burst", or "none" for
+    a mark the canvas writes as a word) and words."""
 
     color: tuple[int, int, int]
     shape: str
@@ -60,6 +61,8 @@ def _wrap(draw: ImageDraw.ImageDraw, text: str, face, width: int) -> list[str]:
 
 def _swatch(draw: ImageDraw.ImageDraw, entry: Entry, x: int, y: int, size: int) -> None:
     box = (x, y, x + size, y + size)
+    if entry.shape == "none":  # a mark the canvas writes as a word: the words say it
+        return
     if entry.shape == "disc":
         draw.ellipse(box, fill=entry.color, outline=(50, 50, 50), width=max(1, size // 10))
     elif entry.shape == "ring":

@@ -10,7 +10,8 @@ from collections.abc import Callable
 from apf_viz.core.formats import InputError
 from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
-from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.lecture_export import LectureExport
+from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import slide_caption, slide_legend
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
@@ -64,6 +65,12 @@ class FilesFolder:
             )
             self.record = gui.add_button("Record GIF")
             self.record.on_click(self._on_record)
+            gui.add_button(
+                "Export lecture",
+                hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and an "
+                "HTML page of them, in one zip; keep your hands off the run meanwhile",
+            ).on_click(self._on_export)
+        self.exporting: LectureExport | None = None
 
     @staticmethod
     def _demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
@@ -132,6 +139,33 @@ class FilesFolder:
         client.send_file_download(f"apf-viz-events-{first}-{self._event()}.gif", gif, save_immediately=True)
         if why:  # stopped early: the browser stopped answering
             client.add_notification("Recording stopped", why, color="red", auto_close_seconds=8.0)
+
+    def _on_export(self, event) -> None:
+        client = event.client
+        if client is None:
+            return
+        if self.ctx.session.lecturer is None:
+            tell(client, "Export lecture", "pick a Lecture (Run) or upload one first", error=True)
+            return
+        if self.exporting is not None:
+            tell(client, "Export lecture", "an export is running: wait for its zip")
+            return
+        n = len(self.ctx.session.lecturer.lecture.stops)
+        tell(client, "Export lecture", f"{n} stops: each is reached and drawn, about a second each")
+        self.exporting = LectureExport(
+            self.ctx.session,
+            client,
+            self.ctx.browser,
+            self.ctx.changed,
+            lambda z, why: self._exported(client, z, why),
+        )
+
+    def _exported(self, client, archive: bytes | None, why: str) -> None:
+        self.exporting = None
+        if archive is None:
+            tell(client, "Export lecture failed", why, error=True)
+            return
+        client.send_file_download("lecture.zip", archive, save_immediately=True)
 
     def refresh(self, view: SessionView) -> None:
         pass  # nothing here follows the run

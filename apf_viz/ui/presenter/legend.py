@@ -196,7 +196,10 @@ def slide_legend(view: SessionView) -> list[Entry]:
         (view.selected is not None, Entry(c["selected"], "ring", f"selected: robot {view.selected}")),
         (bool(view.ghosts), Entry(c["ghost"], "ring", "ghost: where the selected robot saw a robot")),
         (bool(view.hidden), Entry(c["hidden"], "disc", "greyed: hidden from the selected robot")),
-        (bool(view.stale_holders), Entry(c["ghost"], "square", "“stale”: acts on an out-of-date snapshot")),
+        (
+            bool(view.stale_holders),
+            Entry(c["ghost"], "none", "“stale” beside a robot: it holds an out-of-date snapshot"),
+        ),
         (view.collision is not None, Entry(c["collision"], "burst", "collision")),
         (bool(view.never_act), Entry(c["never"], "square", "will never act")),
     )
