@@ -1014,8 +1014,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     page.get_by_role("option", name=lecture.title).click()
     wait_for(lambda: app.session.screen.lecture is not None)
     page.wait_for_function("document.activeElement === document.body")  # the keys are the lecture's
-    page.keyboard.press("p")
-    wait_for(lambda: screen.panels.presenting)
+    wait_for(lambda: screen.panels.presenting)  # a lecture opens in presentation mode
     for i, stop in enumerate(lecture.stops):
         if i:
             page.keyboard.press("PageDown")
@@ -1045,6 +1044,11 @@ def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app)
     page.get_by_role("combobox", name="Lecture").click()
     page.get_by_role("option", name=lecture.title).click()
     wait_for(lambda: app.session.screen.lecture is not None)
+    (screen,) = app.screens.values()
+    wait_for(lambda: screen.panels.presenting)  # a lecture opens in presentation mode: P for the panel
+    page.wait_for_function("document.activeElement === document.body")
+    page.keyboard.press("p")
+    wait_for(lambda: not screen.panels.presenting)
     open_folder(page, "Files")
     with page.expect_download(timeout=120_000) as download:
         page.get_by_role("button", name="Export lecture").click()
@@ -1054,8 +1058,10 @@ def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app)
     index = archive.read("index.html").decode()
     assert all(html.escape(stop.title) in index for stop in lecture.stops)
     slide = iio.imread(archive.read("stop-02.png"), extension=".png")
-    canvas = page.locator("canvas").first.bounding_box()
-    assert slide.shape[1] > canvas["width"] + 200  # the picture with its legend beside it
+    legend = slide[:, int(slide.shape[1] * 0.74) :].astype(np.int32)  # the legend beside the picture
+    for light in ("off", "leader"):
+        color = np.array(app.session.view().legend[light].color)
+        assert (np.abs(legend - color).max(axis=2) <= 2).sum() > 20, light
     (OUT / "lecture-export-stop-02.png").write_bytes(archive.read("stop-02.png"))
     assert app.session.lecturer.position == 0  # back where the lecture stood
     page.close()

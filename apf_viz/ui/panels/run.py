@@ -92,10 +92,13 @@ class RunFolder:
             self.release_focus()
 
     def _on_lecture(self, event) -> str:
-        """A shipped lecture from the list (never a path), from its first stop; "—" leaves it."""
+        """A shipped lecture from the list (never a path), from its first stop, in presentation mode (its
+        words large on the canvas); "—" leaves it."""
         name = self.lecture.value
         said = self.ctx.session.start_lecture(lectures()[name] if name != "—" else None)
         self.release_focus()
+        if name != "—" and not self.ctx.presenting():  # the words large on the canvas; P brings the panel
+            self.ctx.toggle_presentation(event)
         return said
 
     def _on_stop(self, event) -> str:
