@@ -126,3 +126,19 @@ def test_the_example_in_docs_lectures_passes_the_check(tmp_path, capsys):
     example.write_text(re.search(r"```json\n(.*?)```", doc, re.S).group(1))
     assert main(["lecture", "check", str(example)]) == 0
     assert "3 of 3 stops reached" in capsys.readouterr().out
+
+
+def test_serve_with_a_bad_lecture_stops_before_the_ui_with_one_line(tmp_path):
+    import subprocess
+    import sys
+
+    bad = tmp_path / "bad.json"
+    bad.write_text(lecture_json(until={"outcome": "exploded"}))
+    done = subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", "serve", "--port", "0", "--lecture", str(bad)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0 and "stops[1].until.outcome" in done.stderr

@@ -227,6 +227,17 @@ def test_a_malformed_upload_shows_a_notification_and_keeps_the_run(browser, app,
     page.get_by_text("duplicate pattern point at (0, 0)").wait_for()
     shot(page, "bad-upload")
     assert event_value(page) == 1 and app.session.view().steps == 1
+    lecture = tmp_path / "lecture.json"  # a lecture whose second stop runs to two things at once
+    first = {"title": "a", "say": "b", "scenario": "Heart from 10 robots"}
+    second = {"title": "c", "say": "d", "until": {"event": 3, "rule": "A1.off.terminal"}}
+    lecture.write_text(
+        json.dumps({"format": "apf-viz-lecture", "version": 1, "title": "t", "stops": [first, second]})
+    )
+    with page.expect_file_chooser() as chooser:
+        page.get_by_role("button", name="Upload lecture").click()
+    chooser.value.set_files(str(lecture))
+    page.get_by_text("lecture.json: stops[1].until: give exactly one of").wait_for()
+    assert app.session.view().steps == 1 and app.session.lecturer is None  # the run and no lecture kept
     page.close()
 
 
