@@ -1026,6 +1026,10 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     wait_for(lambda: app.session.screen.lecture is not None)
     page.wait_for_function("document.activeElement === document.body")  # the keys are the lecture's
     wait_for(lambda: screen.panels.presenting)  # a lecture opens in presentation mode
+    time.sleep(0.5)
+    assert (
+        page.locator(".mantine-Notification-root").filter(has_text="stop 1").count() == 0
+    )  # the caption says it
     for i, stop in enumerate(lecture.stops):
         if i:
             page.keyboard.press("PageDown")
