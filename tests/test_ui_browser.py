@@ -56,13 +56,21 @@ def app() -> Iterator[App]:
     a.stop()
 
 
-def open_page(browser, app: App):
-    page = browser.new_page(viewport=VIEWPORT)
+def open_page(browser, app: App, viewport: dict | None = None):
+    page = browser.new_page(viewport=viewport or VIEWPORT)
     page.set_default_timeout(60_000)  # waits for behaviour; a loaded machine is only slower
     page.goto(f"http://127.0.0.1:{app.port}")
     page.get_by_label("Event").wait_for()
     time.sleep(1.0)  # the first frames of the scene
     return page
+
+
+def projector_page(browser, app: App):
+    """A 1024×768 page, the only browser: (the page, its client id, its screen)."""
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    wait_for(lambda: len(app.screens) == 1)
+    (cid,) = app.screens
+    return page, cid, app.screens[cid]
 
 
 def open_folder(page, title: str) -> None:
@@ -790,13 +798,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
     while played.step():
         pass
     stops = [at for at, _ in played.run.stages.marks(played.engine.history, played.engine.history.length)]
-    page = browser.new_page(viewport={"width": 1024, "height": 768})
-    page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
-    page.get_by_label("Event").wait_for()
-    wait_for(lambda: len(app.screens) == 1)
-    (cid,) = app.screens
-    screen = app.screens[cid]
+    page, cid, screen = projector_page(browser, app)
     page.keyboard.press("p")
     wait_for(lambda: screen.panels.presenting)
     for i, at in enumerate(stops):
@@ -1014,13 +1016,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     from apf_viz.ui.presenter.legend import symbol_html
 
     lecture = lectures()["The algorithm in 12 stops"]
-    page = browser.new_page(viewport={"width": 1024, "height": 768})
-    page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
-    page.get_by_label("Event").wait_for()
-    wait_for(lambda: len(app.screens) == 1)
-    (cid,) = app.screens
-    screen = app.screens[cid]
+    page, cid, screen = projector_page(browser, app)
     page.get_by_role("combobox", name="Lecture").click()
     page.get_by_role("option", name=lecture.title).click()
     wait_for(lambda: app.session.screen.lecture is not None)

@@ -585,70 +585,63 @@ class SceneRenderer:
     # ------------------------------------------------------------------ why: the regions a rule tested
     def _why_regions(self, view: SessionView) -> None:
         """The selected robot's regions, translucent so robots stay visible: half planes and bands as
-        flat quads, lines as segments, each labelled. Re-made only when they change (a selection or a
-        decision), so a playing run pays nothing for them."""
+        flat quads, lines as segments, each in its own colour and labelled with the number the Why panel
+        gives it. Re-made only when they change (a selection or a decision), so a playing run pays
+        nothing for them."""
         regions = view.why.regions if view.why is not None else ()
         if self._last.get("/why") == (regions, None, None):
             return
         self._last["/why"] = (regions, None, None)
         for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line"))]:
             self._handles.pop(name).remove()  # type: ignore[attr-defined]
-        x0, y0, x1, y1 = self.bounds
-        box = (x0 - 3, y0 - 3, x1 + 3, y1 + 3)
         labels = []
         for i, mark in enumerate(regions):
-            tag = f"{i + 1} · {mark.label}"  # the number the Why panel gives it, beside its swatch
-            if isinstance(mark, Line):
-                seg = self._line(mark)
-                self._handles[f"/why/line{i}"] = self.scene.add_line_segments(
-                    f"{self.prefix}/why/line{i}",
-                    seg[:1].astype(np.float32),
-                    region_color(i),
-                    thickness=3.0,
-                    thickness_units="screen",
-                )
-                # Inside the framed run: the line itself runs on to the canvas's edge.
-                at = (
-                    (x1 - 3.0, float(seg[0, 1, 1]) + 0.15)
-                    if mark.axis == "y"
-                    else (float(seg[0, 1, 0]) + 0.2, y1)
-                )
-                labels.append((tag, (*at, 0.1)))
-            elif isinstance(mark, HalfPlane | Band):
-                lo, hi = self._extent(mark)
-                rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)
-                rect = (
-                    max(rect[0], box[0]),
-                    max(rect[1], box[1]),
-                    min(rect[2], box[2]),
-                    min(rect[3], box[3]),
-                )
-                if rect[0] >= rect[2] or rect[1] >= rect[3]:
-                    continue
-                vertices = np.array(
-                    [
-                        (rect[0], rect[1], 0.02),
-                        (rect[2], rect[1], 0.02),
-                        (rect[2], rect[3], 0.02),
-                        (rect[0], rect[3], 0.02),
-                    ],
-                    dtype=np.float32,
-                )
-                self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
-                    f"{self.prefix}/why/area{i}",
-                    vertices,
-                    np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
-                    color=region_color(i),
-                    opacity=REGION_OPACITY,
-                    side="double",
-                    cast_shadow=False,
-                    receive_shadow=False,
-                )
-                # The label inside the run's bounds, which the camera frames; the shading reaches beyond.
-                inner = (max(rect[0], x0), max(rect[1], y0), min(rect[2], x1), min(rect[3], y1))
-                inside = inner[0] < inner[2] and inner[1] < inner[3]
-                labels.append((tag, self._region_label_at(mark, inner if inside else rect)))
+            at = self._why_line(i, mark) if isinstance(mark, Line) else None
+            if isinstance(mark, HalfPlane | Band):
+                at = self._why_area(i, mark)
+            if at is not None:
+                labels.append((f"{i + 1} · {mark.label}", at))
         self._labels("/why/labels", labels)
+
+    def _why_line(self, i: int, mark: Line) -> tuple[float, float, float]:
+        """A tested line as a segment; its label's place, inside the framed run (the line runs on)."""
+        _, _, x1, y1 = self.bounds
+        seg = self._line(mark)
+        self._handles[f"/why/line{i}"] = self.scene.add_line_segments(
+            f"{self.prefix}/why/line{i}",
+            seg[:1].astype(np.float32),
+            region_color(i),
+            thickness=3.0,
+            thickness_units="screen",
+        )
+        if mark.axis == "y":
+            return (x1 - 3.0, float(seg[0, 1, 1]) + 0.15, 0.1)
+        return (float(seg[0, 1, 0]) + 0.2, y1, 0.1)
+
+    def _why_area(self, i: int, mark: HalfPlane | Band) -> tuple[float, float, float] | None:
+        """A tested half plane or band as a translucent quad clipped a little beyond the run; its
+        label's place inside the run's bounds, which the camera frames (None: nothing of it shows)."""
+        x0, y0, x1, y1 = self.bounds
+        box = (x0 - 3, y0 - 3, x1 + 3, y1 + 3)
+        lo, hi = self._extent(mark)
+        rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)
+        rect = (max(rect[0], box[0]), max(rect[1], box[1]), min(rect[2], box[2]), min(rect[3], box[3]))
+        if rect[0] >= rect[2] or rect[1] >= rect[3]:
+            return None
+        corners = [(rect[0], rect[1]), (rect[2], rect[1]), (rect[2], rect[3]), (rect[0], rect[3])]
+        self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
+            f"{self.prefix}/why/area{i}",
+            np.array([(x, y, 0.02) for x, y in corners], dtype=np.float32),
+            np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
+            color=region_color(i),
+            opacity=REGION_OPACITY,
+            side="double",
+            cast_shadow=False,
+            receive_shadow=False,
+        )
+        inner = (max(rect[0], x0), max(rect[1], y0), min(rect[2], x1), min(rect[3], y1))
+        inside = inner[0] < inner[2] and inner[1] < inner[3]
+        return self._region_label_at(mark, inner if inside else rect)
 
     def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:
         """The region's span on its axis, in scene units (a half plane reaches far; the caller clips)."""

@@ -72,11 +72,6 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         fatal=story.fatal_decisions(e, crash[2], list(run.config.robots), pts) if crash else ("", None),
         waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
-        trails=story.trails(e, _trail_moves(run, screen), pts) if running else (),
-        trail_setting=screen.trails,
-        stale_holders=tuple(stale_holders(e, list(run.config.robots), pts))
-        if running and e.k <= SIGHT_MARKS_UP_TO
-        else (),
         scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
         set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
@@ -86,15 +81,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         divergence=(split := screen.twin.divergence(e) if screen.twin is not None and running else None),
         diverged=split.robot if split is not None else None,
         trace_note=story.trace_note(run.trace_options),
-        timeline_marks=tuple(
-            sorted(
-                run.stages.marks(e.history, e.history.length)
-                + story.loop_marks(run.trace_options, e.history.length, run.config.scheduler),
-                key=lambda mark: mark[0],
-            )
-        )
-        if running
-        else (),
+        **_over_time(run, screen, pts) if running else {"trail_setting": screen.trails},
         **numbers,
         mode=screen.mode,
         draft_count=len(screen.editor.pattern) if screen.mode != "edit-robots" else len(screen.editor.robots),
@@ -116,6 +103,22 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
     at_end = position is not None and position[0] >= position[1]
     endless = story.endless_words(run.trace_options) if at_end and _walks(run) else ""
     return replace(view, **_sentences(view, crash[0] if crash else None, stuck, endless))
+
+
+def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> dict:
+    """What the run's history adds to its picture: trails, the stale marks, the timeline's marks."""
+    e = run.engine
+    stale = stale_holders(e, list(run.config.robots), pts) if e.k <= SIGHT_MARKS_UP_TO else []
+    length = e.history.length
+    marks = run.stages.marks(e.history, length) + story.loop_marks(
+        run.trace_options, length, run.config.scheduler
+    )
+    return {
+        "trails": story.trails(e, _trail_moves(run, screen), pts),
+        "trail_setting": screen.trails,
+        "stale_holders": tuple(stale),
+        "timeline_marks": tuple(sorted(marks, key=lambda mark: mark[0])),
+    }
 
 
 def _trail_moves(run: RunController, screen: SharedScreen) -> int:

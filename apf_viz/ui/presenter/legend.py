@@ -63,28 +63,10 @@ UPSIDE_DOWN = (
 )
 
 
-def legend_html(view: SessionView) -> str:
-    """Every mark the screen can show, in two columns: the algorithm's lights (their meaning on hover)
-    and overlays, then the engine's marks, each swatch drawn as the canvas draws it."""
-    cells = [
-        (
-            _swatch(style.color),
-            f"<b>{html.escape(light)}</b>"
-            + (f' <span style="color:#555">{symbol_html(style.meaning)}</span>' if style.meaning else ""),
-            style.meaning or "",
-        )
-        for light, style in view.legend.items()
-    ]
-    for mark in view.overlays.marks:  # in the colours the scene draws them
-        if isinstance(mark, Cells):
-            cells.append((_swatch(TARGET_COLORS[mark.style], "square"), symbol_html(mark.label), ""))
-        else:
-            color = (
-                getattr(mark, "color", None) or MARK_COLORS["frame" if isinstance(mark, Frame) else "line"]
-            )
-            cells.append((_swatch(color, "line"), symbol_html(mark.label), ""))
+def _engine_marks() -> list[tuple[str, str, str]]:
+    """The engine's marks, as (swatch, words, what hovering says): the same for every algorithm."""
     c = MARK_COLORS
-    cells += [
+    return [
         (_swatch(PHASE_COLORS["looked"], "ring"), "has looked", "holds a snapshot, has not computed"),
         (_swatch(PHASE_COLORS["computed"], "ring"), "has computed", "its light is set, its move pending"),
         (_swatch(c["last"], "ring"), "acted last", "the robot of the last event"),
@@ -122,6 +104,29 @@ def legend_html(view: SessionView) -> str:
         (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
         (_swatch(c["diverged"], "diamond"), "diverges here", "Compare: the robot whose event first differs"),
     ]
+
+
+def legend_html(view: SessionView) -> str:
+    """Every mark the screen can show, in two columns: the algorithm's lights (their meaning on hover)
+    and overlays, then the engine's marks, each swatch drawn as the canvas draws it."""
+    cells = [
+        (
+            _swatch(style.color),
+            f"<b>{html.escape(light)}</b>"
+            + (f' <span style="color:#555">{symbol_html(style.meaning)}</span>' if style.meaning else ""),
+            style.meaning or "",
+        )
+        for light, style in view.legend.items()
+    ]
+    for mark in view.overlays.marks:  # in the colours the scene draws them
+        if isinstance(mark, Cells):
+            cells.append((_swatch(TARGET_COLORS[mark.style], "square"), symbol_html(mark.label), ""))
+        else:
+            color = (
+                getattr(mark, "color", None) or MARK_COLORS["frame" if isinstance(mark, Frame) else "line"]
+            )
+            cells.append((_swatch(color, "line"), symbol_html(mark.label), ""))
+    cells += _engine_marks()
     row = "display:flex;align-items:center;gap:5px;min-width:0"
     clip = "white-space:nowrap;overflow:hidden;text-overflow:ellipsis"
     wide = ";grid-column:1 / -1"
