@@ -14,6 +14,7 @@ import urllib.request
 import venv
 from pathlib import Path
 
+from apf_viz.demos import NOT_PATTERNS
 from apf_viz.ui.app import free_port
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -65,10 +66,12 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
         [
             str(python),
             "-c",
-            "import json, apf_viz, apf_viz.demos as d; "
+            "import json, apf_viz, apf_viz.demos as d, apf_viz.lecture as l; "
+            "from apf_viz.algorithms.apf_opaque_grid import paper; "
             "print(json.dumps([apf_viz.__file__, str(d.DEMO_START), sorted(d.demo_files()), "
             "sorted(d.demo_files('starts')), [{r: p.is_file() for r, p in s.files().items()} "
-            "for s in d.scenarios().values()]]))",
+            "for s in d.scenarios().values()], sorted(l.lectures()), len(l.figures()), "
+            "paper.SOURCE.is_file()]))",
         ],
         cwd=elsewhere,
         env=env,
@@ -76,11 +79,19 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
         text=True,
     )
     assert probe.returncode == 0, probe.stderr
-    module, start, patterns, starts, scenario_files = json.loads(probe.stdout)
+    module, start, patterns, starts, scenario_files, shipped_lectures, figures, paper = json.loads(
+        probe.stdout
+    )
     assert Path(module).is_relative_to(env_dir)  # the installed copy, not this checkout
     assert Path(start).is_relative_to(env_dir) and Path(start).is_file()
     assert patterns == sorted(
-        p.stem for p in (ROOT / "demo_patterns").glob("*.json") if p.stem != "scenarios"
+        p.stem for p in (ROOT / "demo_patterns").glob("*.json") if p.name not in NOT_PATTERNS
+    )
+    # The paper on screen and its lectures ship too: the pseudocode, the figures, the lectures.
+    assert (
+        paper
+        and figures >= 20
+        and len(shipped_lectures) == len(list((ROOT / "demo_patterns" / "lectures").glob("*.json")))
     )
     assert scenario_files and all(all(found.values()) for found in scenario_files)  # traces shipped too
     assert starts == sorted(p.stem for p in (ROOT / "demo_patterns" / "starts").glob("*.json"))
