@@ -114,6 +114,8 @@ class Figure(BaseModel):
     scenario: str
     event: int = Field(ge=0, le=MAX_EVENT)
     lights: dict[str, int]
+    # What the caption says of where the robots stand, by name (tests/test_lecture.py checks each).
+    positions: tuple[str, ...] = ()
 
     def as_lecture(self) -> Lecture:
         """A one-stop lecture: its caption on screen as a stop's words."""

@@ -115,6 +115,62 @@ def test_each_figure_of_the_paper_holds_at_its_stated_event(label):
     assert "not reached" not in said and s.engine.state.events == figure.event
     assert dict(Counter(s.engine.state.lights)) == figure.lights, figure.caption
     assert s.screen.lecture[2] == figure.caption  # the caption on screen
+    pts, lights = s.engine.current_points(), list(s.engine.state.lights)
+    for claim in figure.positions:
+        assert POSITION_CLAIMS[claim](pts, lights, s), (label, claim)
+
+
+def _with(light, pts, lights):
+    return [p for p, lt in zip(pts, lights, strict=True) if lt == light]
+
+
+def _pair_on_one_vertical_line(light):
+    def holds(pts, lights, s):
+        pair = _with(light, pts, lights)
+        return len(pair) == 2 and pair[0][0] == pair[1][0]
+
+    return holds
+
+
+def _compact_line(pts, lights, s):
+    (lx, ly) = _with("leader", pts, lights)[0]
+    xs = sorted(x for x, y in _with("off", pts, lights) if y == ly)
+    return xs == list(range(lx + 1, lx + 1 + len(_with("off", pts, lights))))
+
+
+def _one_side(pts, lights, s):
+    (_, ly) = _with("leader", pts, lights)[0]
+    sides = {(y > ly) - (y < ly) for _, y in _with("off", pts, lights)}
+    return len(sides) == 1 and 0 not in sides
+
+
+def _robot_on_K(pts, lights, s):
+    from apf_viz.algorithms.apf_opaque_grid.portrayal import line_K
+
+    k = line_K(tuple(pts), tuple(lights))
+    return k is not None and any(y == k for _, y in pts)
+
+
+# The captions' words about positions, as checks of the configuration at the figure's event.
+POSITION_CLAIMS = {
+    "terminal1-left-of-the-rest": lambda pts, lights, s: all(
+        x < min(p[0] for p, lt in zip(pts, lights, strict=True) if lt != "terminal1")
+        for x, _ in _with("terminal1", pts, lights)
+    ),
+    "a-robot-on-K": _robot_on_K,
+    "terminal1-pair-on-one-vertical-line": _pair_on_one_vertical_line("terminal1"),
+    "decider-pair-on-one-vertical-line": _pair_on_one_vertical_line("decider"),
+    "others-on-one-side-of-the-leaders-row": _one_side,
+    "compact-line-beside-the-leader": _compact_line,
+    "the-pattern-formed": lambda pts, lights, s: s.engine.outcome == "formed",
+}
+
+
+def test_every_position_claim_of_a_figure_is_a_known_check():
+    from apf_viz.lecture import figures
+
+    claims = {c for f in figures().values() for c in f.positions}
+    assert claims and claims <= set(POSITION_CLAIMS)
 
 
 def test_the_example_in_docs_lectures_passes_the_check(tmp_path, capsys):
