@@ -141,13 +141,13 @@ def test_edit_robots_adds_flips_removes_and_rejects_an_unsolvable_start():
     s = session()
     s.set_mode("edit-robots")
     assert s.click((5, 5)) == "added robot (5, 5)"
-    assert s.click((5, 5)) == "robot (5, 5): y-axis flipped"
-    assert s.click((5, 5)) == "removed robot (5, 5)"
-    for cell in START:
-        s.click(cell)  # each becomes flipped
+    assert s.click((5, 5)) == "removed robot (5, 5)"  # one click, one change: flipping is its own tool
+    s.set_tool("flip")
+    s.click(START[0])
+    assert s.editor.y_up[s.editor.robots.index(START[0])] is False
+    s.set_tool("cell")
     s.click((0, 0))
-    s.click((0, 2))  # removes two robots: now (1, 0), (1, 3)
-    s.click((1, 0))
+    s.click((0, 2))  # removes two robots
     s.click((1, 0))  # removed
     s.editor.robots, s.editor.y_up = [(0, 0), (0, 1)], [True, True]
     s.editor.pattern = [(0, 0), (1, 0)]

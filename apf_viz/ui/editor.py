@@ -1,4 +1,5 @@
-"""Drafts of a start and a pattern, drawn by clicks, and what makes them a run (sizes, Theorem 1)."""
+"""Drafts of a start and a pattern, every change undoable, and what makes them a run (sizes, Theorem 1).
+The shapes themselves are pure functions (core/shapes.py); ui/studio.py turns gestures into them."""
 
 from __future__ import annotations
 
@@ -9,40 +10,103 @@ from apf_viz.core.grid import Point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
+UNDO_DEPTH = 200  # drafts kept for Undo
+
+Draft = tuple[tuple[Point, ...], tuple[bool, ...], tuple[Point, ...]]  # robots, their flips, pattern
+
 
 class Editor:
-    """The robots and pattern being drawn. Nothing here touches the run: the session starts a run from
-    the drafts once :meth:`problem` has nothing to say."""
+    """The robots and pattern being drawn, and their history (Undo / Redo). Nothing here touches the
+    run: the session starts a run from the drafts once :meth:`problem` has nothing to say."""
 
     def __init__(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> None:
         self.robots: list[Point] = [tuple(p) for p in robots]
         self.y_up: list[bool] = list(y_up)
         self.pattern: list[Point] = [tuple(p) for p in pattern]
+        self._undo: list[Draft] = []
+        self._redo: list[Draft] = []
+
+    # ------------------------------------------------------------------ history
+    def _draft(self) -> Draft:
+        return tuple(self.robots), tuple(self.y_up), tuple(self.pattern)
+
+    def _restore(self, draft: Draft) -> None:
+        robots, y_up, pattern = draft
+        self.robots, self.y_up, self.pattern = list(robots), list(y_up), list(pattern)
+
+    def _record(self) -> None:
+        """Keep the draft as it is before a change (a new change forgets what Redo had)."""
+        self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], self._draft()]
+        self._redo = []
+
+    def undo(self) -> str:
+        if not self._undo:
+            return "nothing to undo"
+        self._redo.append(self._draft())
+        self._restore(self._undo.pop())
+        return "undone"
+
+    def redo(self) -> str:
+        if not self._redo:
+            return "nothing to redo"
+        self._undo.append(self._draft())
+        self._restore(self._redo.pop())
+        return "redone"
+
+    # ------------------------------------------------------------------ changes
+    def set_pattern(self, cells: Sequence[Point], said: str) -> str:
+        """The pattern becomes ``cells`` (distinct, in drawing order); one Undo brings the old one back."""
+        cells = [tuple(p) for p in dict.fromkeys(cells)]
+        if cells == self.pattern:
+            return f"{said}: nothing changed"
+        self._record()
+        self.pattern = cells  # type: ignore[assignment]
+        return said
+
+    def set_robots(self, cells: Sequence[Point], said: str) -> str:
+        """The robots stand on ``cells``; a robot that stays keeps its flip, a new one has +y up."""
+        cells = [tuple(p) for p in dict.fromkeys(cells)]
+        if cells == self.robots:
+            return f"{said}: nothing changed"
+        flips = dict(zip(self.robots, self.y_up, strict=True))
+        self._record()
+        self.robots = cells  # type: ignore[assignment]
+        self.y_up = [flips.get(p, True) for p in cells]
+        return said
 
     def toggle_target(self, cell: Point) -> str:
         if cell in self.pattern:
-            self.pattern.remove(cell)
-            return f"removed target {cell}"
-        self.pattern.append(cell)
-        return f"added target {cell}"
+            return self.set_pattern([p for p in self.pattern if p != cell], f"removed target {cell}")
+        return self.set_pattern([*self.pattern, cell], f"added target {cell}")
 
-    def cycle_robot(self, cell: Point) -> str:
-        """Empty → robot (y up) → robot (y flipped) → empty."""
+    def toggle_robot(self, cell: Point) -> str:
+        if cell in self.robots:
+            return self.set_robots([p for p in self.robots if p != cell], f"removed robot {cell}")
+        return self.set_robots([*self.robots, cell], f"added robot {cell}")
+
+    def flip_robot(self, cell: Point) -> str:
+        """The adversary's choice for the robot there: its y-axis up or down."""
         if cell not in self.robots:
-            self.robots.append(cell)
-            self.y_up.append(True)
-            return f"added robot {cell}"
+            return f"no robot at {cell} to flip"
+        self._record()
         i = self.robots.index(cell)
-        if self.y_up[i]:
-            self.y_up[i] = False
-            return f"robot {cell}: y-axis flipped"
-        del self.robots[i]
-        del self.y_up[i]
-        return f"removed robot {cell}"
+        self.y_up[i] = not self.y_up[i]
+        return f"robot {cell}: +y {'up' if self.y_up[i] else 'down'}"
+
+    def move_robot(self, start: Point, end: Point) -> str:
+        """The robot at ``start`` to ``end`` in one action, its flip kept."""
+        if start not in self.robots:
+            return f"no robot at {start}"
+        if end in self.robots:
+            return f"{end} holds a robot already"
+        self._record()
+        self.robots[self.robots.index(start)] = end
+        return f"moved the robot at {start} to {end}"
 
     def clear_pattern(self) -> None:
-        self.pattern = []
+        self.set_pattern([], "cleared")
 
+    # ------------------------------------------------------------------ what the drafts make
     def axis(self) -> float | None:
         """The unsolvable symmetry axis of the drafted robots (Theorem 1), if any."""
         axis = unsolvable_axis(self.robots)

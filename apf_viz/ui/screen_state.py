@@ -9,6 +9,7 @@ from typing import Literal
 
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
+from apf_viz.ui.studio import Studio
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
 NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
@@ -25,6 +26,7 @@ class SharedScreen:
     scenario_note: str = ""  # what the Demo scenario being shown shows, until another run starts
     twin: Twin | None = None  # Compare: a second algorithm stepping with the run
     trails: int = 0  # draw each robot's last this-many moves (0: none)
+    studio: Studio = field(default_factory=Studio)  # Edit: the tool, its size and text, a gesture begun
     # A guided lecture's stop on screen: (the lecture and where in it, the stop's title, its words).
     lecture: tuple[str, str, str] | None = None
 

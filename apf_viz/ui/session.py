@@ -18,6 +18,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.algorithms import Factory
+from apf_viz.core import shapes
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
     InputError,
@@ -355,10 +356,8 @@ class Session:
                     f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
                     f"(|x|, |y| ≤ {COORD_LIMIT:,})"
                 )
-            if self.mode == "edit-pattern":
-                return self.editor.toggle_target(cell)
-            if self.mode == "edit-robots":
-                return self.editor.cycle_robot(cell)
+            if self.mode != "run":
+                return self.screen.studio.click(self.editor, self.mode, cell)
             r = self.robot_at(cell)
             state = self.browser(browser)
             if r is None:
@@ -398,6 +397,51 @@ class Session:
     def clear_pattern(self) -> None:
         with self.lock:
             self.editor.clear_pattern()
+
+    # ------------------------------------------------------------------ the pattern studio
+    def set_tool(self, tool: str) -> None:
+        with self.lock:
+            self.screen.studio.choose(tool)
+
+    def set_tool_size(self, size: float) -> None:
+        """The size of a placed shape (a ring's radius, a row's length): a whole number 1 .. 200."""
+        if (
+            not isinstance(size, int | float)
+            or size != size
+            or not float(size).is_integer()
+            or not 1 <= size <= 200
+        ):
+            raise InputError(f"size {size!r}: choose a whole number from 1 to 200")
+        with self.lock:
+            self.screen.studio.size = int(size)
+
+    def set_tool_text(self, text: str) -> None:
+        shapes.text(text, (0, 0))  # refuses a character the font has not, before anything changes
+        with self.lock:
+            self.screen.studio.text = text
+
+    def draw_box(self, a: Point, b: Point, erase: bool) -> str:
+        """A box dragged in an edit mode: filled, or (``erase``) emptied."""
+        with self.lock:
+            for cell in (a, b):
+                if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
+                    raise InputError(
+                        f"{cell} is outside the grid this tool supports (|x|, |y| ≤ {COORD_LIMIT:,})"
+                    )
+            if self.mode == "run":
+                return "drag a box in Edit pattern or Edit robots"
+            return self.screen.studio.box(self.editor, self.mode, a, b, erase)
+
+    def transform(self, name: str) -> str:
+        """Mirror, rotate, scale or fit the draft being edited; Undo and Redo."""
+        with self.lock:
+            if self.mode == "run":
+                return "transforms change a draft: choose Edit pattern or Edit robots"
+            if name == "Undo":
+                return self.editor.undo()
+            if name == "Redo":
+                return self.editor.redo()
+            return self.screen.studio.transform(self.editor, self.mode, name)
 
     # ------------------------------------------------------------------ files
     def load_pattern(self, filename: str, content: bytes) -> str | None:

@@ -1,0 +1,134 @@
+"""The pattern studio's gestures on the drafts (issue #25): tools, transforms, undo and redo."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from apf_viz.core import shapes
+from apf_viz.core.formats import InputError
+from apf_viz.ui.editor import Editor
+from apf_viz.ui.session import Session
+from apf_viz.ui.studio import TOOLS, TRANSFORMS, Studio
+
+START = [(0, 0), (3, 0), (5, 1), (2, 2)]
+PATTERN = [(0, 0), (1, 0), (2, 0), (0, 1)]
+
+
+def session() -> Session:
+    s = Session(START, PATTERN, y_up=[True] * 4, scheduler="async")
+    s.set_mode("edit-pattern")
+    return s
+
+
+def test_two_clicks_of_the_line_tool_draw_every_cell_between():
+    s = session()
+    s.clear_pattern()
+    s.set_tool("line")
+    assert "first point" in s.click((0, 0))
+    s.click((4, 2))
+    assert s.editor.pattern == shapes.line((0, 0), (4, 2))
+
+
+def test_placed_shapes_take_the_size_and_the_text():
+    s = session()
+    s.clear_pattern()
+    s.set_tool("ring")
+    s.set_tool_size(3)
+    s.click((10, 10))
+    assert set(s.editor.pattern) == set(shapes.ring((10, 10), 3))
+    s.clear_pattern()
+    s.set_tool("text")
+    s.set_tool_text("HI")
+    s.click((0, 4))
+    assert s.editor.pattern == shapes.text("HI", (0, 4))
+    with pytest.raises(ValueError, match="no glyph"):
+        s.set_tool_text("H@")
+    with pytest.raises(InputError):
+        s.set_tool_size(0)
+
+
+def test_a_dragged_box_fills_and_a_shift_drag_erases():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (5, 3), erase=False)
+    assert len(s.editor.pattern) == 24
+    s.draw_box((1, 1), (2, 2), erase=True)
+    assert len(s.editor.pattern) == 20 and (1, 1) not in s.editor.pattern
+
+
+def test_move_translates_the_pattern_and_moves_one_robot_in_one_action():
+    s = session()
+    before = list(s.editor.pattern)
+    s.set_tool("move")
+    s.click((0, 0))
+    s.click((3, -1))
+    assert s.editor.pattern == [(x + 3, y - 1) for x, y in before]
+    s.set_mode("edit-robots")
+    s.click((5, 1))
+    assert s.click((9, 9)) == "moved the robot at (5, 1) to (9, 9)"
+    assert (9, 9) in s.editor.robots and (5, 1) not in s.editor.robots and len(s.editor.robots) == 4
+
+
+def test_fit_to_k_says_what_it_did():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (2, 1), erase=False)  # 6 cells for 4 robots
+    said = s.transform("Fit to k")
+    assert len(s.editor.pattern) == 4 and "removed the 2 last-drawn cells" in said
+    s.transform("Undo")
+    assert len(s.editor.pattern) == 6
+
+
+def test_every_tool_and_transform_is_listed_and_an_unknown_one_refused():
+    assert set(TOOLS) >= {"cell", "box", "line", "ring", "disc", "text", "move", "flip"}
+    s = session()
+    with pytest.raises(ValueError, match="no tool"):
+        s.set_tool("rm -rf")
+    with pytest.raises(ValueError, match="no transform"):
+        s.transform("explode")
+    for name in TRANSFORMS:
+        s.transform(name)
+
+
+operations = st.lists(
+    st.one_of(
+        st.tuples(st.just("click"), st.sampled_from(["cell", "line", "ring", "row", "text"]),
+                  st.tuples(st.integers(-5, 5), st.integers(-5, 5))),
+        st.tuples(st.just("transform"), st.sampled_from(TRANSFORMS), st.none()),
+        st.tuples(st.just("box"), st.booleans(), st.tuples(st.integers(-5, 5), st.integers(-5, 5))),
+    ),
+    max_size=12,
+)  # fmt: skip
+
+
+@settings(max_examples=60, deadline=None)
+@given(operations)
+def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_them(ops):
+    editor, studio = Editor(START, [True] * 4, PATTERN), Studio()
+    studio.size = 2
+    drafts = [editor._draft()]
+
+    def kept() -> None:
+        if editor._draft() != drafts[-1]:
+            drafts.append(editor._draft())
+
+    for kind, what, cell in ops:
+        if kind == "click":
+            studio.choose(what)
+            studio.click(editor, "edit-pattern", cell)
+            kept()
+            studio.click(editor, "edit-pattern", (cell[0] + 2, cell[1] + 1))  # a two-click tool's second
+        elif kind == "transform":
+            studio.transform(editor, "edit-pattern", what)
+        else:
+            studio.box(editor, "edit-pattern", cell, (cell[0] + 1, cell[1] + 2), erase=what)
+        kept()
+    for earlier in reversed(drafts[:-1]):
+        editor.undo()
+        assert editor._draft() == earlier
+    assert editor.undo() == "nothing to undo"
+    for later in drafts[1:]:
+        editor.redo()
+        assert editor._draft() == later
