@@ -418,11 +418,13 @@ def test_a_start_of_another_size_gets_a_demo_pattern_of_its_size_and_says_so():
 def test_edit_robots_shows_the_drafted_pattern_not_the_runs():
     s = session()
     s.set_mode("edit-pattern")
-    s.click((5, 5))  # the drafted pattern now has a fifth point
+    placed = list(s.editor.pattern)  # drawn beside the robots, never over them
+    assert min(x for x, _ in placed) > max(x for x, _ in s.editor.robots)
+    s.click((50, 50))  # the drafted pattern now has a fifth point
     s.set_mode("edit-robots")
     cells = s.view().overlays.marks[0]
-    assert isinstance(cells, Cells) and (5, 5) in cells.points and cells.style == "preview"
-    assert set(s.view().targets) == set(PATTERN) | {(5, 5)}
+    assert isinstance(cells, Cells) and (50, 50) in cells.points and cells.style == "preview"
+    assert set(s.view().targets) == set(placed) | {(50, 50)}
 
 
 def test_every_demo_scenario_loads_and_says_what_it_shows():

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from PIL import Image, ImageSequence
 
+from apf_viz.core import shapes
 from apf_viz.core.formats import load_trace
 from apf_viz.ui.app import App, _inside, demo_session, free_port
 
@@ -1075,4 +1076,96 @@ def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app)
         assert (np.abs(legend - color).max(axis=2) <= 2).sum() > 20, light
     (OUT / "lecture-export-stop-02.png").write_bytes(archive.read("stop-02.png"))
     assert app.session.lecturer.position == 0  # back where the lecture stood
+    page.close()
+
+
+def _choose(page, label: str, option: str) -> None:
+    page.get_by_role("combobox", name=label).click()
+    page.get_by_role("option", name=option, exact=True).click()
+
+
+def _drag(page, app, a, b, modifier: str | None = None) -> None:
+    """A drag on the canvas from the middle of cell ``a`` to the middle of cell ``b``."""
+    (x0, y0), (x1, y1) = screen_of(app, page, a), screen_of(app, page, b)
+    if modifier:
+        page.keyboard.down(modifier)
+    page.mouse.move(x0, y0)
+    page.mouse.down()
+    for i in range(1, 11):
+        page.mouse.move(x0 + (x1 - x0) * i / 10, y0 + (y1 - y0) * i / 10)
+        time.sleep(0.02)
+    page.mouse.up()
+    if modifier:
+        page.keyboard.up(modifier)
+
+
+def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
+    """At 1024×768: a 6×4 box by one drag, a Shift-drag erase, "HI" in two actions, undo ×2, then a
+    pattern of the robots' size played to FORMED with every robot on a drawn target."""
+    s = app.session
+    page, cid, screen = projector_page(browser, app)
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit pattern")
+    wait_for(lambda: s.mode == "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    wait_for(lambda: s.editor.pattern == [])
+    _choose(page, "Tool", "box")
+    wait_for(lambda: s.screen.studio.tool == "box")
+    time.sleep(0.5)
+    _drag(page, app, (20, 0), (25, 3))
+    wait_for(lambda: len(s.editor.pattern) == 24)
+    assert set(s.editor.pattern) == {(x, y) for x in range(20, 26) for y in range(4)}
+    shot(page, "studio-box")
+    _drag(page, app, (21, 1), (22, 2), modifier="Shift")
+    wait_for(lambda: len(s.editor.pattern) == 20)
+    _choose(page, "Tool", "text")
+    page.get_by_label("Text").fill("HI")  # action 1: the word …
+    page.get_by_label("Text").press("Enter")
+    wait_for(lambda: s.screen.studio.text == "HI")
+    x, y = screen_of(app, page, (20, 10))
+    page.mouse.click(x, y)  # … action 2: where it goes
+    wait_for(lambda: len(s.editor.pattern) == 20 + len(shapes.text("HI", (0, 0))))
+    shot(page, "studio-text")
+    page.keyboard.press("Control+z")
+    wait_for(lambda: len(s.editor.pattern) == 20)
+    page.get_by_role("button", name="Undo").click()
+    wait_for(lambda: len(s.editor.pattern) == 24)  # undo ×2: the box whole again
+    page.get_by_role("button", name="Fit to k").click()  # 24 cells for 10 robots: the last drawn go
+    wait_for(lambda: len(s.editor.pattern) == s.engine.k)
+    drawn = set(s.editor.pattern)
+    _choose(page, "Mode", "Run")
+    wait_for(lambda: s.mode == "run")
+    while s.step():
+        pass
+    assert s.engine.outcome == "formed"
+    formed = {r.position for r in s.view().robots}
+    assert s.engine.pattern == tuple(s.config.pattern) and len(formed) == len(drawn)
+    from apf_viz.core.pattern_match import matches_pattern
+
+    assert matches_pattern(list(formed), list(drawn))  # every robot on a drawn target (up to placement)
+    app.request_render()
+    time.sleep(1.0)
+    shot(page, "studio-formed")
+    page.close()
+
+
+def test_in_edit_robots_a_robot_moves_with_the_move_tool(browser, app):
+    s = app.session
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit robots")
+    wait_for(lambda: s.mode == "edit-robots")
+    _choose(page, "Tool", "move")
+    wait_for(lambda: s.screen.studio.tool == "move")
+    start = s.editor.robots[0]
+    free = (start[0], start[1] - 2)
+    while free in s.editor.robots:
+        free = (free[0], free[1] - 1)
+    for cell in (start, free):
+        x, y = screen_of(app, page, cell)
+        page.mouse.click(x, y)
+        time.sleep(0.3)
+    wait_for(lambda: free in s.editor.robots and start not in s.editor.robots)
+    assert len(s.editor.robots) == s.engine.k
+    shot(page, "studio-move-robot")
     page.close()

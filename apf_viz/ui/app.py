@@ -29,7 +29,7 @@ from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import load_lecture
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
-from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect
+from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect, ray_through
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -58,6 +58,7 @@ class BrowserScreen:
             browser=client.client_id,
             verifier=app.verifier,
             frame_all=app.frame_all,
+            cell_at=app.cell_at,
         )
         self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
         self._renderer = app.renderer
@@ -202,6 +203,14 @@ class App:
         self.server.stop()
 
     # ------------------------------------------------------------------ events
+    def cell_at(self, client, screen: tuple[float, float]) -> tuple[int, int] | None:
+        """The grid cell under a point of a browser's canvas (0..1 each way from its top-left)."""
+        try:
+            origin, direction = ray_through(client.camera, screen)
+        except (AssertionError, TypeError, ValueError):  # the browser has not reported its camera
+            return None
+        return self.renderer.cell_of_ray(tuple(origin), tuple(direction))
+
     def _on_click(self, event) -> None:
         cell = self.renderer.cell_of_ray(event.ray_origin, event.ray_direction)
         if cell is not None:

@@ -703,6 +703,20 @@ class SceneRenderer:
         return position, aspect
 
 
+def ray_through(camera, screen: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """The ray from a browser's camera through a point of its canvas (``screen``: 0..1 each way, from
+    the top-left, as viser reports a dragged box), in scene coordinates."""
+    p = np.asarray(camera.position, dtype=float)
+    forward = np.asarray(camera.look_at, dtype=float) - p
+    forward /= np.linalg.norm(forward)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    t = np.tan(float(camera.fov) / 2)
+    x, y = 2 * screen[0] - 1, 1 - 2 * screen[1]
+    return p, forward + x * t * camera_aspect(camera) * right + y * t * up
+
+
 def camera_aspect(camera) -> float:
     """The width / height of a browser's canvas, as its camera reports it (before it has: the narrow
     canvas new browsers are framed for)."""

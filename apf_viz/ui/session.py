@@ -391,8 +391,22 @@ class Session:
                 )
                 return None
             self.run.pause()
+            if mode == "edit-pattern":
+                self._place_draft_beside_robots()
             self.mode = mode
             return None
+
+    def _place_draft_beside_robots(self) -> None:
+        """Move the drawn pattern beside the robots (a pattern is a shape: where it is drawn does not
+        matter), where the run shows it before a leader places it, so it is framed with them and never
+        drawn over them."""
+        e = self.editor
+        if not e.pattern or not e.robots:
+            return
+        dx = max(x for x, _ in e.robots) + 3 - min(x for x, _ in e.pattern)
+        dy = min(y for _, y in e.robots) - min(y for _, y in e.pattern)
+        if dx or dy:
+            e.pattern = shapes.translated(e.pattern, dx, dy)
 
     def clear_pattern(self) -> None:
         with self.lock:

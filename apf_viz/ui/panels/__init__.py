@@ -63,11 +63,15 @@ class Panels:
         browser: Hashable | None = None,
         verifier: SharedVerifier | None = None,
         frame_all: Callable[[], None] = lambda: None,
+        cell_at: Callable | None = None,
     ) -> None:
         self.session = session
         self.ctx = PanelContext(
             session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
         )
+        self.ctx.client = owner if browser is not None else None
+        if cell_at is not None:
+            self.ctx.cell_at = cell_at
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]

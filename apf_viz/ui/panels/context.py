@@ -92,6 +92,9 @@ class PanelContext:
     verifier: SharedVerifier
     toggle_presentation: Callable = lambda event=None: None  # set by the browser's Presentation
     presenting: Callable[[], bool] = lambda: False  # set by the browser's Presentation
+    client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
+    # The grid cell under a point of a browser's canvas (0..1 each way), or None: the App's projection.
+    cell_at: Callable[[object, tuple[float, float]], tuple[int, int] | None] = lambda client, point: None
 
     def guard(self, fn: Callable, title: str = "apf-viz") -> Callable:
         """Run a callback; bad input, or what it has to say (a returned string), is told to the browser

@@ -1,9 +1,12 @@
-"""Edit: draw the pattern or place the robots; switching back to Run checks the drafts and restarts."""
+"""Edit: draw the pattern or place the robots with the studio's tools (ui/studio.py); switching back to
+Run checks the drafts and restarts. A box is dragged on the canvas (viser's rectangle select, this
+browser's own; Shift erases) while the Box tool is chosen in an edit mode."""
 
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.presenter import SessionView
+from apf_viz.ui.studio import TOOLS, TRANSFORMS
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
@@ -12,11 +15,37 @@ MODE_LABELS = {v: k for k, v in MODES.items()}
 class EditFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
+        s = ctx.session
         with gui.add_folder("Edit", expand_by_default=False):
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
             self.counts = gui.add_markdown("")
-            gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: ctx.session.clear_pattern()))
+            self.tool = gui.add_dropdown("Tool", tuple(TOOLS), initial_value="cell", hint=TOOLS["cell"])
+            self.tool.on_update(ctx.from_browser(lambda e: self._on_tool(), "Tool"))
+            self.size = gui.add_number(
+                "Size", initial_value=4, min=1, max=200, step=1, hint="radius, length, steps"
+            )
+            self.size.on_update(ctx.from_browser(lambda e: s.set_tool_size(self.size.value), "Size"))
+            self.text = gui.add_text(
+                "Text", initial_value="APF", hint="letters A–Z, digits, spaces (3×5 font)"
+            )
+            self.text.on_update(ctx.from_browser(lambda e: s.set_tool_text(self.text.value), "Text"))
+            self.tool_hint = gui.add_markdown("")
+            transforms = gui.add_button_group("Transform", TRANSFORMS[:4])
+            transforms.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            history = gui.add_button_group("History ", ("Undo", "Redo", "Fit to k"))
+            history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
+        for label, key, modifier in (("Undo", "Z", "cmd/ctrl"), ("Redo", "Z", "cmd/ctrl+shift")):
+            command = gui.add_command(
+                label, description=f"{label} the last edit", hotkey=key, modifier=modifier
+            )
+            command.on_trigger(ctx.guard(lambda e, label=label: s.transform(label), "Edit"))
+        self._boxing = False
+
+    def _on_tool(self) -> None:
+        self.ctx.session.set_tool(self.tool.value)
+        self.tool.hint = TOOLS[self.tool.value]
 
     def _on_mode(self, event) -> None:
         if event.client is None:
@@ -29,7 +58,34 @@ class EditFolder:
             tell(event.client, "Still editing", problem, error=True)
         self.ctx.changed()
 
+    def _box(self, event, erase: bool) -> None:
+        """A box dragged on this browser's canvas: its corners as cells, then filled or erased."""
+        a, b = (self.ctx.cell_at(event.client, corner) for corner in (event.screen_min, event.screen_max))
+        if a is None or b is None:
+            tell(event.client, "Box", "drag the box over the grid", error=True)
+            return
+        self.ctx.guard(lambda e: self.ctx.session.draw_box(a, b, erase), "Box")(event)
+
+    def _boxes(self, wanted: bool) -> None:
+        """Rectangle select on this browser's canvas only while it draws boxes (a plain drag is the
+        camera's otherwise)."""
+        client = self.ctx.client
+        if client is None or wanted == self._boxing:
+            return
+        scene = client.scene  # type: ignore[attr-defined]
+        if wanted:
+            scene.on_rect_select()(lambda e: self._box(e, erase=False))
+            scene.on_rect_select(modifier="shift")(lambda e: self._box(e, erase=True))
+        else:
+            scene.remove_rect_select_callback("all")
+        self._boxing = wanted
+
     def refresh(self, view: SessionView) -> None:
         self.counts.content = view.counts
         if self.mode.value != MODE_LABELS[view.mode]:
             self.mode.value = MODE_LABELS[view.mode]
+        studio = self.ctx.session.screen.studio
+        if self.tool.value != studio.tool:
+            self.tool.value = studio.tool
+        self.tool_hint.content = f"<small>{TOOLS[studio.tool]}</small>"
+        self._boxes(view.mode != "run" and studio.tool == "box")
