@@ -1112,17 +1112,20 @@ def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
     _choose(page, "Tool", "box")
     wait_for(lambda: s.screen.studio.tool == "box")
     time.sleep(0.5)
-    _drag(page, app, (20, 0), (25, 3))
+    _drag(page, app, (9, 0), (14, 3))  # beside the robots, in view
     wait_for(lambda: len(s.editor.pattern) == 24)
-    assert set(s.editor.pattern) == {(x, y) for x in range(20, 26) for y in range(4)}
+    assert set(s.editor.pattern) == {(x, y) for x in range(9, 15) for y in range(4)}
     shot(page, "studio-box")
-    _drag(page, app, (21, 1), (22, 2), modifier="Shift")
+    _drag(page, app, (10, 1), (11, 2), modifier="Shift")
     wait_for(lambda: len(s.editor.pattern) == 20)
     _choose(page, "Tool", "text")
-    page.get_by_label("Text").fill("HI")  # action 1: the word …
-    page.get_by_label("Text").press("Enter")
+    find = "Array.from(document.querySelectorAll('input')).find(e => e.value === 'APF')"
+    page.wait_for_function(f"!!({find})")  # viser's text field has no label a locator finds: by its value
+    text_id = page.evaluate(f"({find}).id")
+    page.locator(f"#{text_id}").fill("HI")  # action 1: the word …
+    page.locator(f"#{text_id}").press("Enter")
     wait_for(lambda: s.screen.studio.text == "HI")
-    x, y = screen_of(app, page, (20, 10))
+    x, y = screen_of(app, page, (9, 9))
     page.mouse.click(x, y)  # … action 2: where it goes
     wait_for(lambda: len(s.editor.pattern) == 20 + len(shapes.text("HI", (0, 0))))
     shot(page, "studio-text")
