@@ -410,7 +410,7 @@ def test_the_example_algorithms_legend_shows_its_lights(browser):
         page = open_page(browser, other)
         page.get_by_text("still sliding left").wait_for()
         page.get_by_text("the wall: the leftmost column").first.wait_for()
-        assert page.get_by_text("terminal1").count() == 0  # not the paper's legend
+        assert page.get_by_text("terminal1", exact=True).count() == 0  # not the paper's legend
         shot(page, "example-algorithm")
         page.close()
     finally:
