@@ -15,9 +15,11 @@ from pathlib import Path
 from typing import NoReturn
 
 from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_command_line, get_algorithm
+from apf_viz.core import shapes
 from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import (
+    MAX_INPUT_BYTES,
     InputError,
     RobotsFile,
     check_sizes,
@@ -26,6 +28,7 @@ from apf_viz.core.formats import (
     load_robots,
     load_trace,
     pattern_json,
+    read_text,
     robots_json,
     trace_text,
     write_atomic,
@@ -337,6 +340,49 @@ def _cmd_random_pattern(args: argparse.Namespace) -> int:
     return 0
 
 
+SHAPES = {
+    "ring": lambda n: shapes.ring((0, 0), n),
+    "disc": lambda n: shapes.disc((0, 0), n),
+    "box": lambda n: shapes.box((0, 0), (n - 1, n - 1)),
+    "outline": lambda n: shapes.outline((0, 0), (n - 1, n - 1)),
+    "row": lambda n: shapes.row((0, 0), n),
+    "column": lambda n: shapes.column((0, 0), n),
+    "staircase": lambda n: shapes.staircase((0, 0), n),
+}
+
+
+def _cmd_pattern(args: argparse.Namespace) -> int:
+    """A drawing made from a specification, then mirrored, turned, scaled and fitted in that order."""
+    if args.out:
+        check_writable(args.out)
+    if args.text is not None:
+        cells = shapes.text(args.text, (0, 0))
+    elif args.ascii is not None:
+        lines = read_text(args.ascii, MAX_INPUT_BYTES).splitlines()
+        cells = shapes.ascii_art(lines)
+        if not cells:
+            raise InputError(f"{args.ascii}: no '#' cell in it")
+    else:
+        cells = SHAPES[args.shape](args.size)
+    for axis in args.mirror:
+        cells = shapes.mirrored(cells, axis)
+    for _ in range(args.rotate):
+        cells = shapes.rotated(cells)
+    cells = shapes.scaled(cells, args.scale)
+    if args.count is not None:
+        cells, said = shapes.fitted(cells, args.count)
+        print(f"apf-viz pattern: fit to {args.count}: {said}", file=sys.stderr)
+    if args.kind == "robots":
+        axis = unsolvable_axis(cells)
+        if axis is not None:
+            note = f"these robots are unsolvable (Theorem 1: mirror axis {describe_axis(axis)})"
+            print(f"apf-viz pattern: note: {note}", file=sys.stderr)
+        _emit(robots_json(cells), args.out)
+    else:
+        _emit(pattern_json(cells, args.name or args.text), args.out)
+    return 0
+
+
 def _cmd_check(args: argparse.Namespace) -> int:
     from apf_viz.explore.check import all_flips, check, write_counterexample
 
@@ -603,6 +649,39 @@ def build_parser() -> argparse.ArgumentParser:
     _add_box_options(rpat, "pattern points")
     rpat.add_argument("--name", help="the pattern's name in the file")
     rpat.set_defaults(func=_cmd_random_pattern)
+
+    pat = command("pattern", "make a pattern (or robots) file from text, ASCII art or a shape")
+    source = pat.add_mutually_exclusive_group(required=True)
+    source.add_argument("--text", help="letters A-Z, digits and spaces in a 3x5 font")
+    source.add_argument("--ascii", type=Path, help="a text file: '#' is a cell, the first line the top row")
+    source.add_argument(
+        "--shape", choices=list(SHAPES), help="a shape of --size (a ring's radius, a row's length)"
+    )
+    pat.add_argument("--size", type=int, default=4, help="the shape's radius, length, steps or side")
+    pat.add_argument(
+        "--mirror",
+        choices=["x", "y"],
+        action="append",
+        default=[],
+        help="mirror left-right (x) or up-down (y)",
+    )
+    pat.add_argument(
+        "--rotate", type=int, choices=[0, 1, 2, 3], default=0, help="quarter turns anticlockwise"
+    )
+    pat.add_argument(
+        "--scale", type=int, choices=[1, 2, 3, 4], default=1, help="each cell a scale x scale block"
+    )
+    pat.add_argument(
+        "--count",
+        type=int,
+        help="fit to this many cells: the last drawn removed, or cells added along the outline",
+    )
+    pat.add_argument(
+        "--as", dest="kind", choices=["pattern", "robots"], default="pattern", help="the file to write"
+    )
+    pat.add_argument("--name", help="the pattern's name in the file")
+    pat.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
+    pat.set_defaults(func=_cmd_pattern)
 
     chk = command("check", "explore every schedule of a small start (model checking)")
     chk.add_argument("--robots", required=True, type=Path, help="start file (keep k ≤ 5)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import json
 import math
 
 import pytest
@@ -103,3 +104,55 @@ def test_ascii_art_reads_hashes_from_the_top_row_down():
 def test_a_size_out_of_range_is_one_line(call):
     with pytest.raises(ShapeError, match="choose a whole number"):
         call()
+
+
+def test_the_pattern_command_writes_apf_and_robots_of_its_size_form_it(tmp_path):
+    from apf_viz.cli import main
+
+    pattern, robots = tmp_path / "p.json", tmp_path / "r.json"
+    assert main(["pattern", "--text", "APF", "--out", str(pattern)]) == 0
+    k = len(json.loads(pattern.read_text())["points"])
+    assert k == len(shapes.text("APF", (0, 0)))
+    assert (
+        main(["random-robots", "--count", str(k), "--width", "12", "--height", "12", "--out", str(robots)])
+        == 0
+    )
+    assert main(["run", "--robots", str(robots), "--pattern", str(pattern)]) == 0  # formed
+
+
+def test_the_pattern_command_shapes_mirrors_and_fits(tmp_path, capsys):
+    from apf_viz.cli import main
+
+    out = tmp_path / "ring.json"
+    assert (
+        main(
+            ["pattern", "--shape", "ring", "--size", "6", "--mirror", "x", "--count", "30", "--out", str(out)]
+        )
+        == 0
+    )
+    points = json.loads(out.read_text())["points"]
+    assert len(points) == 30 and "fit to 30" in capsys.readouterr().err
+    art = tmp_path / "f.txt"
+    art.write_text("###\n#..\n##.\n#..\n")
+    robots = tmp_path / "robots.json"
+    assert main(["pattern", "--ascii", str(art), "--as", "robots", "--out", str(robots)]) == 0
+    assert sorted(map(tuple, json.loads(robots.read_text())["robots"])) == sorted(
+        shapes.ascii_art(art.read_text().splitlines())
+    )
+
+
+@pytest.mark.parametrize(
+    ("args", "said"),
+    [
+        (["--text", "A!"], "no glyph for '!'"),
+        (["--shape", "ring", "--size", "-1"], "choose a whole number"),
+        (["--ascii", "/nonexistent.txt"], "no such file"),
+    ],
+)
+def test_the_pattern_command_refuses_in_one_line_with_exit_2(args, said, capsys):
+    from apf_viz.cli import main
+
+    with pytest.raises(SystemExit) as exit_:
+        main(["pattern", *args])
+    err = capsys.readouterr().err.strip()
+    assert exit_.value.code == 2 and said in err and len(err.splitlines()) == 1

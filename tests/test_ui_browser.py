@@ -207,12 +207,12 @@ def test_edit_pattern_clicks_change_the_target_count(browser, app):
     page.get_by_role("option", name="Edit pattern").click()
     wait_for(lambda: app.session.mode == "edit-pattern")
     page.get_by_role("button", name="Clear pattern").click()
-    page.get_by_text("Targets: 0 / 10 robots").wait_for()
+    page.get_by_text("Targets: 0 / robots: 10").wait_for()
     for cell in [(1, 1), (2, 1), (3, 1)]:
         x, y = screen_of(app, page, cell)
         page.mouse.click(x, y)
         time.sleep(0.2)
-    page.get_by_text("Targets: 3 / 10 robots").wait_for()
+    page.get_by_text("Targets: 3 / robots: 10").wait_for()
     assert sorted(app.session.editor.pattern) == [(1, 1), (2, 1), (3, 1)]
     shot(page, "edit-pattern")
     # Back to Run with 3 targets for 10 robots: refused, the drawing is kept.

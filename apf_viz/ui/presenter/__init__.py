@@ -84,8 +84,8 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         **_over_time(run, screen, pts) if running else {"trail_setting": screen.trails},
         **numbers,
         mode=screen.mode,
-        draft_count=len(screen.editor.pattern) if screen.mode != "edit-robots" else len(screen.editor.robots),
-        robot_count=len(screen.editor.robots) if screen.mode == "edit-robots" else e.k,
+        draft_count=len(screen.editor.pattern),  # the pattern drawn (Edit), or the run's
+        robot_count=len(screen.editor.robots) if screen.mode != "run" else e.k,
         axis=screen.editor.axis() if screen.mode == "edit-robots" else None,
         move_series=run.series.at(e.history, e.step_index),
         scheduler=run.config.scheduler,

@@ -319,11 +319,19 @@ def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, 
 
 
 def counts(mode: str, draft_count: int, robot_count: int, robots: int, axis: float | None) -> str:
+    """The Edit folder's line: the draft's size against the other draft's, and (robots) Theorem 1."""
     if mode == "edit-pattern":
-        return f"Targets: **{draft_count}** / {robot_count} robots — click cells to toggle"
+        fit = "" if draft_count == robot_count else " — Fit to k makes them equal"
+        return f"Targets: **{draft_count}** / robots: {robot_count}{fit}"
     if mode == "edit-robots":
-        warning = f"  \n⚠ symmetric about y = {axis:g}: unsolvable" if axis is not None else ""
-        return f"Robots: **{robot_count}** — click: add, flip y, remove{warning}"
+        if axis is not None:
+            theorem = (
+                f"  \n⚠ **unsolvable** (Theorem 1): mirror-symmetric about y = {axis:g}, a line through no "
+                "robot (drawn) — no algorithm can form every pattern from it; move or add a robot"
+            )
+        else:
+            theorem = "  \n✔ solvable: no horizontal mirror axis free of robots (Theorem 1)"
+        return f"Robots: **{robot_count}** / targets: {draft_count}{theorem}"
     return f"Pattern: {draft_count} points for {robots} robots"
 
 

@@ -66,8 +66,8 @@ class SessionView:
     lights_in_use: tuple[str, ...]
     moves_per_kD: float
     mode: Mode
-    draft_count: int  # points of the pattern being drawn / robots being placed
-    robot_count: int
+    draft_count: int  # points of the pattern being drawn (in Run: the pattern)
+    robot_count: int  # robots being placed (in Run: the run's)
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
     selected: int | None = None  # this browser's (or, following, the presenter's) selected robot
     rays: tuple[tuple[Point, Point], ...] = ()  # to what the selected robot saw (its snapshot) or sees now
