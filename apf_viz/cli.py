@@ -733,6 +733,11 @@ def _add_serve_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--pattern", type=Path, help="pattern file (default: the built-in demo)")
     p.add_argument("--trace", type=Path, help="open this trace, to step through it")
     p.add_argument("--lecture", type=Path, help="open this guided lecture at its first stop (PageDown: next)")
+    p.add_argument(
+        "--library",
+        type=Path,
+        help="the folder of saved patterns (Edit: Save pattern, Saved; default: the user's data directory)",
+    )
     _add_run_options(p, list(SCHEDULERS))
 
 

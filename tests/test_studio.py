@@ -132,3 +132,26 @@ def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_th
     for later in drafts[1:]:
         editor.redo()
         assert editor._draft() == later
+
+
+def test_the_library_saves_by_name_lists_and_loads_never_a_path(tmp_path):
+    from apf_viz.ui.library import PatternLibrary
+
+    s = session()
+    s.use_library(PatternLibrary(tmp_path / "lib"))
+    s.clear_pattern()
+    s.draw_box((0, 0), (1, 1), erase=False)
+    said = s.save_pattern("my square")
+    assert "saved 4 cells as 'my square'" in said and s.saved == ["my square"]
+    assert (tmp_path / "lib" / "my_square.json").is_file()
+    for bad in ("../etc/passwd", "/tmp/x", "", "a" * 61, "dot.json"):
+        with pytest.raises(InputError):
+            s.save_pattern(bad)
+    with pytest.raises(InputError, match="no saved pattern"):
+        s.load_saved_pattern("../my square")
+    s.clear_pattern()
+    s.load_saved_pattern("my square")
+    assert s.mode == "edit-pattern" and len(s.editor.pattern) == 4
+    xs = [x for x, _ in s.editor.pattern]
+    assert min(xs) > max(x for x, _ in s.editor.robots)  # beside the robots
+    assert not list(tmp_path.glob("lib/*.tmp"))  # written atomically, nothing left over

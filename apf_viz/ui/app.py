@@ -27,6 +27,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import load_lecture
+from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
 from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect, ray_through
@@ -373,6 +374,8 @@ def check_listen(host: str, port: int) -> None:
 def serve(args: argparse.Namespace) -> int:
     check_listen(args.host, args.port)
     session = session_from_args(args)
+    if getattr(args, "library", None):
+        session.use_library(PatternLibrary(args.library))
     if getattr(args, "lecture", None):
         session.start_lecture(load_lecture(args.lecture))  # a bad file: one line, before the UI starts
     app = App(session, host=args.host, port=args.port, verbose=False)

@@ -37,6 +37,7 @@ from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
 from apf_viz.ui.lecturer import Lecturer, Reached
+from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.presenter import SessionView, for_browser, present, present_run, stage_of
 from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_config import RunConfig
@@ -99,6 +100,8 @@ class Session:
         self._browsers: dict[Hashable, BrowserState] = {}
         self._presenter_of: Hashable | None = None
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
+        self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
+        self.saved = self.library.names()  # their names, read once and after each save
 
     # ------------------------------------------------------------------ browsers
     def join(self, browser: Hashable) -> BrowserState:
@@ -411,6 +414,30 @@ class Session:
     def clear_pattern(self) -> None:
         with self.lock:
             self.editor.clear_pattern()
+
+    def use_library(self, library: PatternLibrary) -> None:
+        with self.lock:
+            self.library, self.saved = library, library.names()
+
+    def save_pattern(self, name: str) -> str:
+        """The pattern being drawn (in Run: the run's) saved under ``name`` in the library."""
+        with self.lock:
+            cells = self.editor.pattern if self.mode == "edit-pattern" else list(self.config.pattern)
+            path = self.library.save(name, cells)
+            self.saved = self.library.names()
+            return f"saved {len(cells)} cells as {name.strip()!r} ({path})"
+
+    def load_saved_pattern(self, name: str) -> str:
+        """A saved pattern becomes the pattern being drawn (Edit pattern), beside the robots."""
+        cells = self.library.load(name)
+        with self.lock:
+            self.run.pause()
+            said = self.editor.set_pattern(
+                cells, f"loaded {name!r}: {len(cells)} cells for {self.engine.k} robots"
+            )
+            self.mode = "edit-pattern"
+            self._place_draft_beside_robots()
+            return said
 
     # ------------------------------------------------------------------ the pattern studio
     def set_tool(self, tool: str) -> None:

@@ -36,12 +36,24 @@ class EditFolder:
             history = gui.add_button_group("History ", ("Undo", "Redo", "Fit to k"))
             history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
+            self.save_as = gui.add_text("Save as", initial_value="", hint="a name for the pattern drawn")
+            gui.add_button("Save pattern", hint="into the pattern library (serve --library DIR)").on_click(
+                ctx.guard(lambda e: s.save_pattern(self.save_as.value), "Library")
+            )
+            self.saved = gui.add_dropdown(
+                "Saved", ("—", *s.saved), initial_value="—", hint="load a saved pattern"
+            )
+            self.saved.on_update(ctx.from_browser(self._on_saved, "Library"))
         for label, key, modifier in (("Undo", "Z", "cmd/ctrl"), ("Redo", "Z", "cmd/ctrl+shift")):
             command = gui.add_command(
                 label, description=f"{label} the last edit", hotkey=key, modifier=modifier
             )
             command.on_trigger(ctx.guard(lambda e, label=label: s.transform(label), "Edit"))
         self._boxing = False
+
+    def _on_saved(self, event) -> str | None:
+        name = self.saved.value
+        return self.ctx.session.load_saved_pattern(name) if name != "—" else None
 
     def _on_tool(self) -> None:
         self.ctx.session.set_tool(self.tool.value)
@@ -89,3 +101,6 @@ class EditFolder:
             self.tool.value = studio.tool
         self.tool_hint.content = f"<small>{TOOLS[studio.tool]}</small>"
         self._boxes(view.mode != "run" and studio.tool == "box")
+        options = ("—", *self.ctx.session.saved)
+        if tuple(self.saved.options) != options:
+            self.saved.options = options
