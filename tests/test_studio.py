@@ -155,3 +155,11 @@ def test_the_library_saves_by_name_lists_and_loads_never_a_path(tmp_path):
     xs = [x for x, _ in s.editor.pattern]
     assert min(xs) > max(x for x, _ in s.editor.robots)  # beside the robots
     assert not list(tmp_path.glob("lib/*.tmp"))  # written atomically, nothing left over
+
+
+def test_the_move_all_buttons_translate_the_draft_by_one_cell():
+    s = session()
+    before = list(s.editor.pattern)
+    s.transform("→")
+    s.transform("↑")
+    assert s.editor.pattern == [(x + 1, y + 1) for x, y in before]

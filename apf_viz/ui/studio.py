@@ -26,6 +26,7 @@ TOOLS: dict[str, str] = {
     "flip": "click a robot: its y-axis up or down (the adversary's choice)",
 }
 TRANSFORMS = ("Mirror ↔", "Mirror ↕", "Rotate 90°", "Scale ×2", "Fit to k")
+NUDGES = {"←": (-1, 0), "→": (1, 0), "↑": (0, 1), "↓": (0, -1)}  # the whole draft by one cell
 Mode = Literal["edit-pattern", "edit-robots"]
 
 
@@ -92,6 +93,9 @@ class Studio:
                 return "Fit to k fits the pattern to the robots: use it in Edit pattern"
             fitted, said = shapes.fitted(cells, len(editor.robots))
             return editor.set_pattern(fitted, f"fit to {len(editor.robots)} robots: {said}")
+        if name in NUDGES:
+            dx, dy = NUDGES[name]
+            return self._set(editor, mode, shapes.translated(cells, dx, dy), f"moved {name}")
         changed = {
             "Mirror ↔": lambda c: shapes.mirrored(c, "x"),
             "Mirror ↕": lambda c: shapes.mirrored(c, "y"),

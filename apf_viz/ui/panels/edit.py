@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.studio import TOOLS, TRANSFORMS
+from apf_viz.ui.studio import NUDGES, TOOLS, TRANSFORMS
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
@@ -33,6 +33,8 @@ class EditFolder:
             self.tool_hint = gui.add_markdown("")
             transforms = gui.add_button_group("Transform", TRANSFORMS[:4])
             transforms.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            nudge = gui.add_button_group("Move all", tuple(NUDGES))
+            nudge.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             history = gui.add_button_group("History ", ("Undo", "Redo", "Fit to k"))
             history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
