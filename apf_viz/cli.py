@@ -514,6 +514,39 @@ def _add_box_options(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
 
 
+def _add_pattern_options(p: argparse.ArgumentParser) -> None:
+    """``apf-viz pattern``: one source (text, ASCII art, a shape), then the transforms in order."""
+    source = p.add_mutually_exclusive_group(required=True)
+    source.add_argument("--text", help="letters A-Z, digits and spaces in a 3x5 font")
+    source.add_argument("--ascii", type=Path, help="a text file: '#' is a cell, the first line the top row")
+    source.add_argument(
+        "--shape", choices=list(SHAPES), help="a shape of --size (a ring's radius, a row's length)"
+    )
+    p.add_argument("--size", type=int, default=4, help="the shape's radius, length, steps or side")
+    p.add_argument(
+        "--mirror",
+        choices=["x", "y"],
+        action="append",
+        default=[],
+        help="mirror left-right (x) or up-down (y)",
+    )
+    p.add_argument("--rotate", type=int, choices=[0, 1, 2, 3], default=0, help="quarter turns anticlockwise")
+    p.add_argument(
+        "--scale", type=int, choices=[1, 2, 3, 4], default=1, help="each cell a scale x scale block"
+    )
+    p.add_argument(
+        "--count",
+        type=int,
+        help="fit to this many cells: the last drawn removed, or cells added along the outline",
+    )
+    p.add_argument(
+        "--as", dest="kind", choices=["pattern", "robots"], default="pattern", help="the file to write"
+    )
+    p.add_argument("--name", help="the pattern's name in the file")
+    p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
+    p.set_defaults(func=_cmd_pattern)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="apf-viz",
@@ -650,38 +683,9 @@ def build_parser() -> argparse.ArgumentParser:
     rpat.add_argument("--name", help="the pattern's name in the file")
     rpat.set_defaults(func=_cmd_random_pattern)
 
-    pat = command("pattern", "make a pattern (or robots) file from text, ASCII art or a shape")
-    source = pat.add_mutually_exclusive_group(required=True)
-    source.add_argument("--text", help="letters A-Z, digits and spaces in a 3x5 font")
-    source.add_argument("--ascii", type=Path, help="a text file: '#' is a cell, the first line the top row")
-    source.add_argument(
-        "--shape", choices=list(SHAPES), help="a shape of --size (a ring's radius, a row's length)"
+    _add_pattern_options(
+        command("pattern", "make a pattern (or robots) file from text, ASCII art or a shape")
     )
-    pat.add_argument("--size", type=int, default=4, help="the shape's radius, length, steps or side")
-    pat.add_argument(
-        "--mirror",
-        choices=["x", "y"],
-        action="append",
-        default=[],
-        help="mirror left-right (x) or up-down (y)",
-    )
-    pat.add_argument(
-        "--rotate", type=int, choices=[0, 1, 2, 3], default=0, help="quarter turns anticlockwise"
-    )
-    pat.add_argument(
-        "--scale", type=int, choices=[1, 2, 3, 4], default=1, help="each cell a scale x scale block"
-    )
-    pat.add_argument(
-        "--count",
-        type=int,
-        help="fit to this many cells: the last drawn removed, or cells added along the outline",
-    )
-    pat.add_argument(
-        "--as", dest="kind", choices=["pattern", "robots"], default="pattern", help="the file to write"
-    )
-    pat.add_argument("--name", help="the pattern's name in the file")
-    pat.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
-    pat.set_defaults(func=_cmd_pattern)
 
     chk = command("check", "explore every schedule of a small start (model checking)")
     chk.add_argument("--robots", required=True, type=Path, help="start file (keep k ≤ 5)")
