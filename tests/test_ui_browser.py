@@ -66,6 +66,15 @@ def open_page(browser, app: App, viewport: dict | None = None):
     return page
 
 
+def settled(app: App, screen) -> None:
+    """A frame drawn for the run as it is, and the browser's camera at the last pose sent to it (a
+    framed camera follows the run: its pose is the projection the checks use)."""
+    frames = app.frames
+    app.request_render()
+    wait_for(lambda: app.frames > frames)
+    wait_for(lambda: screen._acknowledged or screen.state.camera == "moved")
+
+
 def projector_page(browser, app: App):
     """A 1024×768 page, the only browser: (the page, its client id, its screen)."""
     page = open_page(browser, app, {"width": 1024, "height": 768})
@@ -808,8 +817,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
         stage = app.session.view().stage
         caption = screen.panels.presentation.html
         wait_for(lambda stage=stage, caption=caption: symbol_html(stage) in caption.content)
-        app.request_render()
-        time.sleep(1.0)  # the camera's pose reaches the browser
+        settled(app, screen)
         cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
         assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], (i, stage)
         assert page.locator(".mantine-Notification-root").filter(has_text="Stage").count() == 0
@@ -1033,8 +1041,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
         wait_for(lambda i=i: app.session.lecturer.position == i)
         caption = screen.panels.presentation.html
         wait_for(lambda stop=stop, caption=caption: symbol_html(stop.title) in caption.content)
-        app.request_render()
-        time.sleep(1.0)
+        settled(app, screen)
         cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
         assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], stop.title
         shot(page, f"lecture12-{i + 1:02d}")
