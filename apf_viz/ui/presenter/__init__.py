@@ -101,8 +101,9 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         view = replace(view, compare=replace(view.compare, diverged=view.diverged))
     position = run.trace_position
     at_end = position is not None and position[0] >= position[1]
-    endless = story.endless_words(run.trace_options) if at_end and _walks(run) else ""
-    return replace(view, **_sentences(view, crash[0] if crash else None, stuck, endless))
+    if at_end and _walks(run):
+        view = replace(view, endless=story.endless_words(run.trace_options))
+    return replace(view, **_sentences(view, crash[0] if crash else None, stuck))
 
 
 def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> dict:
@@ -132,10 +133,10 @@ def _walks(run: RunController) -> bool:
     return run.following and run.trace_options.get("verdict") in story.ENDLESS
 
 
-def _sentences(view: SessionView, crash: str | None, stuck: bool, endless: str = "") -> dict[str, str]:
+def _sentences(view: SessionView, crash: str | None, stuck: bool) -> dict[str, str]:
     """The panels' sentences about the run, from the facts of its view."""
     out = {
-        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0] or view.waits, endless)
+        "banner": story.banner(view.outcome, crash, stuck, view.fatal[0] or view.waits, view.endless)
         if view.mode == "run"
         else "",
         "stats": story.stats(view.algorithm, view.__dict__),

@@ -166,10 +166,11 @@ def lecture_html(view: SessionView) -> str:
         outcome = (
             f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{view.outcome.upper()}</div>{where}'
         )
-    elif view.banner.startswith("## ↻"):  # a walk that never ends, at the end of its trace
-        verdict, _, words = view.banner.removeprefix("## ").partition("\n\n")
+    elif view.endless is not None:  # a walk that never ends, at the end of its trace
+        verdict, words = view.endless
+        heading = f"↻ {verdict}: it never ends"
         outcome = (
-            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(verdict)}</div>'
+            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(heading)}</div>'
             f'<div style="color:#444;font-size:0.9em">{html.escape(words)}</div>'
         )
     words = ""

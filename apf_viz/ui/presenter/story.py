@@ -203,32 +203,36 @@ def wait_for(e: Engine) -> str:
 ENDLESS = ("livelock", "escape")  # a checker's verdicts on runs that never end
 
 
-def endless_words(options: Mapping[str, object]) -> str:
-    """A livelock's or an escape's trace at its end, in words: the run has not ended, and never would."""
-    verdict = options.get("verdict")
+def endless_words(options: Mapping[str, object]) -> tuple[str, str]:
+    """A livelock's or an escape's trace at its end: (its verdict as a heading, in words) — the run has
+    not ended, and never would."""
     problems = options.get("problems")
     where = f" ({problems[0]})" if isinstance(problems, list) and problems else ""
-    if verdict == "escape":
-        return (
+    if options.get("verdict") == "escape":
+        return "ESCAPE", (
             f"The robots walk away for ever{where}: the checker stops where a robot leaves the box around "
             "the start and the pattern, and the adversary can repeat the same cycles without end. The "
             "trails show the walk."
         )
-    return (
+    return "LIVELOCK", (
         f"The same configurations come back for ever{where}: the loop marked on the timeline repeats "
         "without end under this adversary. The trails show the loop."
     )
 
 
 def banner(
-    outcome: str | None, collision_words: str | None, stuck: bool, why: str = "", endless: str = ""
+    outcome: str | None,
+    collision_words: str | None,
+    stuck: bool,
+    why: str = "",
+    endless: tuple[str, str] | None = None,
 ) -> str:
     """The outcome as a heading, and where it happened; ``endless``: a livelock's or an escape's trace
     played to its end (the engine sees a run still going)."""
     if outcome is None:
-        if endless:
-            verdict = "ESCAPE" if endless.startswith("The robots walk away") else "LIVELOCK"
-            return f"## ↻ {verdict}: it never ends\n\n{endless}"
+        if endless is not None:
+            verdict, words = endless
+            return f"## ↻ {verdict}: it never ends\n\n{words}"
         return ""
     detail = f"\n\n{collision_words} (the magenta burst on the grid)" if collision_words else ""
     if stuck:

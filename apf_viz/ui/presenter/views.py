@@ -121,4 +121,7 @@ class SessionView:
     # and the step of the earliest such Compute (Go to the fatal decision).
     fatal: tuple[str, int | None] = ("", None)
     waits: str = ""  # a deadlock: what each robot waits on (its rule now), robots grouped by rule
+    # A livelock's or an escape's trace played to its end: (its verdict, in words); the engine sees a run
+    # still going, so there is no outcome.
+    endless: tuple[str, str] | None = None
     phase_rings: bool = True  # draw the looked / computed rings (not once the pattern is formed)
