@@ -19,6 +19,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.core.run import engine_for_trace, replay
 from apf_viz.core.schedule import Schedule, parse_schedule
+from apf_viz.lecture import MAX_LECTURE_BYTES, Lecture, parse_lecture
 
 MAX_UPLOAD_BYTES = 2_000_000  # robots and pattern files from a browser
 MAX_TRACE_UPLOAD_BYTES = 50_000_000  # a trace from a browser: about 500,000 events
@@ -39,6 +40,10 @@ def robots_upload(filename: str, content: bytes) -> RobotsFile:
 
 def pattern_upload(filename: str, content: bytes) -> PatternFile:
     return parse_pattern(decode(filename, content), filename)
+
+
+def lecture_upload(filename: str, content: bytes) -> Lecture:
+    return parse_lecture(decode(filename, content, MAX_LECTURE_BYTES), filename)
 
 
 def schedule_upload(filename: str, content: bytes) -> Schedule:

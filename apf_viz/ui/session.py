@@ -32,7 +32,7 @@ from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
-from apf_viz.lecture import MAX_LECTURE_BYTES, Lecture, parse_lecture
+from apf_viz.lecture import Lecture
 from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
@@ -662,13 +662,7 @@ class Session:
 
     def load_lecture(self, filename: str, content: bytes) -> str:
         """A lecture file uploaded (checked whole first: a bad one leaves the run and lecture as they are)."""
-        if len(content) > MAX_LECTURE_BYTES:
-            raise InputError(f"{filename}: file is too large (more than {MAX_LECTURE_BYTES:,} bytes)")
-        try:
-            text = content.decode("utf-8")
-        except UnicodeDecodeError:
-            raise InputError(f"{filename}: not UTF-8 text") from None
-        return self.start_lecture(parse_lecture(text, filename))
+        return self.start_lecture(loader.lecture_upload(filename, content))
 
     def next_stop(self) -> str:
         """The lecture's next stop (PageDown): run to its condition; what happened, for a notification."""
