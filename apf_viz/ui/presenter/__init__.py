@@ -18,6 +18,7 @@ from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of, pseudocode_of
+from apf_viz.core.portrayal import stage_of as algorithm_stage
 from apf_viz.ui.presenter import story
 from apf_viz.ui.presenter.paper import paper_html
 from apf_viz.ui.presenter.staleness import hidden_from, seen_robots, stale_holders
@@ -249,9 +250,17 @@ def run_numbers(e: Engine, overlays: Overlays) -> dict:
 
 
 def stage_of(run: RunController, screen: SharedScreen) -> str:
-    """The algorithm's stage now (Next stage steps until it changes)."""
+    """The algorithm's stage now (Next stage and a lecture's stops ask after every step): in Run by the
+    algorithm's own stage name, which draws no marks (core/portrayal.py ``stage_of``)."""
     e = run.engine
-    return _overlays(run, screen, e.current_points(), e.state.lights).stage
+    if screen.mode != "run":
+        return _overlays(run, screen, e.current_points(), e.state.lights).stage
+    return algorithm_stage(e.algorithm, _configuration(run, e.current_points(), e.state.lights))
+
+
+def _configuration(run: RunController, pts: list[Point], lights: list[str]) -> Configuration:
+    """The run at one moment as the algorithm's portrayal reads it (global frame, for the screen only)."""
+    return Configuration(tuple(pts), tuple(lights), run.config.pattern, run.config.robots)
 
 
 def _drafted_robots(e: Engine, screen: SharedScreen) -> list[RobotView]:
@@ -281,8 +290,7 @@ def _overlays(run: RunController, screen: SharedScreen, pts: list[Point], lights
             (Cells(tuple(screen.editor.pattern), "pattern for these robots", "preview"),),
             "editing the robots",
         )
-    config = Configuration(tuple(pts), tuple(lights), run.config.pattern, run.config.robots)
-    return overlays_of(run.engine.algorithm, config)
+    return overlays_of(run.engine.algorithm, _configuration(run, pts, lights))
 
 
 def _twin_view(run: RunController, screen: SharedScreen) -> SessionView:
