@@ -161,6 +161,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         max_events=args.max_events or budget.max_events,
         max_moves=args.max_moves or budget.max_moves,
         skip_noops=skip,
+        fast_forward=not args.no_fast_forward,
     )
     outcome = None
     if schedule is not None:
@@ -590,6 +591,13 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="keep every activation, also the cycles that change nothing (by default the scheduler "
         "passes over a robot whose view it would answer with 'same light, stay')",
+    )
+    run.add_argument(
+        "--no-fast-forward",
+        action="store_true",
+        help="apply every event one by one (by default, where the scheduler has no choice, a lone robot's "
+        "repeating cycles are applied as one walk: the same run, event for event, much faster when robots "
+        "are far apart; never with --all-activations or a --schedule)",
     )
     run.add_argument(
         "--json",

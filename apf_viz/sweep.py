@@ -183,6 +183,7 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         light_semantics=cell.light_semantics,  # type: ignore[arg-type]
         max_events=budget.max_events,
         max_moves=budget.max_moves,
+        fast_forward=True,
     )
     scheduler = make_scheduler(cell.scheduler)
     if cell.timeout is None:

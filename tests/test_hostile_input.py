@@ -234,19 +234,20 @@ def test_a_run_past_run_timeout_is_recorded_as_timeout_and_the_sweep_goes_on(tmp
 
     starts = tmp_path / "starts"
     starts.mkdir()
-    far = [[0, 0], [100_000, 3], [2, 100_000]]  # a long walk: minutes without a limit
+    # A long walk: minutes without a limit under SSYNC, which is never fast-forwarded (a round is a choice).
+    far = [[0, 0], [100_000, 3], [2, 100_000]]
     (starts / "far.robots.json").write_text(json.dumps({"robots": far, "y_up": [True, True, False]}))
     (starts / "far.pattern.json").write_text(json.dumps({"points": [[0, 0], [1, 0], [0, 2]]}))
     (starts / "near.robots.json").write_text(json.dumps({"robots": [[0, 0], [3, 0], [1, 2]]}))
     (starts / "near.pattern.json").write_text(json.dumps({"points": [[0, 0], [1, 0], [0, 2]]}))
     seen = []
-    cells = grid([], [1], ["async"], ["apf-opaque-grid"], ["compute"], starts)
+    cells = grid([], [1], ["ssync"], ["apf-opaque-grid"], ["compute"], starts)
     rows = run_sweep(cells, tmp_path / "r.csv", workers=1, run_timeout=3.0, progress=seen.append)
     by_start = {r["start"]: r for r in rows}
     assert by_start["near"]["outcome"] == "formed"
     far_row = by_start["far"]
     assert far_row["outcome"] == "timeout" and far_row["moves"] > 0 and 3.0 <= far_row["wall_s"] < 60
-    assert any("far seed 1 async" in p.slowest for p in seen), [p.slowest for p in seen]
+    assert any("far seed 1 ssync" in p.slowest for p in seen), [p.slowest for p in seen]
     assert seen[-1].finished == seen[-1].total == 2
 
 

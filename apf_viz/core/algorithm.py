@@ -68,13 +68,21 @@ class Decision:
     """The output of one Compute. ``move`` is in the robot's local frame; None means stay.
 
     ``watch`` (optional, only on "same light, stay") narrows what the engine must watch before asking
-    again; None means any change in the robot's view may matter."""
+    again; None means any change in the robot's view may matter.
+
+    ``stride`` (optional, only on a move that keeps the light) is the algorithm's promise that this very
+    decision is its answer again on every view this one becomes after the robot's own next
+    ``stride − 1`` moves when nothing else changes: the same robots in sight, each offset shifted by the
+    robot's own progress (``j·move`` after j moves, 1 ≤ j < stride). The engine may then apply those
+    ``stride`` cycles at once where the scheduler has no choice (:mod:`apf_viz.core.fast_forward`);
+    1 promises nothing beyond this cycle."""
 
     light: str
     move: Direction | None = None
     rule: str = ""
     rule_id: str = ""  # stable, for tests and traces (e.g. "A1.off.terminal"); ``rule`` is the prose
     watch: Watch | None = field(default=None, compare=False, repr=False)
+    stride: int = field(default=1, compare=False, repr=False)
 
     def is_noop(self, current_light: str) -> bool:
         """True when acting on this decision changes nothing: same light, no move."""

@@ -25,9 +25,10 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
+from apf_viz.core.fast_forward import hidden_only_on_line, shifted, steps_in_same_sight
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point, coordinate_problem
-from apf_viz.core.history import Event, History, StepRecord
+from apf_viz.core.history import Event, History, StepRecord, Walk
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
@@ -144,6 +145,8 @@ class Engine:
         use_watches: when skipping, trust the :class:`~apf_viz.core.algorithm.Watch` of a no-op decision
             to tell when the robot must be asked again (False: after any change of its view; the same
             run, slower; for tests).
+        fast_forward: when skipping, let :meth:`walk` apply a lone robot's repeating cycles as one
+            macro-step (:mod:`apf_viz.core.fast_forward`); the same run, event for event.
     """
 
     def __init__(
@@ -159,6 +162,7 @@ class Engine:
         checkpoint_every: int = 64,
         skip_noops: bool = True,
         use_watches: bool = True,
+        fast_forward: bool = False,
     ) -> None:
         k = len(robots)
         if k == 0:
@@ -181,6 +185,8 @@ class Engine:
         self.checkpoint_every = checkpoint_every
         self.skip_noops = skip_noops
         self.use_watches = use_watches
+        self.fast_forward = fast_forward and skip_noops
+        self.walks = 0  # macro-steps applied by walk(), for benchmarks and tests
         self._decisions: dict[Snapshot, Decision] = {}
         self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
@@ -374,6 +380,85 @@ class Engine:
         # it already had, and a Compute that keeps the light holds the decision on that view as pending.
         self._update_outcome(phase == _COMPUTED or st.version != version)
         return events
+
+    def walk(self, max_steps: int | None = None) -> int:
+        """Apply, as one macro-step, the cycles a lone robot would repeat: when it is the only robot
+        whose next event can change anything (so a scheduler that serves the eligible robots has no
+        choice), every other robot is watched, and its decision promises a ``stride``. The walk stops
+        short of anything the stride, the robot's sight, the other robots' watches, the budgets or
+        ``max_steps`` would change (:mod:`apf_viz.core.fast_forward`). Returns the steps applied (0: none;
+        the caller steps as usual)."""
+        st = self.state
+        if not self.fast_forward or st.outcome is not None or self.history.length != st.steps:
+            return 0
+        eligible = self.eligible()
+        if np.count_nonzero(eligible) != 1 or self._watches.count != self.k - 1:
+            return 0
+        r = int(eligible.nonzero()[0][0])
+        if st.phase[r] != _IDLE:
+            return 0
+        snap, ids = self._observe(r)
+        decision = self._decide(r, snap)
+        if decision.stride < 2 or decision.move is None or decision.light != st.lights[r]:
+            return 0
+        per = 2 if self.light_semantics == "lc-atomic" else 3
+        n = decision.stride
+        if self.max_events is not None:
+            n = min(n, (self.max_events - st.events - 1) // 3)
+        if self.max_moves is not None:
+            n = min(n, self.max_moves - st.moves - 1)
+        if max_steps is not None:
+            n = min(n, max_steps // per)
+        gmove = move_to_global(decision.move, self.y_up[r])
+        delta = gmove.delta
+        if n < 2 or not hidden_only_on_line(st.positions, r, delta, snap.columns):
+            return 0
+        here = self._views.points[r]
+        n = steps_in_same_sight(snap.columns, decision.move, n)
+        if n >= 2:
+            n = self._watches.quiet_steps(r, here, delta, n)
+        if n < 2:
+            return 0
+        self._walk(r, snap, ids, decision, n, per)
+        return n * per
+
+    def _walk(
+        self, r: int, snap: Snapshot, ids: tuple[int, ...], decision: Decision, n: int, per: int
+    ) -> None:
+        """Apply n cycles of robot r on this decision (:meth:`walk` checked that they repeat)."""
+        st = self.state
+        here = self._views.points[r]
+        gmove = move_to_global(decision.move, self.y_up[r])
+        dx, dy = gmove.delta
+        to = (here[0] + n * dx, here[1] + n * dy)
+        position = st.steps
+        st.positions[r] = to
+        self._views.moved((r,), (here,))
+        self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
+        self._dirty.add(r)
+        st.steps += n * per
+        st.events += 3 * n
+        st.moves += n
+        st.cycles += n
+        st.version += n
+        st.skipped += (self.k - 1) * n * per
+        last_look = st.steps - per + 1  # the step of the last cycle's Look (steps count from 1)
+        st.look_step[r] = st.decided_look[r] = last_look
+        st.look_version[r] = st.version - 1
+        st.decided[r] = shifted(snap, decision.move, n - 1)
+        st.decided_seen[r] = ids
+        st.last_act[r] = st.last_cycle_end[r] = st.steps
+        self.walks += 1
+        look = _new(Event, (r, "look", ids, None, None, None, None, None, False, None))
+        rule_id = decision.rule_id or None
+        compute = _new(
+            Event,
+            (r, "compute", None, decision.light, gmove, decision.rule or None, None, None, False, rule_id),
+        )
+        self.history.record_walk(position, Walk.of(r, n * per, per, look, compute, here, (dx, dy)))
+        if position // self.checkpoint_every != st.steps // self.checkpoint_every:
+            self.history.checkpoint(st.steps, st.copy())
+        self._update_outcome()
 
     def _look(self, r: int, round: int | None) -> Event:
         st = self.state

@@ -110,30 +110,80 @@ def _unpack(packed: _Packed) -> RecordedStep:
     )
 
 
-class Steps(Sequence[RecordedStep]):
-    """The recorded steps as a read-only sequence (unpacked on access)."""
+_ONE = StepRecord((0,))  # a placeholder choice: packing an event needs one
 
-    def __init__(self, packed: list[_Packed]) -> None:
-        self._packed = packed
+
+class Walk(NamedTuple):
+    """A robot's fast-forwarded cycles (:mod:`apf_viz.core.fast_forward`), kept as one entry and expanded
+    on access: every cycle's Look saw the same robots and its Compute made the same decision, and each
+    Move is one lattice step further along ``delta``."""
+
+    robot: int
+    steps: int  # the steps it stands for (cycles × per_cycle, or a prefix of them after a branch)
+    per_cycle: int  # 3, or 2 under lc-atomic (a Look and its Compute are one step)
+    look: tuple  # the packed Look event
+    compute: tuple  # the packed Compute event
+    start: Point
+    delta: Point  # global, one lattice step
+
+    @classmethod
+    def of(
+        cls, robot: int, steps: int, per_cycle: int, look: Event, compute: Event, start: Point, delta: Point
+    ) -> Walk:
+        """A walk from the Look and Compute events every cycle of it repeats."""
+        return cls(
+            robot, steps, per_cycle, _pack(_ONE, [look])[2][0], _pack(_ONE, [compute])[2][0], start, delta
+        )
+
+    def step(self, i: int) -> _Packed:
+        """Its i-th step (0-based), packed like a recorded one."""
+        cycle, phase = divmod(i, self.per_cycle)
+        robots = (self.robot,)
+        if phase == self.per_cycle - 1:
+            t = cycle + 1
+            to = (self.start[0] + t * self.delta[0], self.start[1] + t * self.delta[1])
+            return (robots, None, ((self.robot, "move", None, None, None, None, to, None, False, None),))
+        if self.per_cycle == 2:
+            return (robots, None, (self.look, self.compute))
+        return (robots, None, (self.compute if phase else self.look,))
+
+
+class Steps(Sequence[RecordedStep]):
+    """The recorded steps as a read-only sequence (unpacked on access, walks expanded)."""
+
+    def __init__(self, history: History) -> None:
+        self._history = history
 
     def __len__(self) -> int:
-        return len(self._packed)
+        return self._history.length
 
     @overload
     def __getitem__(self, i: int) -> RecordedStep: ...
     @overload
     def __getitem__(self, i: slice) -> list[RecordedStep]: ...
     def __getitem__(self, i: int | slice) -> RecordedStep | list[RecordedStep]:
+        history = self._history
         if isinstance(i, slice):
-            return [_unpack(p) for p in self._packed[i]]
-        return _unpack(self._packed[i])
+            if history._starts is None:
+                return [_unpack(p) for p in history._packed[i]]
+            return [_unpack(history.packed(j)) for j in range(history.length)[i]]
+        if i < 0:
+            i += history.length
+        if not 0 <= i < history.length:
+            raise IndexError(f"step {i} is outside the recorded history")
+        return _unpack(history.packed(i))
 
     def __iter__(self) -> Iterator[RecordedStep]:
-        return map(_unpack, self._packed)
+        for entry in self._history._packed:
+            if type(entry) is Walk:
+                for i in range(entry.steps):
+                    yield _unpack(entry.step(i))
+            else:
+                yield _unpack(entry)
 
     def record(self, i: int) -> StepRecord:
         """Step i's choice alone (what a replay needs), without unpacking its events."""
-        robots, round, _ = self._packed[i]
+        robots, round, _ = self._history.packed(i)
         return StepRecord(robots, round)
 
 
@@ -157,8 +207,11 @@ class History:
     """Recorded steps (possibly beyond the engine's current position, after a seek) and checkpoints."""
 
     def __init__(self, initial: EngineState) -> None:
-        self._packed: list[_Packed] = []
-        self.steps = Steps(self._packed)
+        self._packed: list[_Packed | Walk] = []
+        self._length = 0  # steps recorded (a walk stands for many)
+        # Each entry's first step, kept once a walk is recorded (until then entry i is step i).
+        self._starts: list[int] | None = None
+        self.steps = Steps(self)
         self.generation = 0  # bumped when a branch drops recorded steps (caches of prefixes use it)
         self.dropped: tuple[int, list[StepRecord]] | None = None  # the last branch's dropped steps
         self._checkpoint_steps: list[int] = [0]
@@ -166,24 +219,64 @@ class History:
 
     @property
     def length(self) -> int:
-        return len(self._packed)
+        return self._length
+
+    def packed(self, i: int) -> _Packed:
+        """Step i (0 ≤ i < length) as stored: packed, a walk's step expanded."""
+        starts = self._starts
+        if starts is None:
+            return self._packed[i]
+        e = bisect.bisect_right(starts, i) - 1
+        entry = self._packed[e]
+        return entry.step(i - starts[e]) if type(entry) is Walk else entry
 
     def record(self, position: int, record: StepRecord, events: list[Event]) -> None:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the
         future (a redo); a different one branches: the old future is dropped."""
-        packed = self._packed
         step = _pack(record, events)
-        if position == len(packed):  # the usual case: recording at the end
-            packed.append(step)
+        if position == self._length:  # the usual case: recording at the end
+            self._append(step, 1)
             return
-        if position < len(packed):
-            if packed[position] == step:
+        if position < self._length:
+            if self.packed(position) == step:
                 return
-            self.dropped = (position, [StepRecord(p[0], p[1]) for p in packed[position:]])
-            del packed[position:]
-            self.generation += 1
-            self._drop_checkpoints_after(position)
-        packed.append(step)
+            self._branch(position)
+        self._append(step, 1)
+
+    def record_walk(self, position: int, walk: Walk) -> None:
+        """Store a fast-forwarded walk taken at ``position``, the end of the history."""
+        if position != self._length:
+            raise ValueError(
+                f"a walk is recorded at the end of the history ({self._length}), not at {position}"
+            )
+        if self._starts is None:
+            self._starts = list(range(len(self._packed)))
+        self._append(walk, walk.steps)
+
+    def _append(self, entry: _Packed | Walk, size: int) -> None:
+        self._packed.append(entry)
+        if self._starts is not None:
+            self._starts.append(self._length)
+        self._length += size
+
+    def _branch(self, position: int) -> None:
+        """Drop the recorded steps from ``position`` on (kept aside in ``dropped``)."""
+        self.dropped = (position, [self.steps.record(i) for i in range(position, self._length)])
+        starts = self._starts
+        if starts is None:
+            del self._packed[position:]
+        else:
+            e = bisect.bisect_right(starts, position) - 1
+            entry = self._packed[e]
+            keep = position - starts[e]
+            if type(entry) is Walk and keep:
+                self._packed[e] = entry._replace(steps=keep)
+                e += 1
+            del self._packed[e:]
+            del starts[e:]
+        self._length = position
+        self.generation += 1
+        self._drop_checkpoints_after(position)
 
     def checkpoint(self, position: int, state: EngineState) -> None:
         """Keep this state; then thin older checkpoints so that their spacing grows with their age.

@@ -38,8 +38,14 @@ def collector_paused() -> Iterator[None]:
 def advance(engine: Engine, scheduler: Scheduler, seed: int, steps: int | None = None) -> int:
     """Let the scheduler drive the engine for ``steps`` steps, or until the run ends. Returns steps taken."""
     taken = 0
+    # A lone eligible robot is what such a scheduler must choose: its repeating cycles may be one walk.
+    walks = engine.fast_forward and getattr(scheduler, "forced_when_alone", False)
     with collector_paused():
         while not engine.finished and (steps is None or taken < steps):
+            if walks:
+                taken += engine.walk(None if steps is None else steps - taken)
+                if engine.finished or (steps is not None and taken >= steps):
+                    break
             engine.apply(scheduler.choose(engine, step_rng(seed, engine.step_index)))
             taken += 1
     return taken

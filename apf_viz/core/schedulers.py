@@ -33,6 +33,9 @@ SCHEDULERS = ("fsync", "ssync", "async", "round-robin", "stale-first", "manual")
 
 class Scheduler(Protocol):
     name: str
+    # True when, with one eligible robot, it can only activate that robot, one event per step (and so a
+    # lone robot's repeating cycles may be fast-forwarded: core/fast_forward.py).
+    forced_when_alone: bool
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         """The next step: robots to activate together (all in the same phase) and the round if any."""
@@ -78,6 +81,7 @@ class AsyncScheduler:
     """ASYNC: one Look, Compute or Move of a uniformly random eligible robot per step."""
 
     name = "async"
+    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         mask = candidates(engine)
@@ -92,6 +96,7 @@ class RoundRobinScheduler:
     """Sequential: robots in index order, each performing a whole cycle (Look, Compute, Move)."""
 
     name = "round-robin"
+    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
@@ -108,6 +113,7 @@ class StaleFirstScheduler:
     moves. Every move is thus made on a snapshot taken before as many other moves as possible."""
 
     name = "stale-first"
+    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
@@ -130,6 +136,7 @@ class _RoundScheduler:
     Moving simultaneously. The round in progress is read off the robots' phases."""
 
     name = ""
+    forced_when_alone = False  # a round numbers its events
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
@@ -175,6 +182,7 @@ class ManualScheduler:
 
     fallback: Scheduler | None = None
     name: str = "manual"
+    forced_when_alone = False  # the caller picks
 
     def __post_init__(self) -> None:
         self._queue: list[int] = []

@@ -281,6 +281,90 @@ class Watches:
                         self._revealed_through(p, hit)
         return self._take(hit)
 
+    def quiet_steps(self, r: int, start: Point, delta: Point, n: int) -> int:
+        """How many of robot r's next moves, from ``start`` by ``delta`` (one lattice step along an axis),
+        concern no watcher, up to n. A lower bound (0 when unsure): moving r straight to
+        ``start + n′·delta`` at once then concerns nobody, as none of the n′ single moves would
+        (:mod:`apf_viz.core.fast_forward`)."""
+        if not self.count:
+            return n
+        if int(self.bits[r]) & self._watched:
+            return 0  # a watched light is news wherever it comes into sight
+        path = _Path(start, delta)
+        first = n + 1  # the first point of the walk (0 … n) that some watched region contains
+        for p in self._watchers_at:
+            t = path.at(p)
+            if t is not None and 0 <= t < first:
+                first = t
+        mine = self._followed.get(r, set())  # segments that follow the walker: taken along, not touched
+        for p, pairs in self._any_at.items():
+            t = path.at(p)
+            if t is not None and 0 <= t < first and not pairs <= mine:
+                first = t
+        for w, (boxes, longs) in self._boxed.items():
+            for box in boxes:
+                first = min(first, path.first_in(path.box(box), n))
+            wx, wy = int(self._P[w, 0]), int(self._P[w, 1])
+            for ux, uy, g in longs:
+                first = min(first, path.first_in(path.segment(wx, wy, ux, uy, g), n))
+        quiet = first - 1  # the move onto that point, or off it (the start), touches it
+        if mine:
+            quiet = min(quiet, self._quiet_witness(r, mine, path, quiet))
+        if self._occupied:
+            quiet = min(quiet, self._quiet_occupied(path, n))
+        if self._watched:
+            quiet = min(quiet, self._quiet_reveals(r, path, n))
+        return max(0, quiet)
+
+    def _quiet_witness(self, r: int, mine: set[tuple[int, int]], path: _Path, n: int) -> int:
+        """Moves during which every watcher following the walker keeps a witness in sight: another
+        witness (whose segment the walk does not touch, see :meth:`quiet_steps`), or the walker itself,
+        in sight and inside the watch's ``within``. (Within those moves the engine may drop and re-pick
+        the walker's segment; the watcher's answer stays "same light, stay" either way.)"""
+        quiet = n
+        P = self._P
+        robots = [(int(x), int(y)) for x, y in P.tolist()]
+        for w in {w for w, _ in mine}:
+            intact = self._intact[w]
+            if intact - {i for v, i in mine if v == w}:
+                continue
+            within = self._within[w]
+            if within is not None:
+                lo, hi = path.box(within)
+                if not lo <= 1 <= hi:
+                    return 0
+                quiet = min(quiet, hi)
+            for q, point in enumerate(robots):
+                if q != r and q != w:
+                    quiet = min(quiet, path.first_in(path.behind(robots[w], point), quiet + 1) - 1)
+        return max(quiet, 0)
+
+    def _quiet_occupied(self, path: _Path, n: int) -> int:
+        """Moves before the walker is the last robot to leave some watch's occupied boxes."""
+        quiet = n
+        for boxes, counts in self._occupied.values():
+            spans = [path.box(box) for box in boxes]
+            if any(count - (lo <= 0 <= hi) for count, (lo, hi) in zip(counts, spans, strict=True)):
+                continue  # another robot keeps a box occupied whatever the walker does
+            for t in [1] + [hi + 1 for _, hi in spans]:
+                if 1 <= t <= quiet and not any(lo <= t <= hi for lo, hi in spans):
+                    quiet = t - 1
+        return quiet
+
+    def _quiet_reveals(self, r: int, path: _Path, n: int) -> int:
+        """Moves before the walker leaves a point between a robot of a watched light and a watcher of
+        that light (it may be revealed to the watcher then)."""
+        quiet = n
+        P = self._P
+        for q in (self.bits & self._watched).nonzero()[0].tolist():
+            watchers = (self.active & ((self._mask & self.bits[q]) != 0)).nonzero()[0].tolist()
+            qx, qy = int(P[q, 0]), int(P[q, 1])
+            for w in watchers:
+                if w != q:
+                    lo, hi = path.between((qx, qy), (int(P[w, 0]), int(P[w, 1])))
+                    quiet = min(quiet, path.first_in((lo, hi), n - 1))
+        return quiet
+
     def relit(self, m: int, light: str) -> list[int]:
         """Watched robots robot m's new light concerns."""
         self.bits[m] = self._bit.get(light, 0)
@@ -515,6 +599,84 @@ def _touches(
             if g and any(dx == ux * g and dy == uy * g and g <= length for ux, uy, length in longs):
                 return True
     return False
+
+
+class _Path:
+    """The points start + t·delta of a walk along an axis, as their t: a point is (along, across), the
+    walk being across = 0."""
+
+    def __init__(self, start: Point, delta: Point) -> None:
+        self.x, self.y = start
+        self.ex, self.ey = delta
+
+    def _rel(self, px: int, py: int) -> tuple[int, int]:
+        if self.ey == 0:
+            return (px - self.x) * self.ex, py - self.y
+        return (py - self.y) * self.ey, px - self.x
+
+    def at(self, p: Point) -> int | None:
+        """t of this point, or None if it is off the walk's line."""
+        a, b = self._rel(*p)
+        return a if b == 0 else None
+
+    def box(self, box: tuple[int, int, int, int]) -> tuple[int, int]:
+        """The t of the walk's line inside a closed box (global bounds), as (lo, hi); lo > hi if none."""
+        x0, x1, y0, y1 = box
+        if self.ey == 0:
+            if not y0 <= self.y <= y1:
+                return 1, 0
+            lo, hi = (x0 - self.x, x1 - self.x) if self.ex == 1 else (self.x - x1, self.x - x0)
+        else:
+            if not x0 <= self.x <= x1:
+                return 1, 0
+            lo, hi = (y0 - self.y, y1 - self.y) if self.ey == 1 else (self.y - y1, self.y - y0)
+        return lo, hi
+
+    def segment(self, wx: int, wy: int, ux: int, uy: int, g: int) -> tuple[int, int]:
+        """The t of the walk's line on the segment w + s·(ux, uy), 1 ≤ s ≤ g."""
+        a0, b0 = self._rel(wx, wy)
+        a1, b1 = self._rel(wx + ux, wy + uy)
+        da, db = a1 - a0, b1 - b0
+        if db == 0:
+            if b0 != 0:
+                return 1, 0
+            ends = (a0 + da, a0 + g * da)
+            return min(ends), max(ends)
+        if b0 % db or not 1 <= -b0 // db <= g:
+            return 1, 0
+        t = a0 - b0 // db * da
+        return t, t
+
+    def between(self, q: Point, w: Point) -> tuple[int, int]:
+        """The t of the walk's line strictly between q and w."""
+        aq, bq = self._rel(*q)
+        aw, bw = self._rel(*w)
+        if bq == 0 and bw == 0:
+            return min(aq, aw) + 1, max(aq, aw) - 1
+        if bq * bw >= 0:
+            return 1, 0  # both on one side (or one on the line: an end, not between)
+        num, den = aq * (bw - bq) - (aw - aq) * bq, bw - bq  # a where the segment crosses b = 0
+        if num % den:
+            return 1, 0
+        return num // den, num // den
+
+    def behind(self, w: Point, q: Point) -> tuple[int, int]:
+        """The t of the walk's line that q hides from w (q strictly between w and the point)."""
+        aw, bw = self._rel(*w)
+        aq, bq = self._rel(*q)
+        if bq == bw or bw * (bq - bw) >= 0 or abs(bq - bw) >= abs(bw):
+            return 1, 0  # the ray from w through q runs parallel, away, or crosses the line before q
+        num, den = aw * (bq - bw) - (aq - aw) * bw, bq - bw  # a where that ray crosses b = 0
+        if num % den:
+            return 1, 0
+        return num // den, num // den
+
+    @staticmethod
+    def first_in(span: tuple[int, int], n: int) -> int:
+        """The least t of ``span`` within 0 … n; n + 2 if none (beyond every bound a caller takes)."""
+        lo, hi = span
+        lo = max(lo, 0)
+        return lo if lo <= min(hi, n) else n + 2
 
 
 def _inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:

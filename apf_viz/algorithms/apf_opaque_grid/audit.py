@@ -76,7 +76,12 @@ def _audited_steps(
     audit: Audit,
     on_compute: Callable[[Engine, int], None] | None,
 ) -> None:
+    # A walk keeps every light (core/fast_forward.py), so it needs no check; a caller that looks at every
+    # Compute gets them all.
+    walks = on_compute is None and getattr(sched, "forced_when_alone", False)
     while not engine.finished:
+        if walks and engine.walk() and engine.finished:
+            break
         events = engine.apply(sched.choose(engine, step_rng(seed, engine.step_index)))
         if events[-1].phase == "compute":  # lights change at Compute only
             if on_compute is not None:

@@ -13,7 +13,7 @@ robot already done.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from operator import itemgetter
 
@@ -22,6 +22,7 @@ import numpy as np
 from apf_viz.algorithms.apf_opaque_grid import watches
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
 from apf_viz.algorithms.apf_opaque_grid.resolutions import LA, N2, P3, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.strides import FOREVER, clear_rows_stride, fixed_sign_stride
 from apf_viz.core.algorithm import Box, Decision, Pattern
 from apf_viz.core.grid import Direction, Point
 from apf_viz.core.portrayal import NO_EVIDENCE, Band, Evidence, Frame, Line
@@ -97,7 +98,10 @@ def _step_towards(frame: LeaderFrame, me: Point, goal: Point, horizontal_first: 
 
 
 def line_move(frame: LeaderFrame, j: int, light: str) -> Decision:
-    """LineMove(j): down to L_H1 (row 0), along it to (j, 0), then down into (j, −1)."""
+    """LineMove(j): down to L_H1 (row 0), along it to (j, 0), then down into (j, −1).
+
+    A stride (:class:`~apf_viz.core.algorithm.Decision`) counts the moves until the next branch: the
+    rule, j and the frame do not depend on where the robot is on its way."""
     x, y = frame.me
     if y == 0:
         if x == j:
@@ -109,15 +113,27 @@ def line_move(frame: LeaderFrame, j: int, light: str) -> Decision:
             )
         step = frame.local_move(1 if j > x else -1, 0)
         return Decision(
-            light, step, f"LineMove({j}): on L_H1 → move horizontally towards ({j}, 0)", "LineMove.along"
+            light,
+            step,
+            f"LineMove({j}): on L_H1 → move horizontally towards ({j}, 0)",
+            "LineMove.along",
+            stride=abs(j - x),
         )
     return Decision(
-        light, frame.local_move(0, -1), f"LineMove({j}): above L_H1 → move down towards L_H1", "LineMove.down"
+        light,
+        frame.local_move(0, -1),
+        f"LineMove({j}): above L_H1 → move down towards L_H1",
+        "LineMove.down",
+        stride=y,
     )
 
 
-def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decision:
-    """TargetMove(j): up to L_{t_j−1} (the row below t_j), along it to below t_j, then up into t_j."""
+def target_move(frame: LeaderFrame, j: int, target: Point, light: str, frame_fixed: bool = True) -> Decision:
+    """TargetMove(j): up to L_{t_j−1} (the row below t_j), along it to below t_j, then up into t_j.
+
+    The stride counts the moves until the next branch. With ``frame_fixed`` False the frame moves with
+    the robot (the paper's leader frame puts it at (0, −1) wherever it is), so the same decision repeats
+    forever."""
     x, y = frame.me
     tx, ty = target
     name = f"TargetMove({j}) to t_{j} = ({tx}, {ty})"
@@ -129,9 +145,15 @@ def target_move(frame: LeaderFrame, j: int, target: Point, light: str) -> Decisi
                 light, frame.local_move(0, 1), f"{name}: below t_{j} → move up into it", "TargetMove.into"
             )
         step = frame.local_move(1 if tx > x else -1, 0)
-        return Decision(light, step, f"{name}: on L_(t_j−1) → move horizontally", "TargetMove.along")
+        stride = abs(tx - x) if frame_fixed else FOREVER
+        return Decision(
+            light, step, f"{name}: on L_(t_j−1) → move horizontally", "TargetMove.along", stride=stride
+        )
     step = frame.local_move(0, 1 if ty - 1 > y else -1)
-    return Decision(light, step, f"{name}: move vertically towards L_(t_j−1)", "TargetMove.vertical")
+    stride = abs(ty - 1 - y) if frame_fixed else FOREVER
+    return Decision(
+        light, step, f"{name}: move vertically towards L_(t_j−1)", "TargetMove.vertical", stride=stride
+    )
 
 
 _dy = itemgetter(1)
@@ -205,18 +227,20 @@ def pattern_formation_off(
                 done_seen = bool(c.showing("done").any())
                 ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
                 if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
-                    return _to_target(
+                    first = _to_target(
                         frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
                     )
+                    return clear_rows_stride(first, view, frame.s)
                 return _compose(line_move(frame, 1, "off"), "A3.off.start-line")
             growing = bool(line[0] == 1 and line[-1] == i)  # distinct and sorted: exactly 1..i
             if ev.test("the line is (1..i, −1)", growing, "the line is still growing"):
                 return _compose(line_move(frame, i + 1, "off"), "A3.off.grow-line")
             emptying = bool(line[0] == n - i and line[-1] == n - 1)
             if ev.test(f"the line is ({n - i}..{n - 1}, −1)", emptying, "it is emptying"):
-                return _to_target(
+                following = _to_target(
                     frame, n - i - 2, targets, f"{i} robots left on the line", "A3.off.next-target"
                 )
+                return clear_rows_stride(following, view, frame.s)
             return stay(
                 view,
                 "Phase 3 (off): the line is neither growing nor shrinking as expected → wait",
@@ -263,7 +287,7 @@ def _between_rows(frame: LeaderFrame) -> Box | None:
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:
-    return Decision(decision.light, decision.move, decision.rule, f"{rule_id}/{decision.rule_id}")
+    return replace(decision, rule_id=f"{rule_id}/{decision.rule_id}")
 
 
 def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str, rule_id: str) -> Decision:
@@ -275,11 +299,8 @@ def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str,
             f"{rule_id}/TargetMove.missing",
         )
     decision = target_move(frame, j, targets[j], "off")
-    return Decision(
-        decision.light,
-        decision.move,
-        f"Phase 3 (off): {why} → {decision.rule}",
-        f"{rule_id}/{decision.rule_id}",
+    return replace(
+        decision, rule=f"Phase 3 (off): {why} → {decision.rule}", rule_id=f"{rule_id}/{decision.rule_id}"
     )
 
 
@@ -310,16 +331,18 @@ def pattern_formation_leader(
     s = _up_towards(done)
     # Without LA, the paper's frame: r₀ itself is always (0, −1).
     if LA in res and deviation(ev, LA, True):
-        frame = _anchored_frame(done, targets[n - 2], s)
+        frame, fixed = _anchored_frame(done, targets[n - 2], s), True
     else:
-        frame = LeaderFrame((0, s), s)
+        frame, fixed = LeaderFrame((0, s), s), False
     _frame_region(ev, frame)
-    decision = target_move(frame, n - 1, targets[n - 1], "leader")
-    return Decision(
-        decision.light,
-        decision.move,
-        f"Phase 3 (leader): all others done → {decision.rule}",
-        f"A3.leader.last-target/{decision.rule_id}",
+    decision = target_move(frame, n - 1, targets[n - 1], "leader", frame_fixed=fixed)
+    return fixed_sign_stride(
+        replace(
+            decision,
+            rule=f"Phase 3 (leader): all others done → {decision.rule}",
+            rule_id=f"A3.leader.last-target/{decision.rule_id}",
+        ),
+        done,
     )
 
 

@@ -25,6 +25,7 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     vertical_line,
 )
 from apf_viz.algorithms.apf_opaque_grid.resolutions import G3, KD, L2, NV, SD, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.strides import FOREVER, left_walk_stride, vertical_stride
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
@@ -231,12 +232,14 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
         upper, bottom = upper_closed_half_has_other(view, ev), bottom_closed_half_has_other(view, ev)
         if not upper or not bottom:
             if left_closed_half_has_other(view, ev):
-                return Decision(
+                left = Decision(
                     "leader1",
                     Direction.LEFT,
                     "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
                     "A2.leader1.extreme-left",
+                    stride=FOREVER,
                 )
+                return left_walk_stride(left, view)
             return Decision(
                 "leader",
                 None,
@@ -252,24 +255,33 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
             )
         if not is_singleton(view, ev):
             (neighbour,) = vertical_line(view)
-            return Decision(
+            away = Decision(
                 "leader1",
                 away_from(neighbour.dy),
                 "Phase 2 (leader1): terminal, not alone on L_V → move away from r′",
                 "A2.leader1.away",
+                stride=FOREVER,
             )
+            return vertical_stride(away, view)
         if SD in res and deviation(
             ev, SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
         ):
-            return Decision(
+            sd_away = Decision(
                 "leader1",
                 away_from(r_i[0].dy),
                 "Phase 2 (leader1): alone on L_V → move away from R_I (SD)",
                 "A2.leader1.SD-away",
+                stride=FOREVER,
             )
-        return Decision(
-            "leader1", Direction.UP, "Phase 2 (leader1): alone on L_V → move along my +y", "A2.leader1.up"
+            return vertical_stride(sd_away, view)
+        up = Decision(
+            "leader1",
+            Direction.UP,
+            "Phase 2 (leader1): alone on L_V → move along my +y",
+            "A2.leader1.up",
+            stride=FOREVER,
         )
+        return vertical_stride(up, view)
     if ev.test("a leader1 on L_I", "leader1" in lights_of(l_i), "another robot to my left elected itself"):
         return Decision("off", None, "Phase 2 (leader1): another leader1 on L_I → off", "A2.leader1.off")
     return stay(view, "Phase 2 (leader1): waiting for L_I (or R_I) to turn off", "A2.leader1.wait")

@@ -30,6 +30,7 @@ LATER_LIGHTS = frozenset({"symmetric", "decider", "call", "leader1", "leader", "
 PHASES_2_3 = frozenset({"decider", "leader", "done"})  # the lights that take an off robot out of Phase 1
 _LEADER = frozenset({"leader"})
 ROW_LEFT: Box = (None, -1, 0, 0)  # r's row, to its left
+LEFT_HALF: Box = (None, -1, None, None)  # H_L^O(r): everything to r's left
 WITNESSES = 8  # a fact that any of several robots shows is watched through this many of them
 
 
@@ -84,26 +85,24 @@ def phase1_wait(view: Snapshot) -> Watch:
     and L_I (their lights and K), all inside the box from L_I to L_V; "no leader1 on R_I" only matters
     while G1 is false, i.e. while no leader1 is in sight.
 
-    Tighter when r sees no terminal1 robot and some robot w to its left: with w kept H_L^O is not empty,
-    so the terminal rule cannot fire, and with no terminal1 robot coming into sight L_I cannot hold two;
-    nothing else is read."""
+    Tighter when r sees no terminal1 robot and some robot w to its left: with w in sight there (any of
+    several, wherever they move in the left half) H_L^O is not empty, so the terminal rule cannot fire,
+    and with no terminal1 robot coming into sight L_I cannot hold two; nothing else is read."""
     left = view.robots[: bisect_left(view.robots, (0,))]
     if left and "terminal1" not in map(itemgetter(2), view.robots):
-        return Watch(segments=(_offset(sparsest(left)),), lights=PHASES_2_3 | {"terminal1"})
+        return Watch(any_of=some_witnesses(left), within=LEFT_HALF, lights=PHASES_2_3 | {"terminal1"})
     return Watch(boxes=(_to_my_line_from_left_line(view),), lights=PHASES_2_3)
 
 
 def g1_wait(view: Snapshot) -> Watch:
     """A1.off.G1-wait: r is off, sees no leader/done robot, no two deciders on L_I, and a robot w of a later
-    light. With w kept (a segment) G1 holds; with no leader/done coming into sight Phase 3 does not
-    apply; and two deciders on L_I cannot appear: either no decider is in sight and none comes into
-    sight, or L_I is kept (a box)."""
-    w = sparsest(s for s in view.robots if s.light not in PHASE1_LIGHTS)
+    light. With w in sight with its light (any of several, wherever they move: a walking leader1 may be
+    one) G1 holds; with no leader/done coming into sight Phase 3 does not apply; and two deciders on L_I
+    cannot appear: either no decider is in sight and none comes into sight, or L_I is kept (a box)."""
+    later = some_witnesses(s for s in view.robots if s.light not in PHASE1_LIGHTS)
     if any(s.light == "decider" for s in view.robots):
-        return Watch(
-            boxes=(_to_my_line_from_left_line(view),), segments=(_offset(w),), lights=_LEADER | {"done"}
-        )
-    return Watch(segments=(_offset(w),), lights=frozenset({"leader", "done", "decider"}))
+        return Watch(boxes=(_to_my_line_from_left_line(view),), any_of=later, lights=_LEADER | {"done"})
+    return Watch(any_of=later, lights=frozenset({"leader", "done", "decider"}))
 
 
 def no_leader(view: Snapshot) -> Watch:
@@ -122,7 +121,8 @@ def not_my_turn(view: Snapshot, leader: Seen, between: Box | None) -> Watch | No
     the same, and it stays not r's turn while a robot stands on r's row to its left or between the rows
     (``occupied``: whoever it is, and however it moves about there, as the traveller does). A robot there
     is visible or hidden behind another one there: a segment from r into either box runs inside it. The
-    leader need not be watched when a robot w to r's left is kept and no terminal1, decider or leader
+    leader need not be watched when a robot w to r's left stays in sight there (any of several, followed
+    wherever they move in the left half: a traveller may be one) and no terminal1, decider or leader
     robot comes into sight (except this leader at its offset, ``seen_at``: seen there again, the view
     agrees with this one). If the leader is hidden, r either sees a done robot (Phase 3 without a
     leader: wait) or runs Phases 1–2, where no decider means no Phase 2, G1 at most waits, and
@@ -134,20 +134,15 @@ def not_my_turn(view: Snapshot, leader: Seen, between: Box | None) -> Watch | No
     occupied = (ROW_LEFT, between) if between is not None else (ROW_LEFT,)
     left = view.robots[: bisect_left(view.robots, (0,))]
     if left and "terminal1" not in lights and "decider" not in lights:
+        others = [s for s in left if s.light != "leader"]
         return Watch(
-            segments=(_offset(_left_witness(left)),),
+            any_of=some_witnesses(others or left),
+            within=LEFT_HALF,
             occupied=occupied,
             lights=frozenset({"leader", "terminal1", "decider"}),
             seen_at=(_offset(leader),),
         )
     return Watch(segments=(_offset(leader),), occupied=occupied, lights=_LEADER)
-
-
-def _left_witness(left: tuple[Seen, ...]) -> Seen:
-    """A robot to r's left to keep H_L^O non-empty: not the leader (watching it is what this avoids),
-    unless it is the only one."""
-    others = [s for s in left if s.light != "leader"]
-    return sparsest(others) if others else left[0]
 
 
 def line_waits(view: Snapshot, side: int, waiting: list[Seen]) -> Watch | None:

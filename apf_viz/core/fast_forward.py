@@ -1,0 +1,108 @@
+"""Fast-forward: a walk the scheduler cannot interleave, applied as one macro-step.
+
+When exactly one robot can change anything (every other robot's next cycle is "same light, stay", and
+each of them is watched), an ASYNC-family scheduler has no choice: it activates that robot's Look,
+Compute and Move, again and again. If the robot's decision carries a ``stride`` of n (the algorithm's
+promise that the same decision answers the views it will hold after each of its next n − 1 moves, when
+nothing else changes), the engine may apply those n cycles at once, provided that
+
+1. nothing else *does* change for the walker: from every point of its walk it sees exactly the robots it
+   sees now, with the same lights (:func:`steps_in_same_sight`: no two robots it sees line up with it,
+   and every robot it does not see stands on the line of its walk, hidden behind the nearest one there),
+   and no point of the walk is occupied;
+2. no other robot is concerned: no watch is touched at any step of the walk
+   (:meth:`~apf_viz.core.watches.Watches.quiet_steps`), so every other robot stays ineligible and the
+   scheduler's choice stays forced;
+3. no budget, step limit or outcome can fall inside the walk.
+
+Then the step-by-step run would produce, event for event, the Looks (the same robots seen), Computes (the
+same decision) and Moves (one lattice step each) the macro-step records (docs/ALGORITHM.md,
+"Fast-forward"; ``tests/test_fast_forward.py`` compares both runs event for event).
+"""
+
+from __future__ import annotations
+
+from itertools import combinations
+
+import numpy as np
+
+from apf_viz.core.grid import Direction, Point
+from apf_viz.core.view import Columns, Snapshot
+
+# Products of two offsets fit in int64 below this; larger coordinates are lined up in Python integers.
+_SMALL = 1 << 31
+# A view of more robots off the walk's line than this (in Python integers only) is not fast-forwarded.
+_MANY_PAIRS = 20_000
+
+
+def along(move: Direction, dx: np.ndarray, dy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets as (progress along ``move``, distance off its line): the walk is then along +u."""
+    mx, my = move.delta
+    if my == 0:
+        return dx * mx, dy
+    return dy * my, dx
+
+
+def steps_in_same_sight(columns: Columns, move: Direction, n: int) -> int:
+    """The largest n′ ≤ n such that the walker, moving n′ times by ``move`` from the origin of this view,
+    finds each point free and, from each point it decides at (0 … n′ − 1), sees the same robots.
+
+    Assumes every robot missing from the view stands on the walk's line (the engine checks it): those
+    stay hidden behind the nearest robot there. A robot off the line stays in sight until two of them
+    line up with the walker, i.e. until the walker reaches the point where the line through two robots
+    on one side of the walk crosses it."""
+    u, v = along(move, columns.dx, columns.dy)
+    ahead = u[(v == 0) & (u > 0)]
+    if ahead.size:
+        n = min(n, int(ahead.min()) - 1)  # the next move would be onto that robot
+    off = v != 0
+    u, v = u[off], v[off]
+    if n < 2 or u.size < 2:
+        return n
+    big = max(int(np.abs(u).max()), int(np.abs(v).max())) >= _SMALL
+    if big:
+        if u.size * (u.size - 1) // 2 > _MANY_PAIRS:
+            return 1
+        return min(n, _first_line_up_exact(u.tolist(), v.tolist(), n))
+    i, j = np.triu_indices(u.size, 1)
+    va, vb = v[i], v[j]
+    same_side = (va * vb > 0) & (va != vb)
+    ua, ub, va, vb = u[i][same_side], u[j][same_side], va[same_side], vb[same_side]
+    num = ua * vb - ub * va  # the line through a and b crosses v = 0 at u = num / den
+    den = vb - va
+    exact = num % den == 0
+    at = num[exact] // den[exact]
+    at = at[(at >= 1) & (at < n)]
+    return int(at.min()) if at.size else n
+
+
+def _first_line_up_exact(u: list[int], v: list[int], n: int) -> int:
+    """:func:`steps_in_same_sight`'s line-ups in Python integers (coordinates too large for int64)."""
+    first = n
+    for (ua, va), (ub, vb) in combinations(zip(u, v, strict=True), 2):
+        if va * vb <= 0 or va == vb:
+            continue
+        num, den = ua * vb - ub * va, vb - va
+        if num % den == 0 and 1 <= num // den < first:
+            first = num // den
+    return first
+
+
+def hidden_only_on_line(positions: np.ndarray, r: int, delta: Point, seen: Columns) -> bool:
+    """Whether every robot that robot r does not see stands on the line of r's walk (global ``delta``,
+    one lattice step along an axis): then it stays hidden for the whole walk."""
+    hidden = positions.shape[0] - 1 - int(seen.dx.shape[0])
+    if not hidden:
+        return True
+    axis = 1 if delta[1] == 0 else 0  # a horizontal walk keeps y; a vertical one keeps x
+    on_line = int(np.count_nonzero(positions[:, axis] == positions[r, axis])) - 1
+    seen_on_line = int(np.count_nonzero((seen.dy if axis == 1 else seen.dx) == 0))
+    return hidden == on_line - seen_on_line
+
+
+def shifted(view: Snapshot, move: Direction, j: int) -> Snapshot:
+    """The view after the walker's own j moves by ``move`` when nothing else changed: every offset
+    minus j·move (the order by offset is unchanged)."""
+    c = view.columns
+    mx, my = move.delta
+    return Snapshot(view.light, columns=Columns(c.dx - j * mx, c.dy - j * my, c.code, c.palette))
