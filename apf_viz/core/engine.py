@@ -27,7 +27,7 @@ import numpy as np
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.fast_forward import hidden_only_on_line, shifted, steps_in_same_sight
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point, coordinate_problem
+from apf_viz.core.grid import COORD_LIMIT, Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord, Walk
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
@@ -414,6 +414,9 @@ class Engine:
         if n < 2 or not hidden_only_on_line(st.positions, r, delta, snap.columns):
             return 0
         here = self._views.points[r]
+        # A walk never carries a robot past the coordinates where geometry is exact (a step-by-step run
+        # may, one step at a time, and is then refused there).
+        n = min(n, COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1]))
         n = steps_in_same_sight(snap.columns, decision.move, n)
         if n >= 2:
             n = self._watches.quiet_steps(r, here, delta, n)

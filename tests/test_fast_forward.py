@@ -1,0 +1,308 @@
+"""Fast-forward (core/fast_forward.py): a lone robot's repeating cycles applied as one walk. Every run
+here is made twice, step by step and with walks, and must be the same event for event; the algorithm's
+stride promises are checked against its decisions on the shifted views. Why it is exact:
+docs/ALGORITHM.md, "Fast-forward"."""
+
+from __future__ import annotations
+
+import functools
+import json
+import random
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from apf_viz.algorithms import get_algorithm
+from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, random_solvable_start
+from apf_viz.core import fast_forward
+from apf_viz.core.algorithm import Decision
+from apf_viz.core.budget import run_budget
+from apf_viz.core.engine import Engine
+from apf_viz.core.fast_forward import shifted, steps_in_same_sight
+from apf_viz.core.formats import trace_text
+from apf_viz.core.grid import Direction
+from apf_viz.core.run import advance, trace_header
+from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.view import Seen, Snapshot
+
+
+def spread_case(seed: int, k: int | None = None, scale: int | None = None):
+    """A random solvable start spread over a box (robots far apart walk far), a pattern and flips."""
+    rng = random.Random(seed)
+    k = k or rng.randint(2, 8)
+    start = random_solvable_start(k, rng)
+    scale = scale if scale is not None else rng.choice([1, 7, 40])
+    start = [(x * scale + rng.randrange(scale), y * scale + rng.randrange(scale)) for x, y in start]
+    return start, random_pattern(k, rng), [rng.random() < 0.5 for _ in range(k)]
+
+
+def engine(
+    case, fast: bool, algorithm: str = "apf-opaque-grid", semantics: str = "compute", **caps
+) -> Engine:
+    start, pattern, y_up = case
+    budget = run_budget(start, pattern, True)
+    caps = {"max_events": budget.max_events, "max_moves": budget.max_moves, **caps}
+    return Engine(
+        start,
+        pattern,
+        get_algorithm(algorithm),
+        y_up=y_up,
+        light_semantics=semantics,
+        fast_forward=fast,
+        **caps,
+    )
+
+
+def state_of(e: Engine) -> tuple:
+    """Everything a run's future and its reports depend on (not the engine's caches)."""
+    st = e.state
+    return (
+        st.outcome,
+        e.current_points(),
+        list(st.lights),
+        st.phase.tolist(),
+        (st.steps, st.events, st.moves, st.cycles, st.skipped, st.version),
+        st.look_step.tolist(),
+        st.last_act.tolist(),
+        st.last_cycle_end.tolist(),
+        st.decided,
+        st.decided_seen,
+        st.decided_look.tolist(),
+        sorted(st.lights_used),
+    )
+
+
+def both(case, scheduler: str, seed: int, **options) -> tuple[Engine, Engine]:
+    slow, fast = engine(case, False, **options), engine(case, True, **options)
+    advance(slow, make_scheduler(scheduler), seed)
+    advance(fast, make_scheduler(scheduler), seed)
+    return slow, fast
+
+
+CASES = [
+    (seed, scheduler, semantics, algorithm)
+    for seed, (scheduler, semantics, algorithm) in enumerate(
+        [
+            ("async", "compute", "apf-opaque-grid"),
+            ("stale-first", "compute", "apf-opaque-grid"),
+            ("round-robin", "compute", "apf-opaque-grid"),
+            ("async", "lc-atomic", "apf-opaque-grid"),
+            ("async", "compute", "apf-opaque-grid-literal"),
+            ("stale-first", "lc-atomic", "apf-opaque-grid-literal"),
+        ]
+        * 4
+    )
+]
+
+
+@pytest.mark.parametrize(("seed", "scheduler", "semantics", "algorithm"), CASES)
+def test_a_run_with_walks_is_the_step_by_step_run_event_for_event(seed, scheduler, semantics, algorithm):
+    case = spread_case(seed)
+    slow, fast = both(case, scheduler, seed, semantics=semantics, algorithm=algorithm)
+    assert slow.walks == 0
+    assert fast.history.events() == slow.history.events()
+    assert state_of(fast) == state_of(slow)
+    assert fast.decide_calls <= slow.decide_calls
+
+
+def test_walks_are_taken_and_spare_most_decisions_when_robots_are_far_apart():
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = both(case, "async", 1)
+    assert slow.outcome == fast.outcome == "formed"
+    assert fast.history.events() == slow.history.events()
+    assert fast.walks >= 5
+    assert fast.decide_calls * 5 < slow.decide_calls  # the walks were long
+
+
+def test_every_algorithm_stride_walk_kind_is_exercised():
+    """The walks of the test runs above cover Algorithm 3's paths and Algorithm 2's leader walk (a
+    test that never walked could not fail)."""
+    rules = set()
+    for seed in range(12):
+        e = engine(spread_case(seed, scale=40), True)
+        advance(e, make_scheduler("async"), seed)
+        rules |= {entry.compute[-1] for entry in e.history._packed if type(entry).__name__ == "Walk"}
+    kinds = {rule.split("/")[-1] for rule in rules}
+    assert {"LineMove.down", "LineMove.along", "TargetMove.vertical", "TargetMove.along"} <= kinds, kinds
+    assert any(rule.startswith("A2.leader1") for rule in rules), rules
+
+
+@pytest.mark.parametrize("cap", ["max_moves", "max_events"])
+def test_a_budget_that_ends_inside_a_walk_ends_both_runs_at_the_same_event(cap):
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = both(case, "async", 1, **{cap: 700})
+    assert slow.outcome == fast.outcome == "limit"
+    assert fast.walks and fast.history.events() == slow.history.events()
+    assert state_of(fast) == state_of(slow)
+
+
+def test_advancing_a_few_steps_at_a_time_stops_inside_a_walk_exactly():
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = engine(case, False), engine(case, True)
+    sched = make_scheduler("async")
+    rng = random.Random(4)
+    while not slow.finished:
+        n = rng.randrange(1, 400)
+        assert advance(fast, sched, 1, steps=n) == advance(slow, sched, 1, steps=n)
+        assert state_of(fast) == state_of(slow)
+    assert fast.walks > 0 and fast.finished
+
+
+def test_the_history_of_a_walked_run_reads_as_the_step_by_step_one():
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = both(case, "async", 1)
+    a, b = slow.history, fast.history
+    assert b.length == a.length == fast.step_index
+    assert list(b.steps) == list(a.steps)
+    for i in [0, 1, a.length // 3, a.length // 2, a.length - 1, -1, -a.length]:
+        assert b.steps[i] == a.steps[i]
+    assert b.steps[10:500:7] == a.steps[10:500:7]
+    assert [b.steps.record(i) for i in range(0, a.length, 97)] == [
+        a.steps.record(i) for i in range(0, a.length, 97)
+    ]
+    assert b.events(a.length // 2) == a.events(a.length // 2)
+    with pytest.raises(IndexError):
+        b.steps[a.length]
+    header = trace_header(slow, "async", 1)
+    assert trace_text(header, b.events()) == trace_text(header, a.events())
+
+
+def test_seeking_into_a_walk_and_branching_there_keeps_the_walk_before():
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = both(case, "async", 1)
+    walk = next(i for i, entry in enumerate(fast.history._packed) if type(entry).__name__ == "Walk")
+    inside = fast.history._starts[walk] + 7  # a Move, Look or Compute in the middle of the walk
+    for e in (slow, fast):
+        e.seek(inside)
+    assert state_of(fast) == state_of(slow)
+    assert fast.redo() == slow.redo()
+    for e in (slow, fast):
+        e.seek(inside)
+    other = next(r for r in range(fast.k) if r != fast.history.steps.record(inside).robots[0])
+    assert fast.step([other]) == slow.step([other])  # a branch: the rest of the walk is dropped
+    assert fast.history.length == slow.history.length == inside + 1
+    assert list(fast.history.steps) == list(slow.history.steps)
+    advance(slow, make_scheduler("async"), 2)
+    advance(fast, make_scheduler("async"), 2)
+    assert fast.history.events() == slow.history.events()
+
+
+@pytest.mark.parametrize("scheduler", ["fsync", "ssync"])
+def test_no_walk_where_the_scheduler_has_a_choice_or_every_activation_is_kept(scheduler):
+    case = spread_case(3, k=4, scale=7)
+    slow, fast = both(case, scheduler, 1)
+    assert fast.walks == 0 and fast.history.events() == slow.history.events()
+    start, pattern, y_up = case
+    kept = Engine(
+        start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up, skip_noops=False, fast_forward=True
+    )
+    assert not kept.fast_forward and kept.walk() == 0
+
+
+def test_an_audit_walks_too_and_still_sees_every_light():
+    case = spread_case(3, k=6, scale=40)
+    slow, fast = engine(case, False), engine(case, True)
+    a, b = audit_run(slow, "async", 1), audit_run(fast, "async", 1)
+    assert a.ok and b.ok and (a.moves, a.events, a.max_leaders) == (b.moves, b.events, b.max_leaders)
+    assert fast.walks > 0
+
+
+PROMISE_RUNS = [(seed, "apf-opaque-grid") for seed in (*range(8), 19, 24)] + [
+    (seed, "apf-opaque-grid-literal") for seed in (0, 2, 5)
+]
+
+
+@functools.cache
+def promises(seed: int, algorithm: str) -> tuple[Engine, list[tuple[Snapshot, Decision]]]:
+    """Every (view, decision) with a stride the algorithm made in a step-by-step run."""
+    e = engine(spread_case(seed, scale=7), False, algorithm=algorithm)
+    made = []
+    decide = e.algorithm.decide
+
+    def recording(view: Snapshot, pattern):
+        decision = decide(view, pattern)
+        if decision.stride > 1:
+            made.append((view, decision))
+        return decision
+
+    e.algorithm = type("Recording", (), {"decide": staticmethod(recording), "lights": e.algorithm.lights})()
+    advance(e, make_scheduler("stale-first" if seed % 2 else "async"), seed)
+    return e, made
+
+
+@pytest.mark.parametrize(("seed", "algorithm"), PROMISE_RUNS)
+def test_a_stride_is_kept_the_decision_repeats_on_every_shifted_view(seed, algorithm):
+    """The promise itself: on the view after j of the robot's own moves (1 ≤ j < stride, short of any
+    robot on its way), the algorithm decides exactly the same, rule and all."""
+    e, made = promises(seed, algorithm)
+    variant = get_algorithm(algorithm)
+    checked = 0
+    for view, decision in made:
+        c = view.columns
+        u, v = fast_forward.along(decision.move, c.dx, c.dy)
+        ahead = u[(v == 0) & (u > 0)]
+        last = min(decision.stride, int(ahead.min()) if ahead.size else decision.stride, 40)
+        for j in range(1, last):
+            again = variant.decide(shifted(view, decision.move, j), e.pattern)
+            assert again == decision, (view, decision, j)  # light, move, rule and rule id
+            checked += 1
+    assert checked > 0
+
+
+def test_the_promises_checked_cover_every_walk_of_both_algorithms():
+    rules = {d.rule_id for run in PROMISE_RUNS for _, d in promises(*run)[1]}
+    kinds = {rule.split("/")[-1] for rule in rules if rule.startswith("A3")}
+    assert {"LineMove.down", "LineMove.along", "TargetMove.vertical", "TargetMove.along"} <= kinds, kinds
+    assert {"A2.leader1.SD-away", "A2.leader1.up", "A2.leader1.away"} <= rules, rules
+    assert "A3.leader.last-target/TargetMove.along" in rules, rules
+
+
+def view_of(light: str, *robots: tuple[int, int]) -> Snapshot:
+    return Snapshot(light, tuple(sorted(Seen(dx, dy, "off") for dx, dy in robots)))
+
+
+def test_two_robots_lining_up_with_the_walker_end_its_sight():
+    # Walking right along y = 0: (2, 1) and (4, 2) line up with the walker at x = 0 (its start: no
+    # change yet); (5, 1) and (7, 2) line up with it at x = 3, where (7, 2) is hidden.
+    view = view_of("off", (5, 1), (7, 2))
+    assert steps_in_same_sight(view.columns, Direction.RIGHT, 100) == 3
+    assert steps_in_same_sight(view.columns, Direction.LEFT, 100) == 100  # they meet it at x = 3 only
+    # On opposite sides of the walk two robots never hide each other from it.
+    assert steps_in_same_sight(view_of("off", (5, 1), (7, -2)).columns, Direction.RIGHT, 100) == 100
+    # A robot on the way: the walk stops next to it.
+    assert steps_in_same_sight(view_of("off", (9, 0), (1, 5)).columns, Direction.RIGHT, 100) == 8
+    assert steps_in_same_sight(view_of("off", (0, -6)).columns, Direction.DOWN, 100) == 5
+
+
+def test_large_coordinates_line_up_in_python_integers_the_same(monkeypatch):
+    rng = np.random.default_rng(1)
+    for _ in range(200):
+        pts = {(int(x), int(y)) for x, y in rng.integers(-30, 30, size=(6, 2)) if (x, y) != (0, 0)}
+        view = view_of("off", *pts)
+        for move in Direction:
+            small = steps_in_same_sight(view.columns, move, 50)
+            monkeypatch.setattr(fast_forward, "_SMALL", 0)
+            assert steps_in_same_sight(view.columns, move, 50) == small
+            monkeypatch.setattr(fast_forward, "_SMALL", 1 << 31)
+
+
+def test_a_decision_without_a_stride_is_never_walked():
+    assert Decision("off", Direction.LEFT).stride == 1
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "apf_viz.cli", *args], capture_output=True, text=True)
+
+
+def test_the_command_line_run_is_the_same_with_and_without_fast_forward(tmp_path):
+    start, pattern, y_up = spread_case(3, k=5, scale=40)
+    (tmp_path / "r.json").write_text(json.dumps({"robots": start, "y_up": y_up}))
+    (tmp_path / "p.json").write_text(json.dumps({"points": pattern}))
+    common = ["run", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json"), "--json"]
+    walked = run_cli(*common, "--trace", str(tmp_path / "a.jsonl"))
+    stepped = run_cli(*common, "--trace", str(tmp_path / "b.jsonl"), "--no-fast-forward")
+    assert walked.returncode == stepped.returncode == 0, walked.stderr + stepped.stderr
+    assert json.loads(walked.stdout) == json.loads(stepped.stdout)
+    assert (tmp_path / "a.jsonl").read_bytes() == (tmp_path / "b.jsonl").read_bytes()
