@@ -414,8 +414,8 @@ class Engine:
         if n < 2 or not hidden_only_on_line(st.positions, r, delta, snap.columns):
             return 0
         here = self._views.points[r]
-        # A walk never carries a robot past the coordinates where geometry is exact (a step-by-step run
-        # may, one step at a time, and is then refused there).
+        # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
+        # (grid.COORD_LIMIT); beyond them the run goes on step by step.
         n = min(n, COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1]))
         n = steps_in_same_sight(snap.columns, decision.move, n)
         if n >= 2:
