@@ -55,6 +55,7 @@ class Phase(IntEnum):
 
 
 NEXT_EVENT = ("look", "compute", "move")  # indexed by Phase
+_MAX_WALK_WAIT = 63  # cycles between two tries of a walk that did not go (see Engine.walk)
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
 _IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
@@ -187,6 +188,10 @@ class Engine:
         self.use_watches = use_watches
         self.fast_forward = fast_forward and skip_noops
         self.walks = 0  # macro-steps applied by walk(), for benchmarks and tests
+        # Per robot, cycles to let pass before trying a walk again, and the last such wait: in a crowd its
+        # sight changes every few steps, and trying at every cycle would cost more than the walks save.
+        self._walk_wait = [0] * k
+        self._walk_backoff = [0] * k
         self._decisions: dict[Snapshot, Decision] = {}
         self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
@@ -397,6 +402,9 @@ class Engine:
         r = int(eligible.nonzero()[0][0])
         if st.phase[r] != _IDLE:
             return 0
+        if self._walk_wait[r]:
+            self._walk_wait[r] -= 1
+            return 0
         snap, ids = self._observe(r)
         decision = self._decide(r, snap)
         if decision.stride < 2 or decision.move is None or decision.light != st.lights[r]:
@@ -421,7 +429,9 @@ class Engine:
         if n >= 2:
             n = self._watches.quiet_steps(r, here, delta, n)
         if n < 2:
+            self._walk_wait[r] = self._walk_backoff[r] = min(2 * self._walk_backoff[r] + 1, _MAX_WALK_WAIT)
             return 0
+        self._walk_backoff[r] = 0
         self._walk(r, snap, ids, decision, n, per)
         return n * per
 

@@ -21,7 +21,7 @@ the configuration's span allows it, else every robot watching a light is asked a
 
 from __future__ import annotations
 
-from collections.abc import Container, Mapping, Sequence
+from collections.abc import Container, Iterable, Mapping, Sequence
 from math import gcd
 
 import numpy as np
@@ -291,16 +291,11 @@ class Watches:
         if int(self.bits[r]) & self._watched:
             return 0  # a watched light is news wherever it comes into sight
         path = _Path(start, delta)
-        first = n + 1  # the first point of the walk (0 … n) that some watched region contains
-        for p in self._watchers_at:
-            t = path.at(p)
-            if t is not None and 0 <= t < first:
-                first = t
         mine = self._followed.get(r, set())  # segments that follow the walker: taken along, not touched
-        for p, pairs in self._any_at.items():
-            t = path.at(p)
-            if t is not None and 0 <= t < first and not pairs <= mine:
-                first = t
+        first = min(
+            path.first_of(self._watchers_at, n + 1),
+            path.first_of((p for p, pairs in self._any_at.items() if not pairs <= mine), n + 1),
+        )  # the first point of the walk (0 … n) that some watched region contains
         for w, (boxes, longs) in self._boxed.items():
             for box in boxes:
                 first = min(first, path.first_in(path.box(box), n))
@@ -323,7 +318,6 @@ class Watches:
         the walker's segment; the watcher's answer stays "same light, stay" either way.)"""
         quiet = n
         P = self._P
-        robots = [(int(x), int(y)) for x, y in P.tolist()]
         for w in {w for w, _ in mine}:
             intact = self._intact[w]
             if intact - {i for v, i in mine if v == w}:
@@ -334,9 +328,7 @@ class Watches:
                 if not lo <= 1 <= hi:
                     return 0
                 quiet = min(quiet, hi)
-            for q, point in enumerate(robots):
-                if q != r and q != w:
-                    quiet = min(quiet, path.first_in(path.behind(robots[w], point), quiet + 1) - 1)
+            quiet = min(quiet, path.first_hidden(P, w, r, quiet + 1) - 1)
         return max(quiet, 0)
 
     def _quiet_occupied(self, path: _Path, n: int) -> int:
@@ -659,6 +651,45 @@ class _Path:
         if num % den:
             return 1, 0
         return num // den, num // den
+
+    def first_of(self, points: Iterable[Point], limit: int) -> int:
+        """The least t (0 ≤ t < limit) of these points on the walk; ``limit`` if none is."""
+        x, y, ex, ey = self.x, self.y, self.ex, self.ey
+        if ey == 0:
+            ts = [(px - x) * ex for px, py in points if py == y]
+        else:
+            ts = [(py - y) * ey for px, py in points if px == x]
+        return min((t for t in ts if 0 <= t < limit), default=limit)
+
+    def first_hidden(self, P: np.ndarray, w: int, r: int, limit: int) -> int:
+        """The least t (1 ≤ t < limit) at which some robot (not r) stands between robot w and the
+        walk's point; ``limit`` if none does. Vectorised where products of offsets fit in int64."""
+        wx, wy = int(P[w, 0]), int(P[w, 1])
+        span = int(np.abs(P - P[w]).max()) + abs(self.x - wx) + abs(self.y - wy)
+        if span >= 1 << 31:
+            points = [(int(x), int(y)) for x, y in P.tolist()]
+            return min(
+                (
+                    self.first_in(self.behind((wx, wy), q), limit)
+                    for i, q in enumerate(points)
+                    if i not in (r, w)
+                ),
+                default=limit,
+            )
+        if self.ey == 0:
+            a, b = (P[:, 0] - self.x) * self.ex, P[:, 1] - self.y
+        else:
+            a, b = (P[:, 1] - self.y) * self.ey, P[:, 0] - self.x
+        aw, bw = int(a[w]), int(b[w])
+        d = b - bw
+        ok = (d != 0) & (bw * d < 0) & (np.abs(d) < abs(bw))  # the ray from w through q crosses the line
+        ok[[r, w]] = False
+        if not ok.any():
+            return limit
+        d, num = d[ok], aw * d[ok] - (a[ok] - aw) * bw  # …at a = num / d
+        t = num[num % d == 0] // d[num % d == 0]
+        t = t[(t >= 1) & (t < limit)]
+        return int(t.min()) if t.size else limit
 
     def behind(self, w: Point, q: Point) -> tuple[int, int]:
         """The t of the walk's line that q hides from w (q strictly between w and the point)."""
