@@ -14,7 +14,7 @@ from pathlib import Path
 
 from apf_viz.core.formats import InputError, replace_atomically
 
-FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png")
+FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png", "time_per_move.png")
 
 
 def _save(fig, path: Path) -> None:
@@ -99,4 +99,31 @@ def plot(rows: Sequence[dict], out: Path) -> list[Path]:
             ax.plot(ks, [statistics.median(by_k[k]) for k in ks], marker="o", label=alg)
     ylabel = "events per move (median over runs)"
     written.append(_finish(fig, ax, out / FIGURES[2], "k (robots)", ylabel, "Events per move against k"))
+    written.append(_time_per_move(rows, algorithms, out / FIGURES[3]))
     return written
+
+
+def _time_per_move(rows: Sequence[dict], algorithms: list[str], path: Path) -> Path:
+    """Wall time per move against k and against D, one point per run that moved: what a move costs,
+    whether it grows with the robots a mover sees or with the distances between them."""
+    import matplotlib.pyplot as plt
+
+    fig, (by_k, by_d) = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+    for alg in algorithms:
+        runs = [r for r in rows if r["algorithm"] == alg and r["moves"] > 0 and r["wall_s"] > 0]
+        if not runs:
+            continue
+        per_move = [1e6 * r["wall_s"] / r["moves"] for r in runs]
+        by_k.scatter([r["k"] for r in runs], per_move, s=14, alpha=0.6, label=alg)
+        by_d.scatter([r["D"] for r in runs], per_move, s=14, alpha=0.6, label=alg)
+    for ax, label in ((by_k, "k (robots)"), (by_d, "D = max(m, n, M, N, k)")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(label)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    by_k.set_ylabel("wall time per move (µs)")
+    fig.suptitle("Time per move against k and against D (each point one run)")
+    _save(fig, path)
+    plt.close(fig)
+    return path

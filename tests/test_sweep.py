@@ -114,7 +114,7 @@ def test_the_cli_sweep_prints_a_summary_and_plot_writes_the_figures(tmp_path):
     assert again.returncode == 0 and len(read_results(out)) == 4  # nothing re-run, nothing duplicated
     plots = run_cli("plot", str(out), "--out", str(tmp_path / "plots"))
     assert plots.returncode == 0, plots.stderr
-    for name in ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png"):
+    for name in ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png", "time_per_move.png"):
         png = tmp_path / "plots" / name
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000
     json.dumps(read_results(out))  # plain values: a row is JSON-able
