@@ -29,7 +29,7 @@ from apf_viz.algorithms.apf_opaque_grid.strides import FOREVER, left_walk_stride
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
-from apf_viz.core.view import Snapshot
+from apf_viz.core.view import Seen, Snapshot
 
 
 def two_deciders_on_left_line(view: Snapshot) -> bool:
@@ -229,59 +229,65 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
         and ev.test("all of R_I off", all(s.light == "off" for s in r_i), "every robot of R_I shows off")
     )
     if may_act:
-        upper, bottom = upper_closed_half_has_other(view, ev), bottom_closed_half_has_other(view, ev)
-        if not upper or not bottom:
-            if left_closed_half_has_other(view, ev):
-                left = Decision(
-                    "leader1",
-                    Direction.LEFT,
-                    "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
-                    "A2.leader1.extreme-left",
-                    stride=FOREVER,
-                )
-                return left_walk_stride(left, view)
-            return Decision(
-                "leader",
-                None,
-                "Phase 2 (leader1): H_L^C empty and an extreme row → leader",
-                "A2.leader1.leader",
-            )
-        if not is_terminal(view, ev):
-            return Decision(
-                "leader1",
-                Direction.LEFT,
-                "Phase 2 (leader1): not terminal on L_V → move left",
-                "A2.leader1.inner-left",
-            )
-        if not is_singleton(view, ev):
-            (neighbour,) = vertical_line(view)
-            away = Decision(
-                "leader1",
-                away_from(neighbour.dy),
-                "Phase 2 (leader1): terminal, not alone on L_V → move away from r′",
-                "A2.leader1.away",
-                stride=FOREVER,
-            )
-            return vertical_stride(away, view)
-        if SD in res and deviation(
-            ev, SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
-        ):
-            sd_away = Decision(
-                "leader1",
-                away_from(r_i[0].dy),
-                "Phase 2 (leader1): alone on L_V → move away from R_I (SD)",
-                "A2.leader1.SD-away",
-                stride=FOREVER,
-            )
-            return vertical_stride(sd_away, view)
-        up = Decision(
-            "leader1",
-            Direction.UP,
-            "Phase 2 (leader1): alone on L_V → move along my +y",
-            "A2.leader1.up",
-            stride=FOREVER,
-        )
-        return vertical_stride(up, view)
+        return _leader1_acts(view, r_i, res, ev)
     if ev.test("a leader1 on L_I", "leader1" in lights_of(l_i), "another robot to my left elected itself"):
         return Decision("off", None, "Phase 2 (leader1): another leader1 on L_I → off", "A2.leader1.off")
     return stay(view, "Phase 2 (leader1): waiting for L_I (or R_I) to turn off", "A2.leader1.wait")
+
+
+def _leader1_acts(view: Snapshot, r_i: list[Seen], res: Resolutions, ev: Evidence) -> Decision:
+    """Algorithm 2 lines 41–53: a leader1 that may act walks to an extreme row, then left, and becomes the
+    leader. Its walks promise a stride (``strides.py``)."""
+    upper, bottom = upper_closed_half_has_other(view, ev), bottom_closed_half_has_other(view, ev)
+    if not upper or not bottom:
+        if left_closed_half_has_other(view, ev):
+            left = Decision(
+                "leader1",
+                Direction.LEFT,
+                "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
+                "A2.leader1.extreme-left",
+                stride=FOREVER,
+            )
+            return left_walk_stride(left, view)
+        return Decision(
+            "leader",
+            None,
+            "Phase 2 (leader1): H_L^C empty and an extreme row → leader",
+            "A2.leader1.leader",
+        )
+    if not is_terminal(view, ev):
+        return Decision(
+            "leader1",
+            Direction.LEFT,
+            "Phase 2 (leader1): not terminal on L_V → move left",
+            "A2.leader1.inner-left",
+        )
+    if not is_singleton(view, ev):
+        (neighbour,) = vertical_line(view)
+        away = Decision(
+            "leader1",
+            away_from(neighbour.dy),
+            "Phase 2 (leader1): terminal, not alone on L_V → move away from r′",
+            "A2.leader1.away",
+            stride=FOREVER,
+        )
+        return vertical_stride(away, view)
+    if SD in res and deviation(
+        ev, SD, bool(r_i) and (all(s.dy > 0 for s in r_i) or all(s.dy < 0 for s in r_i))
+    ):
+        sd_away = Decision(
+            "leader1",
+            away_from(r_i[0].dy),
+            "Phase 2 (leader1): alone on L_V → move away from R_I (SD)",
+            "A2.leader1.SD-away",
+            stride=FOREVER,
+        )
+        return vertical_stride(sd_away, view)
+    up = Decision(
+        "leader1",
+        Direction.UP,
+        "Phase 2 (leader1): alone on L_V → move along my +y",
+        "A2.leader1.up",
+        stride=FOREVER,
+    )
+    return vertical_stride(up, view)
