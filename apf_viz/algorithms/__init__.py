@@ -15,6 +15,7 @@ from types import MappingProxyType
 
 from apf_viz.algorithms.apf_opaque_grid import ApfOpaqueGrid
 from apf_viz.algorithms.examples import CompactLeft, Stay
+from apf_viz.algorithms.merged_lights import MARKER, merged_algorithm
 from apf_viz.core.algorithm import Algorithm
 
 Factory = Callable[[], Algorithm]
@@ -38,6 +39,9 @@ def get_algorithm(name: str, plugins: Mapping[str, Factory] | None = None) -> Al
     read from files and browsers. Raises ``ValueError`` with a one-line message for any other name."""
     if name in ALGORITHMS:
         return ALGORITHMS[name]()
+    merged = merged_algorithm(name, lambda base: get_algorithm(base, plugins))
+    if merged is not None:
+        return merged
     if name.startswith(_VARIANT_PREFIX):
         return ApfOpaqueGrid.parse(name)
     if plugins and name in plugins:
@@ -45,7 +49,7 @@ def get_algorithm(name: str, plugins: Mapping[str, Factory] | None = None) -> Al
     loaded = f", or the plug-ins loaded: {', '.join(sorted(plugins))}" if plugins else ""
     raise ValueError(
         f"unknown algorithm {name[:80]!r}: not built in (choose one of {', '.join(ALGORITHMS)}, or "
-        f"{_VARIANT_PREFIX}R1,R2{loaded})"
+        f"{_VARIANT_PREFIX}R1,R2, or any of them{MARKER}a=b){loaded})"
     )
 
 
