@@ -17,7 +17,9 @@ class AlgorithmFolder:
             self.variant = gui.add_text(
                 "Variant",
                 initial_value=s.algorithm_name,
-                hint="edit the name and press Use variant, e.g. apf-opaque-grid@G1,G2,LA (docs/ALGORITHM.md)",
+                hint="edit the name and press Use variant, e.g. apf-opaque-grid@G1,G2,LA "
+                "(docs/ALGORITHM.md), "
+                "or two lights as one colour: apf-opaque-grid+merge(leader1=decider)",
             )
             gui.add_button("Use variant").on_click(
                 ctx.guard(lambda e: s.set_algorithm(self.variant.value.strip()))
