@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -155,13 +156,19 @@ def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_p
     # Ctrl+C lands with most of the grid still to run: the first rows are written after 5 s.
     argv = [sys.executable, "-m", "apf_viz.cli", "sweep", "--ks", "60,80,100", "--seeds", "1-4",
             "--workers", "2", "--out", str(out)]  # fmt: skip
-    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
-    deadline = time.time() + 120
-    while time.time() < deadline and not (out.exists() and len(read_results(out)) >= 1):
-        time.sleep(0.2)  # rows are written every few seconds as runs finish
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
+    # Ctrl+C as soon as the progress line counts a finished run (not when its row is on disk: rows are
+    # written every few seconds, and on a loaded machine the first write came after the last run).
+    seen, deadline = b"", time.time() + 120
+    while time.time() < deadline and not re.search(rb"[1-9][0-9]*/12 runs", seen):
+        chunk = proc.stderr.read1(4096)
+        if not chunk:
+            break
+        seen += chunk
     proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=120)
-    assert proc.returncode == 130 and "interrupted; keeping the runs that finished" in err
+    _, rest = proc.communicate(timeout=120)
+    err = (seen + rest).decode()
+    assert proc.returncode == 130 and "interrupted; keeping the runs that finished" in err, err[-300:]
     kept = read_results(out)
     assert 1 <= len(kept) < 12 and len(set(keys(kept))) == len(kept)  # a valid, partial table
     again = run_cli(*argv[3:], cwd=tmp_path)
