@@ -156,7 +156,15 @@ def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_p
     # Ctrl+C lands with most of the grid still to run: the first rows are written after 5 s.
     argv = [sys.executable, "-m", "apf_viz.cli", "sweep", "--ks", "60,80,100", "--seeds", "1-4",
             "--workers", "2", "--out", str(out)]  # fmt: skip
-    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
+    # A background job of a non-interactive shell ignores SIGINT, and a Python started so never raises
+    # KeyboardInterrupt: the sweep gets the default handler back, as in a terminal.
+    proc = subprocess.Popen(
+        argv,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        cwd=tmp_path,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
     # Ctrl+C as soon as the progress line counts a finished run (not when its row is on disk: rows are
     # written every few seconds, and on a loaded machine the first write came after the last run).
     seen, deadline = b"", time.time() + 120
