@@ -27,7 +27,7 @@ import numpy as np
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.fast_forward import hidden_only_on_line, shifted, steps_in_same_sight
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import COORD_LIMIT, Point, coordinate_problem
+from apf_viz.core.grid import COORD_LIMIT, Direction, Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord, Walk
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
@@ -432,16 +432,23 @@ class Engine:
             self._walk_wait[r] = self._walk_backoff[r] = min(2 * self._walk_backoff[r] + 1, _MAX_WALK_WAIT)
             return 0
         self._walk_backoff[r] = 0
-        self._walk(r, snap, ids, decision, n, per)
+        self._walk(r, here, gmove, snap, ids, decision, n, per)
         return n * per
 
     def _walk(
-        self, r: int, snap: Snapshot, ids: tuple[int, ...], decision: Decision, n: int, per: int
+        self,
+        r: int,
+        here: Point,
+        gmove: Direction,
+        snap: Snapshot,
+        ids: tuple[int, ...],
+        decision: Decision,
+        n: int,
+        per: int,
     ) -> None:
-        """Apply n cycles of robot r on this decision (:meth:`walk` checked that they repeat)."""
+        """Apply n cycles of robot r, from ``here`` by ``gmove`` (global), on this decision (:meth:`walk`
+        checked that they repeat)."""
         st = self.state
-        here = self._views.points[r]
-        gmove = move_to_global(decision.move, self.y_up[r])
         dx, dy = gmove.delta
         to = (here[0] + n * dx, here[1] + n * dy)
         position = st.steps

@@ -606,11 +606,6 @@ class _Path:
             return (px - self.x) * self.ex, py - self.y
         return (py - self.y) * self.ey, px - self.x
 
-    def at(self, p: Point) -> int | None:
-        """t of this point, or None if it is off the walk's line."""
-        a, b = self._rel(*p)
-        return a if b == 0 else None
-
     def box(self, box: tuple[int, int, int, int]) -> tuple[int, int]:
         """The t of the walk's line inside a closed box (global bounds), as (lo, hi); lo > hi if none."""
         x0, x1, y0, y1 = box
