@@ -398,6 +398,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         args.max_states,
         progress=not args.json,
         light_semantics=args.light_semantics,
+        reduction=not args.no_reduction,
     )
     written = None
     if result.verdict not in ("verified", "budget") and args.counterexample:
@@ -716,6 +717,12 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help=ALGORITHM_HELP)
     chk.add_argument(
         "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
+    )
+    chk.add_argument(
+        "--no-reduction",
+        action="store_true",
+        help="explore every interleaving (without it, ASYNC skips the orders of invisible events: the same "
+        "verdict and counterexample, fewer states; docs/VERIFICATION.md)",
     )
     chk.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
     chk.add_argument("--force", action="store_true", help="explore an unsolvable start anyway")

@@ -153,6 +153,9 @@ def test_cli_check_exit_codes_and_counterexample(tmp_path, write_json):
 
     ok = cli()
     assert ok.returncode == 0 and json.loads(ok.stdout)["verdict"] == "verified"
+    every = cli("--no-reduction")  # every interleaving: the same verdict, more states
+    assert every.returncode == 0 and json.loads(every.stdout)["verdict"] == "verified"
+    assert json.loads(every.stdout)["states"] > json.loads(ok.stdout)["states"]
     bad = cli("--algorithm", "apf-opaque-grid-literal", "--counterexample", str(out))
     assert bad.returncode == 1 and json.loads(bad.stdout)["verdict"] == "livelock"
     header, events = load_trace(out)

@@ -13,8 +13,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from apf_viz.algorithms import Factory, get_algorithm
-from apf_viz.explore.check import counterexample_text
-from apf_viz.explore.explorer import Explorer
+from apf_viz.explore.check import counterexample_text, explore
 from apf_viz.ui.run_config import RunConfig
 
 MAX_K = 5  # beyond this the state space is out of reach of a browser's patience (docs/VERIFICATION.md)
@@ -89,17 +88,16 @@ class Verifier:
     def _run(self, config: RunConfig, algorithm) -> None:
         scheduler = EXPLORED.get(config.scheduler, "async")
         try:
-            explorer = Explorer(
+            result = explore(
                 algorithm,
                 config.robots,
                 config.pattern,
                 config.y_up,
-                scheduler=scheduler,  # type: ignore[arg-type]
+                scheduler=scheduler,
                 max_states=MAX_STATES,
                 light_semantics=config.light_semantics,
                 progress=self._progress,
             )
-            result = explorer.run()
         except _Cancelled:
             status = Status("cancelled", text="cancelled: nothing is proved")
         except Exception as e:  # a verification must never kill the server
