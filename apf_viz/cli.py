@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import time
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
@@ -252,13 +253,48 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_lights(args: argparse.Namespace) -> int:
+    _need_extra("lights", ["dask", "distributed", "pyarrow"])
+    from apf_viz import lights
+
+    if args.out.suffix != ".parquet":
+        _fail(f"--out {args.out}: the lab writes a .parquet table")
+    if args.random < 0:
+        _fail(f"--random {args.random}: a number of runs, 0 or more")
+    chosen = lights.merges(args.algorithm, args.merges)
+    ks = lights.parse_ks(args.ks)
+    t0 = time.perf_counter()
+    try:
+        rows = lights.run_lab(
+            chosen,
+            ks,
+            args.out,
+            random_runs=args.random,
+            traces=args.traces,
+            workers=args.workers,
+            cluster=args.cluster,
+            progress=lights.report_progress,
+        )
+    except KeyboardInterrupt:
+        return 130
+    ks_text = ",".join(map(str, ks))
+    names = {m.name for m in chosen}
+    print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == ks_text]))
+    print(f"{time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    return 0
+
+
 def _cmd_plot(args: argparse.Namespace) -> int:
     _need_extra("plot", ["matplotlib", "pyarrow"])
-    from apf_viz import plot, sweep
+    from apf_viz import lights, plot, sweep
 
     if not args.results.is_file():
         _fail(f"{args.results}: no such file")
-    for path in plot.plot(sweep.read_results(args.results), args.out):
+    if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):
+        written = [plot.plot_lights(lights.read_lights(args.results), args.out)]
+    else:
+        written = plot.plot(sweep.read_results(args.results), args.out)
+    for path in written:
         print(path)
     return 0
 
@@ -658,8 +694,31 @@ def build_parser() -> argparse.ArgumentParser:
     )
     swp.set_defaults(func=_cmd_sweep)
 
-    plt = command("plot", "plot a sweep's results (PNG): moves vs k·D, failure rates, events per move")
-    plt.add_argument("results", type=Path, help="the results file of apf-viz sweep")
+    lab = command("lights", "which lights could be one colour? every merge of two, explored (docs/LIGHTS.md)")
+    lab.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help="the algorithm whose lights are merged")
+    lab.add_argument(
+        "--ks",
+        default="1-5",
+        help="robots the explorer covers: 1–3 every start of a 4×4 box, 4–5 the stated starts (default 1-5)",
+    )
+    lab.add_argument("--merges", help="only these merges, e.g. leader1=decider,off=call (default: every one)")
+    lab.add_argument(
+        "--random", type=int, default=0, help="random runs (k = 6–12) for each merge the explorer finds sound"
+    )
+    lab.add_argument(
+        "--out", required=True, type=Path, help="the verdicts table (.parquet), resumed if there"
+    )
+    lab.add_argument("--traces", type=Path, help="counterexample traces here (default: OUT's name + -traces)")
+    lab.add_argument("--workers", type=_positive, help="local worker processes (default: one per core)")
+    lab.add_argument("--cluster", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    lab.set_defaults(func=_cmd_lights)
+
+    plt = command(
+        "plot",
+        "plot a sweep's results (PNG): moves vs k·D, failure rates, events per move; or a lights table's "
+        "matrix of merges",
+    )
+    plt.add_argument("results", type=Path, help="the results file of apf-viz sweep or apf-viz lights")
     plt.add_argument("--out", type=Path, default=Path("plots"), help="folder for the PNGs")
     plt.set_defaults(func=_cmd_plot)
 

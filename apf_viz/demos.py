@@ -41,7 +41,7 @@ class Scenario(BaseModel):
     shows: str
     robots: str | None = None  # demo_patterns/starts/<robots>.json
     pattern: str | None = None  # demo_patterns/<pattern>.json
-    trace: str | None = None  # demo_patterns/traces/<trace>.jsonl
+    trace: str | None = None  # demo_patterns/traces/<trace>.jsonl (<trace> may be lights/<name>)
     algorithm: str = "apf-opaque-grid"  # for a start and pattern (a trace names its own)
     # Rule ids its run fires under the visualiser's default adversary (ASYNC, seed 1): what its text
     # promises, checked by tests/test_session.py.
@@ -56,7 +56,9 @@ class Scenario(BaseModel):
     def files(self) -> dict[str, Path]:
         """The scenario's files by role: robots and pattern, or trace."""
         if self.trace is not None:
-            return {"trace": demo_files("traces", ".jsonl")[self.trace]}
+            # "lights/NAME": a trace of a sub-folder (the light-budget lab's counterexamples)
+            sub, _, name = self.trace.rpartition("/")
+            return {"trace": demo_files(f"traces/{sub}" if sub else "traces", ".jsonl")[name]}
         assert self.robots is not None and self.pattern is not None
         return {"robots": demo_files("starts")[self.robots], "pattern": demo_files()[self.pattern]}
 

@@ -127,3 +127,73 @@ def _time_per_move(rows: Sequence[dict], algorithms: list[str], path: Path) -> P
     _save(fig, path)
     plt.close(fig)
     return path
+
+
+LIGHTS_FIGURE = "light_merges.png"
+_VERDICT_COLOURS = {"breaks": "#d9534f", "survives": "#5cb85c", "inconclusive": "#f0ad4e", "error": "#999999"}
+
+
+def plot_lights(rows: Sequence[dict], out: Path) -> Path:
+    """The matrix of merges of ``apf-viz lights``: row a, column b is ``merge(a=b)`` (b shown as a);
+    red breaks (marked with the violation's initial and the robots of the counterexample), green survives,
+    grey not run. One figure per table (the first algorithm and --ks if it holds several)."""
+    if not rows:
+        raise InputError("the lights table has no rows")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+
+    from apf_viz.algorithms import get_algorithm
+
+    first = rows[0]
+    rows = [r for r in rows if (r["algorithm"], r["ks"]) == (first["algorithm"], first["ks"])]
+    lights = list(get_algorithm(first["algorithm"]).lights)
+    cell = {(r["shown"], r["hidden"]): r for r in rows}
+    n = len(lights)
+    fig, ax = plt.subplots(figsize=(1.0 * n + 3, 0.8 * n + 2))
+    for i, a in enumerate(lights):
+        for j, b in enumerate(lights):
+            r = cell.get((a, b))
+            colour = "#333333" if a == b else _VERDICT_COLOURS.get(r["verdict"], "#999") if r else "#e6e6e6"
+            ax.add_patch(plt.Rectangle((j, i), 1, 1, facecolor=colour, edgecolor="white", linewidth=2))
+            if r is None or a == b:
+                continue
+            if r["verdict"] == "breaks":
+                label = f"{r['violation'].split(':')[0]}\nk={r['k']}" + (
+                    " (rnd)" if r["stage"] == "random" else ""
+                )
+            elif r["verdict"] == "survives":
+                label = "✓" + (f"\n{r['random_runs']} rnd" if r["random_runs"] else "")
+            else:
+                label = r["verdict"]
+            ax.text(j + 0.5, i + 0.5, label, ha="center", va="center", fontsize=7, color="white")
+    ax.set_xlim(0, n)
+    ax.set_ylim(n, 0)
+    ax.set_xticks([j + 0.5 for j in range(n)], lights, rotation=40, ha="right", fontsize=8)
+    ax.set_yticks([i + 0.5 for i in range(n)], lights, fontsize=8)
+    ax.set_xlabel("b: the light that disappears (shown as a)")
+    ax.set_ylabel("a: the colour both show")
+    ax.set_aspect("equal")
+    counts = {v: sum(r["verdict"] == v for r in rows) for v in _VERDICT_COLOURS}
+    ax.legend(
+        handles=[
+            Patch(color=c, label=f"{v} ({counts[v]})") for v, c in _VERDICT_COLOURS.items() if counts[v]
+        ],
+        loc="upper left",
+        bbox_to_anchor=(1.02, 1),
+        fontsize=8,
+    )
+    runs = max((r["random_runs"] for r in rows), default=0)
+    ax.set_title(
+        f"{first['algorithm']}+merge(a=b): is light b needed?\nexplorer on k = {first['ks']} "
+        "(k ≤ 3: every start of a 4×4 box; 4–5: the stated starts), every flip assignment"
+        + (f"; survivors: {runs} random runs (rnd)" if runs else ""),
+        fontsize=9,
+    )
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / LIGHTS_FIGURE
+    _save(fig, path)
+    plt.close(fig)
+    return path

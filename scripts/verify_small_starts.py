@@ -4,23 +4,12 @@ a Markdown table for docs/VERIFICATION.md. Run: python scripts/verify_small_star
 from __future__ import annotations
 
 import argparse
-import itertools
 import time
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.core.symmetry import unsolvable_axis
 from apf_viz.explore.check import all_flips, check
-
-
-def starts(k: int, side: int = 4):
-    cells = [(x, y) for x in range(side) for y in range(side)]
-    seen = set()
-    for pts in itertools.combinations(cells, k):
-        mx, my = min(p[0] for p in pts), min(p[1] for p in pts)
-        key = tuple(sorted((x - mx, y - my) for x, y in pts))
-        if key not in seen:
-            seen.add(key)
-            yield list(key)
+from apf_viz.explore.small_starts import box_starts
 
 
 def main() -> None:
@@ -36,7 +25,7 @@ def main() -> None:
     t_all = time.perf_counter()
     for k in range(1, args.max_k + 1):
         pattern = [(i, 0) for i in range(k)]
-        for start in starts(k):
+        for start in box_starts(k):
             axis = unsolvable_axis(start)
             r, y_up = check(
                 algorithm,

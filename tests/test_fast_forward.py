@@ -92,7 +92,7 @@ CASES = [
             ("async", "compute", "apf-opaque-grid-literal"),
             ("stale-first", "lc-atomic", "apf-opaque-grid-literal"),
         ]
-        * 4
+        * 2
     )
 ]
 

@@ -96,8 +96,13 @@ class MergedLights:
         watch = decision.watch
         if watch is not None and watch.lights & self._as.keys():
             watch = replace(watch, lights=frozenset(map(self.shown, watch.lights)))
-        if decision.light in self._as or watch is not decision.watch:
-            return replace(decision, light=self.shown(decision.light), watch=watch)
+        if decision.light in self._as:
+            # The rule names the light the algorithm meant; the screen and the trace say what shows.
+            shown = self.shown(decision.light)
+            rule = f"{decision.rule} ({decision.light} is shown as {shown}: merged)" if decision.rule else ""
+            return replace(decision, light=shown, watch=watch, rule=rule)
+        if watch is not decision.watch:
+            return replace(decision, watch=watch)
         return decision
 
     # ------------------------------------------------------------------ how it portrays itself

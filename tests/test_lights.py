@@ -1,0 +1,185 @@
+"""The light-budget lab (`apf-viz lights`, docs/LIGHTS.md): its merges and starts, its verdicts, its
+table (resumed, refused when foreign), its matrix plot, and the counterexamples it keeps: each replays
+to its violation under its merged variant, and the same schedule forms under the unmerged algorithm."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from apf_viz import lights
+from apf_viz.algorithms import get_algorithm
+from apf_viz.core.formats import InputError, load_trace
+from apf_viz.core.run import advance, engine_for_trace, replay
+from apf_viz.core.schedule import Schedule, follow, schedule_of_trace
+from apf_viz.core.schedulers import make_scheduler
+
+ROOT = Path(__file__).resolve().parent.parent
+TABLE = ROOT / "docs" / "lights.parquet"  # the lab's full matrix (docs/LIGHTS.md says how it was made)
+KEPT = sorted((ROOT / "demo_patterns" / "traces" / "lights").glob("*.jsonl"))
+
+
+def test_every_ordered_pair_of_lights_is_a_merge_and_bad_ones_are_refused():
+    every = lights.merges("apf-opaque-grid")
+    assert len(every) == 56 and len({m.variant for m in every}) == 56
+    assert [m.name for m in lights.merges("apf-opaque-grid", "leader1=decider, off=call")] == [
+        "leader1=decider",
+        "off=call",
+    ]
+    for bad in ("leader1=leader1", "leader1=nope", "leader1", "=off"):
+        with pytest.raises(InputError, match="--merges"):
+            lights.merges("apf-opaque-grid", bad)
+    with pytest.raises(InputError, match="unmerged"):
+        lights.merges("apf-opaque-grid+merge(off=call)")
+    for bad in ("0-3", "6", "x"):
+        with pytest.raises(InputError, match="--ks"):
+            lights.parse_ks(bad)
+
+
+def test_the_starts_are_every_solvable_small_start_up_to_mirror_then_the_stated_ones():
+    starts = lights.starts_for((1, 2, 3, 4, 5))
+    sizes = [len(s) for _, s in starts]
+    assert sizes == sorted(sizes)  # fewest robots first: the first counterexample is a small one
+    assert [sizes.count(k) for k in (1, 2, 3, 4, 5)] == [1, 12, 107, 3, 3]
+    # A mirror image is left out only because every flip assignment is explored: it is the same run.
+    assert not any(json.loads(n) == [[0, 1], [1, 0]] for n, s in starts if len(s) == 2)
+
+
+def test_a_broken_merge_keeps_its_counterexample_and_a_sound_one_survives(tmp_path):
+    broken = lights.explore_merge(
+        lights.Merge("apf-opaque-grid", "decider", "leader1"), (1, 2), str(tmp_path)
+    )
+    assert broken["verdict"] == "breaks" and broken["violation"].startswith("deadlock")
+    assert broken["k"] == 2 and Path(broken["trace"]).is_file()
+    sound = lights.explore_merge(lights.Merge("apf-opaque-grid", "off", "call"), (1, 2), str(tmp_path))
+    assert sound["verdict"] == "survives" and sound["starts"] == 13 and sound["states"] > 0
+
+
+def test_a_random_run_that_does_not_form_breaks_a_survivor():
+    row = lights._row(lights.Merge("a", "x", "y"), (1,), "survives", "explorer", "", t0=0.0)
+    run = {"algorithm": "a+merge(x=y)", "scheduler": "async", "start": "", "error": "", "trace": ""}
+    runs = [
+        dict(run, seed=2, k=6, outcome="formed", events=50),
+        dict(run, seed=1, k=7, outcome="stuck", events=90, start="sym-call-7", scheduler="stale-first",
+             trace="t.jsonl"),
+        dict(run, seed=1, k=7, outcome="stuck", events=9, algorithm="a+merge(x=z)"),
+    ]  # fmt: skip
+    folded = lights.fold_random(row, runs)
+    assert (folded["verdict"], folded["stage"], folded["random_runs"], folded["random_failed"]) == (
+        "breaks",
+        "random",
+        2,
+        1,
+    )
+    assert folded["violation"] == "stuck" and folded["trace"] == "t.jsonl"
+    assert folded["start"] == "sym-call-7, seed 1, stale-first"
+    assert lights.fold_random(row, runs[:1])["verdict"] == "survives"
+
+
+def _cli(*args, cwd):
+    return subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", "lights", *args], capture_output=True, text=True, cwd=cwd
+    )
+
+
+def test_the_command_writes_resumes_and_plots_the_matrix(tmp_path):
+    args = ["--ks", "1-2", "--merges", "decider=leader1,off=call", "--random", "2", "--workers", "1"]
+    first = _cli(*args, "--out", "l.parquet", cwd=tmp_path)
+    assert first.returncode == 0, first.stderr
+    assert "| decider=leader1 | breaks | explorer | deadlock" in first.stdout
+    assert (
+        "| off=call | survives | explorer |" in first.stdout and "2 random runs, all formed" in first.stdout
+    )
+    assert "2/2 merges explored, 1 broken" in first.stderr
+    rows = lights.read_lights(tmp_path / "l.parquet")
+    assert {r["merge"]: r["verdict"] for r in rows} == {"decider=leader1": "breaks", "off=call": "survives"}
+    assert (tmp_path / "l-traces" / "apf-opaque-grid+merge(decider=leader1).jsonl").is_file()
+    again = _cli(*args, "--out", "l.parquet", cwd=tmp_path)  # everything is in the file: nothing is run
+    assert again.returncode == 0 and "merges explored" not in again.stderr
+    assert lights.read_lights(tmp_path / "l.parquet") == rows
+    plot = subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", "plot", "l.parquet", "--out", "figs"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert plot.returncode == 0, plot.stderr
+    assert (tmp_path / "figs" / "light_merges.png").stat().st_size > 10_000
+
+
+def test_bad_input_is_one_line_and_exit_2(tmp_path):
+    (tmp_path / "notes.parquet").write_text("my notes")
+    for args, says in [
+        (["--merges", "leader1=leader1", "--out", "x.parquet"], "--merges"),
+        (["--ks", "7", "--out", "x.parquet"], "--ks"),
+        (["--out", "x.csv"], ".parquet"),
+        (["--algorithm", "nope", "--out", "x.parquet"], "unknown algorithm"),
+        (["--out", "notes.parquet", "--merges", "off=call"], "not a table"),
+    ]:
+        r = _cli(*args, cwd=tmp_path)
+        assert r.returncode == 2 and says in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert (tmp_path / "notes.parquet").read_text() == "my notes"
+
+
+def _violation_reached(header, events) -> str:
+    """Replay the trace under its own (merged) algorithm, checking every event, and say which
+    violation it reaches (the explorer's name for it, or the engine's outcome for a random run's)."""
+    algorithm = get_algorithm(header.algorithm)
+    e = engine_for_trace(header, algorithm)
+    replay(e, events)
+    verdict = header.options.get("verdict", e.state.outcome)
+    if verdict == "collision":
+        assert e.state.outcome == "collision"
+    elif verdict in ("deadlock", "stuck"):  # (a start can be stuck before any event: no outcome yet)
+        assert e.state.outcome == "stuck" or not events
+        assert all(e.decide(e.look(r)).is_noop(e.state.lights[r]) for r in range(e.k))
+    elif verdict == "escape":
+        robot, at = header.options["detail"].removeprefix("escape: robot ").split(" left the box at ")
+        x, y = e.current_points()[int(robot)]
+        assert at.startswith(str((x, y)))
+        far = max(max(abs(x - sx), abs(y - sy)) for sx, sy in header.robots)
+        assert far > 2 * len(header.robots) + 4  # beyond any margin the explorer gives this start
+    else:
+        assert verdict == "livelock" and e.state.outcome is None  # the loop, twice, and not formed
+    return verdict
+
+
+@pytest.mark.parametrize("path", KEPT, ids=[p.stem.split("merge(")[1].split(")")[0] for p in KEPT])
+def test_each_kept_counterexample_breaks_its_merge_and_not_the_algorithm(path):
+    header, events = load_trace(path)
+    assert "+merge(" in header.algorithm
+    _violation_reached(header, events)
+    base = header.algorithm.split("+merge(")[0]
+    lc_atomic = header.light_semantics == "lc-atomic"
+    schedule = Schedule(len(header.robots), header.y_up, header.light_semantics)
+    for n, line in enumerate(schedule_of_trace(events, lc_atomic), 1):
+        schedule.add(n, line)
+    e = engine_for_trace(header, get_algorithm(base))
+    for _ in follow(e, schedule):
+        pass
+    assert e.state.outcome in (None, "formed")  # the same schedule breaks nothing
+    advance(e, make_scheduler("round-robin"), 1)  # then a fair scheduler, to the end
+    assert e.state.outcome == "formed"
+
+
+def test_the_table_keeps_a_counterexample_for_every_broken_merge_and_nothing_else():
+    rows = lights.read_lights(TABLE)
+    assert len(rows) == 56 and {r["verdict"] for r in rows} <= {"breaks", "survives"}
+    broken = [r for r in rows if r["verdict"] == "breaks"]
+    assert sorted(ROOT / r["trace"] for r in broken) == KEPT
+    for r in broken:
+        header, _ = load_trace(ROOT / r["trace"])
+        assert header.algorithm == f"apf-opaque-grid+merge({r['merge']})"
+    for r in rows:
+        if r["verdict"] == "survives":
+            assert r["starts"] == 126 and r["random_runs"] == 140 and r["random_failed"] == 0
+
+
+def test_a_foreign_table_is_not_taken_for_a_lights_table(tmp_path):
+    assert not lights.is_lights_table(tmp_path / "missing.parquet")
+    with pytest.raises(InputError):
+        lights.read_lights(Path(__file__))
