@@ -437,6 +437,41 @@ def test_a_merged_light_variant_runs_beside_the_algorithm_and_a_bad_merge_is_one
     page.close()
 
 
+def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_demo(browser, app):
+    """The light-budget lab in a lecture (docs/LIGHTS.md): merge two lights, Verify finds the schedule
+    that breaks it on the current start; the lab's kept counterexample is a Demo that plays to the end."""
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="One robot on L1").click()
+    wait_for(lambda: app.session.engine.k == 3)
+    open_folder(page, "Algorithm")
+    page.locator("xpath=//*[text()='Variant']/following::input[1]").fill(
+        "apf-opaque-grid+merge(decider=leader1)"
+    )
+    page.get_by_role("button", name="Use variant").click()
+    wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid+merge(decider=leader1)")
+    page.get_by_role("button", name="Verify").click()
+    page.get_by_text("Verify: deadlock").wait_for(timeout=120_000)
+    wait_for(lambda: app.session.view().trace_position is not None)
+    while app.session.step():
+        pass
+    app.request_render()
+    page.get_by_role("heading", name="⛔ STUCK").wait_for()
+    assert app.session.engine.history.events()[-1].rule.endswith("(leader1 is shown as decider: merged)")
+    shot(page, "merged-variant-verify")
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="Two lights as one: decider shown as leader1").click()
+    page.get_by_text("apf-viz lights found it").first.wait_for()
+    wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid+merge(leader1=decider)")
+    while app.session.step():
+        pass
+    app.request_render()
+    page.get_by_role("heading", name="⛔ STUCK").wait_for()
+    assert app.session.engine.step_index == 10
+    shot(page, "merged-variant-demo")
+    page.close()
+
+
 def test_the_example_algorithms_legend_shows_its_lights(browser):
     from apf_viz.ui.session import Session
 
