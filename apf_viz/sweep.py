@@ -324,6 +324,8 @@ def _describe(cell: Cell) -> str:
 
 def _client(cluster: str | None, workers: int | None):
     """A client of the given scheduler, or of a local cluster (no dashboard, no fixed port)."""
+    import logging
+
     from dask.distributed import Client, LocalCluster
 
     if cluster:
@@ -340,6 +342,10 @@ def _client(cluster: str | None, workers: int | None):
         # The scheduler serves HTTP (health, metrics) even without a dashboard, by default on 8787: a
         # second sweep, or anything else there, would get a warning. Any free port on loopback will do.
         scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        # A worker's own log goes to our terminal: at shutdown a heartbeat to the scheduler that just
+        # closed logs an ERROR with a traceback, reporting nothing lost. What a run raises, or a worker
+        # that dies, reaches the results as that run's error instead.
+        silence_logs=logging.CRITICAL,
     )
     return Client(local), local
 

@@ -445,10 +445,8 @@ def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_d
     page.get_by_role("option", name="One robot on L1").click()
     wait_for(lambda: app.session.engine.k == 3)
     open_folder(page, "Algorithm")
-    page.locator("xpath=//*[text()='Variant']/following::input[1]").fill(
-        "apf-opaque-grid+merge(decider=leader1)"
-    )
-    page.get_by_role("button", name="Use variant").click()
+    page.get_by_role("combobox", name="Two lights as one").click()  # picked, not typed
+    page.get_by_role("option", name="leader1 shown as decider").click()
     wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid+merge(decider=leader1)")
     page.get_by_role("button", name="Verify").click()
     page.get_by_text("Verify: deadlock").wait_for(timeout=120_000)
@@ -463,6 +461,8 @@ def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_d
     page.get_by_role("option", name="Two lights as one: decider shown as leader1").click()
     page.get_by_text("apf-viz lights found it").first.wait_for()
     wait_for(lambda: app.session.engine.algorithm.name == "apf-opaque-grid+merge(leader1=decider)")
+    merge = page.get_by_role("combobox", name="Two lights as one")
+    wait_for(lambda: merge.input_value() == "decider shown as leader1")  # the folder follows the run
     while app.session.step():
         pass
     app.request_render()

@@ -1,8 +1,10 @@
-"""Algorithm: the algorithm or a variant of it, and the light semantics; switching restarts the run."""
+"""Algorithm: the algorithm or a variant of it (a resolution set, two lights as one colour), and the light
+semantics; switching restarts the run."""
 
 from __future__ import annotations
 
 from apf_viz.algorithms import ALGORITHMS
+from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
 
@@ -24,6 +26,14 @@ class AlgorithmFolder:
             gui.add_button("Use variant").on_click(
                 ctx.guard(lambda e: s.set_algorithm(self.variant.value.strip()))
             )
+            self.merge = gui.add_dropdown(
+                "Two lights as one",
+                self._merges(),
+                initial_value=self._merge_of(s.algorithm_name),
+                hint="show one light as another, to every robot and to itself: does the algorithm still "
+                "work with one light fewer? (apf-viz lights tries them all: docs/LIGHTS.md)",
+            )
+            self.merge.on_update(ctx.from_browser(self._on_merge))
             self.semantics = gui.add_dropdown(
                 "Light semantics", ("compute", "lc-atomic"), initial_value=s.config.light_semantics
             )
@@ -35,6 +45,32 @@ class AlgorithmFolder:
         names = [*ALGORITHMS, *(n for n in s.run.plugins if ":" not in n)]
         current = current or s.algorithm_name
         return tuple(names if current in names else [*names, current])
+
+    def _merges(self) -> tuple[str, ...]:
+        """ "—" and "b shown as a" for every ordered pair of the unmerged algorithm's lights."""
+        algorithm = self.ctx.session.engine.algorithm
+        lights = (algorithm.base if isinstance(algorithm, MergedLights) else algorithm).lights
+        return ("—", *(f"{b} shown as {a}" for a in lights for b in lights if a != b))
+
+    @staticmethod
+    def _merge_of(name: str) -> str:
+        parts = split_name(name)
+        if parts is None or len(parts[1]) != 1:
+            return "—"
+        (a, b), *_ = parts[1]
+        return f"{b} shown as {a}"
+
+    def _on_merge(self, event) -> None:
+        s = self.ctx.session
+        parts = split_name(s.algorithm_name)
+        base = parts[0] if parts else s.algorithm_name
+        if self.merge.value == "—":
+            wanted = base
+        else:
+            b, a = self.merge.value.split(" shown as ")
+            wanted = f"{base}{MARKER}{a}={b})"
+        if wanted != s.algorithm_name:
+            s.set_algorithm(wanted)
 
     def _on_algorithm(self, event) -> None:
         if self.algorithm.value != self.ctx.session.algorithm_name:
@@ -51,5 +87,9 @@ class AlgorithmFolder:
             self.algorithm.options = self._names(s.algorithm_name)
             self.algorithm.value = s.algorithm_name
             self.variant.value = s.algorithm_name  # the field follows the run's algorithm
+            merges = self._merges()
+            if tuple(self.merge.options) != merges:
+                self.merge.options = merges
+            self.merge.value = self._merge_of(s.algorithm_name)
         if self.semantics.value != s.config.light_semantics:
             self.semantics.value = s.config.light_semantics
