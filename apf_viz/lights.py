@@ -275,21 +275,14 @@ def run_lab(
 
 
 def _explore_all(todo, ks, traces, out, rows, workers, cluster, progress) -> list[dict]:
-    from dask.distributed import wait
-
-    from apf_viz.sweep import _client, _shut_down
+    from apf_viz.sweep import _client, _shut_down, by_the_second
 
     client, local = _client(cluster, workers)
     futures = {client.submit(explore_merge, m, tuple(ks), str(traces), pure=False): m for m in todo}
     new: list[dict] = []
     t0 = time.monotonic()
-    pending = set(futures)
     try:
-        while pending:
-            try:
-                finished, pending = wait(pending, timeout=1.0, return_when="FIRST_COMPLETED")
-            except TimeoutError:
-                finished = set()
+        for finished, _ in by_the_second(futures):
             for fut in finished:
                 new.append(_result(fut, futures[fut], ks))
             if finished:

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import sys
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -404,14 +404,7 @@ class _Tracker:
         self.started: dict[str, float] = {}  # task key → when it was first seen running
 
     def results(self):
-        from dask.distributed import wait
-
-        pending = set(self.futures)
-        while pending:
-            try:
-                finished, pending = wait(pending, timeout=1.0, return_when="FIRST_COMPLETED")
-            except TimeoutError:
-                finished = set()
+        for finished, pending in by_the_second(self.futures):
             for fut in finished:
                 r = self._row(fut)
                 self.finished += 1
@@ -462,6 +455,20 @@ class _Tracker:
             return ""
         t, key = min(candidates)
         return f"{_describe(self.futures[by_key[key]])} running {now - t:.0f} s"
+
+
+def by_the_second(futures) -> Iterator[tuple[set, set]]:
+    """(finished, still pending) futures, once a second or as soon as one finishes, until none is
+    pending: a progress line keeps ticking while a long task runs."""
+    from dask.distributed import wait
+
+    pending = set(futures)
+    while pending:
+        try:
+            finished, pending = wait(pending, timeout=1.0, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            finished = set()
+        yield finished, pending
 
 
 def _executing(dask_worker) -> list:
