@@ -699,11 +699,15 @@ def build_parser() -> argparse.ArgumentParser:
     lab.add_argument(
         "--ks",
         default="1-5",
-        help="robots the explorer covers: 1–3 every start of a 4×4 box, 4–5 the stated starts (default 1-5)",
+        help="robots the explorer covers: 1–3 every start of a 4×4 box, 4–5 the stated starts",
     )
     lab.add_argument("--merges", help="only these merges, e.g. leader1=decider,off=call (default: every one)")
     lab.add_argument(
-        "--random", type=int, default=0, help="random runs (k = 6–12) for each merge the explorer finds sound"
+        "--random",
+        type=int,
+        default=0,
+        help="random runs (half of k = 6–12 random robots, half on the Demo starts) for each merge the "
+        "explorer could not break",
     )
     lab.add_argument(
         "--out", required=True, type=Path, help="the verdicts table (.parquet), resumed if there"
