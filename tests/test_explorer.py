@@ -176,7 +176,9 @@ def test_the_lockstep_finding_and_its_fix():
 
     without_l2 = get_algorithm("apf-opaque-grid@" + ",".join(r for r in RESOLUTIONS if r != "L2"))
     start, pattern = [(0, 0), (0, 2), (1, 0), (1, 3)], [(0, 0), (1, 0), (2, 0), (3, 0)]
-    assert Explorer(without_l2, start, pattern, [True] * 4, max_states=400_000).run().verdict == "escape"
-    lca = Explorer(without_l2, start, pattern, [True] * 4, light_semantics="lc-atomic").run()
+    # With the partial-order reduction (the same verdicts: test_partial_order.py): 20 s → 1 s.
+    assert Explorer(without_l2, start, pattern, [True] * 4, reduction=True).run().verdict == "escape"
+    lca = Explorer(without_l2, start, pattern, [True] * 4, light_semantics="lc-atomic", reduction=True).run()
     assert lca.verdict == "verified"
-    assert Explorer(get_algorithm("apf-opaque-grid"), start, pattern, [True] * 4).run().verdict == "verified"
+    default = Explorer(get_algorithm("apf-opaque-grid"), start, pattern, [True] * 4, reduction=True).run()
+    assert default.verdict == "verified"
