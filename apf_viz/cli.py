@@ -277,9 +277,8 @@ def _cmd_lights(args: argparse.Namespace) -> int:
         )
     except KeyboardInterrupt:
         return 130
-    ks_text = ",".join(map(str, ks))
     names = {m.name for m in chosen}
-    print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == ks_text]))
+    print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == lights.ks_label(ks)]))
     print(f"{time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return 0
 

@@ -26,6 +26,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
 
 COLUMNS = (
@@ -52,7 +53,16 @@ class Merge:
 
     @property
     def variant(self) -> str:
-        return f"{self.algorithm}+merge({self.name})"
+        return f"{self.algorithm}{MARKER}{self.name})"
+
+    @classmethod
+    def of(cls, row: dict) -> Merge:
+        return cls(row["algorithm"], row["shown"], row["hidden"])
+
+
+def ks_label(ks: Sequence[int]) -> str:
+    """The table's ``ks`` column: the explorer's robot counts, as "1,2,3"."""
+    return ",".join(map(str, ks))
 
 
 def merges(algorithm: str, only: str | None = None) -> list[Merge]:
@@ -63,7 +73,7 @@ def merges(algorithm: str, only: str | None = None) -> list[Merge]:
         lights = get_algorithm(algorithm).lights
     except ValueError as e:
         raise InputError(f"--algorithm: {e}") from None
-    if "+merge(" in algorithm:
+    if MARKER in algorithm:
         raise InputError(
             f"--algorithm {algorithm}: the lab merges lights itself; name the algorithm unmerged"
         )
@@ -155,7 +165,7 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str) -> dict:
 def _row(merge: Merge, ks, verdict, stage, violation, *, t0: float, **values) -> dict:
     row = {
         "algorithm": merge.algorithm, "merge": merge.name, "shown": merge.shown, "hidden": merge.hidden,
-        "ks": ",".join(map(str, ks)), "verdict": verdict, "stage": stage, "violation": violation, "k": 0,
+        "ks": ks_label(ks), "verdict": verdict, "stage": stage, "violation": violation, "k": 0,
         "start": "", "y_up": "", "events": 0, "starts": 0, "states": 0, "random_runs": 0,
         "random_failed": 0, "seconds": round(time.perf_counter() - t0, 3), "trace": "", "error": "",
     }  # fmt: skip
@@ -209,10 +219,8 @@ def demo_starts() -> list[tuple[str, tuple, tuple, list[bool] | None]]:
 
 def fold_random(row: dict, runs: Sequence[dict]) -> dict:
     """A survivor's row with its random runs counted; the first run that did not form breaks it."""
-    mine = sorted(
-        (r for r in runs if r["algorithm"] == f"{row['algorithm']}+merge({row['merge']})"),
-        key=lambda r: r["seed"],
-    )
+    variant = Merge.of(row).variant
+    mine = sorted((r for r in runs if r["algorithm"] == variant), key=lambda r: r["seed"])
     failed = [r for r in mine if r["outcome"] != "formed"]
     row = dict(row, random_runs=len(mine), random_failed=len(failed))
     if failed and row["verdict"] == "survives":
@@ -248,15 +256,15 @@ def run_lab(
     rows = read_lights(out)
     traces = traces or out.with_name(out.stem + "-traces")
     traces.mkdir(parents=True, exist_ok=True)
-    ks_text = ",".join(map(str, ks))
-    done = {(r["algorithm"], r["merge"], r["ks"]) for r in rows}
+    ks_text = ks_label(ks)
+    done = {tuple(r[c] for c in KEY) for r in rows}
     todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]
     if todo:
         rows += _explore_all(todo, ks, traces, out, rows, workers, cluster, progress)
     if random_runs:
         mine = {(m.algorithm, m.name) for m in chosen}
         survivors = [
-            Merge(r["algorithm"], r["shown"], r["hidden"])
+            Merge.of(r)
             for r in rows
             if r["verdict"] == "survives" and r["ks"] == ks_text and (r["algorithm"], r["merge"]) in mine
         ]
@@ -394,7 +402,6 @@ def story(trace: Path) -> str:
     """What a counterexample shows, in a sentence built from the trace itself: the first decision whose
     light the merge hides (and the rule that made it), then how the run ends."""
     from apf_viz.algorithms import get_algorithm
-    from apf_viz.algorithms.merged_lights import split_name
     from apf_viz.core.formats import load_trace
     from apf_viz.core.run import engine_for_trace, replay
 
@@ -405,7 +412,7 @@ def story(trace: Path) -> str:
     parts = split_name(header.algorithm)
     (shown, hidden), *_ = parts[1] if parts else [("?", "?")]
     at = next((n for n, ev in enumerate(events, 1) if ev.rule and " is shown as " in ev.rule), None)
-    if getattr(algorithm, "base", algorithm).lights[0] == hidden:
+    if (algorithm.base if isinstance(algorithm, MergedLights) else algorithm).lights[0] == hidden:
         first = f"every robot starts {hidden}, which shows {shown}"
     elif at is not None:
         ev = events[at - 1]

@@ -186,30 +186,13 @@ def test_a_foreign_table_is_not_taken_for_a_lights_table(tmp_path):
 
 
 def test_ctrl_c_keeps_the_merges_that_finished(tmp_path):
-    import re
-    import signal
-    import time
+    from tests.sweep_helpers import interrupt_when
 
     # decider=leader1 breaks on the third start; off=call runs the whole explorer stage (about a minute).
     argv = [sys.executable, "-m", "apf_viz.cli", "lights", "--merges", "decider=leader1,off=call",
             "--workers", "2", "--out", "l.parquet"]  # fmt: skip
-    proc = subprocess.Popen(
-        argv,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        cwd=tmp_path,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as in a terminal
-    )
-    seen, deadline = b"", time.time() + 120
-    while time.time() < deadline and not re.search(rb"1/2 merges explored", seen):
-        chunk = proc.stderr.read1(4096)
-        if not chunk:
-            break
-        seen += chunk
-    proc.send_signal(signal.SIGINT)
-    _, rest = proc.communicate(timeout=120)
-    err = (seen + rest).decode()
-    assert proc.returncode == 130 and "interrupted; keeping the merges that finished" in err, err[-300:]
+    code, err = interrupt_when(argv, tmp_path, rb"1/2 merges explored")
+    assert code == 130 and "interrupted; keeping the merges that finished" in err, err[-300:]
     assert "Traceback" not in err
     kept = lights.read_lights(tmp_path / "l.parquet")
     assert [(r["merge"], r["verdict"]) for r in kept] == [("decider=leader1", "breaks")]

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -148,35 +147,17 @@ def test_a_generated_row_is_reproduced_by_the_documented_apf_viz_run_recipe(tmp_
 
 
 def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_path):
-    import signal
-    import time
+    from tests.sweep_helpers import interrupt_when
 
     out = tmp_path / "r.csv"
     # Runs of seconds each (k = 100: about 2–3 s, k = 80 once took 4 s but the engine got faster), so that
     # Ctrl+C lands with most of the grid still to run: the first rows are written after 5 s.
     argv = [sys.executable, "-m", "apf_viz.cli", "sweep", "--ks", "60,80,100", "--seeds", "1-4",
             "--workers", "2", "--out", str(out)]  # fmt: skip
-    # A background job of a non-interactive shell ignores SIGINT, and a Python started so never raises
-    # KeyboardInterrupt: the sweep gets the default handler back, as in a terminal.
-    proc = subprocess.Popen(
-        argv,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        cwd=tmp_path,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
-    )
     # Ctrl+C as soon as the progress line counts a finished run (not when its row is on disk: rows are
     # written every few seconds, and on a loaded machine the first write came after the last run).
-    seen, deadline = b"", time.time() + 120
-    while time.time() < deadline and not re.search(rb"[1-9][0-9]*/12 runs", seen):
-        chunk = proc.stderr.read1(4096)
-        if not chunk:
-            break
-        seen += chunk
-    proc.send_signal(signal.SIGINT)
-    _, rest = proc.communicate(timeout=120)
-    err = (seen + rest).decode()
-    assert proc.returncode == 130 and "interrupted; keeping the runs that finished" in err, err[-300:]
+    code, err = interrupt_when(argv, tmp_path, rb"[1-9][0-9]*/12 runs")
+    assert code == 130 and "interrupted; keeping the runs that finished" in err, err[-300:]
     kept = read_results(out)
     assert 1 <= len(kept) < 12 and len(set(keys(kept))) == len(kept)  # a valid, partial table
     again = run_cli(*argv[3:], cwd=tmp_path)

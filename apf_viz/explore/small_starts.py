@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 
 from apf_viz.core.grid import Point
+from apf_viz.core.pattern_match import mirror_y, normalise
 from apf_viz.core.symmetry import unsolvable_axis
 
 # The notes' configurations with k = 4 and 5 (docs/VERIFICATION.md, "Curated starts"): between them
@@ -31,8 +32,8 @@ def box_starts(k: int, side: int = 4, mirrored: bool = False) -> list[list[Point
     seen: set[tuple[Point, ...]] = set()
     out = []
     for pts in itertools.combinations(cells, k):
-        key = _translated(pts)
-        if key in seen or (mirrored and _translated([(x, -y) for x, y in pts]) in seen):
+        key = normalise(pts)
+        if key in seen or (mirrored and normalise(mirror_y(pts)) in seen):
             continue
         seen.add(key)
         out.append(list(key))
@@ -47,8 +48,3 @@ def solvable_box_starts(k: int, side: int = 4, mirrored: bool = False) -> list[l
 def line_pattern(k: int) -> list[Point]:
     """The pattern the small-start searches form: k robots in a row."""
     return [(i, 0) for i in range(k)]
-
-
-def _translated(pts) -> tuple[Point, ...]:
-    mx, my = min(p[0] for p in pts), min(p[1] for p in pts)
-    return tuple(sorted((x - mx, y - my) for x, y in pts))
