@@ -24,7 +24,7 @@ from apf_viz.core.fast_forward import shifted, steps_in_same_sight
 from apf_viz.core.formats import trace_text
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance, trace_header
-from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.view import Seen, Snapshot
 
 
@@ -306,3 +306,81 @@ def test_the_command_line_run_is_the_same_with_and_without_fast_forward(tmp_path
     assert walked.returncode == stepped.returncode == 0, walked.stderr + stepped.stderr
     assert json.loads(walked.stdout) == json.loads(stepped.stdout)
     assert (tmp_path / "a.jsonl").read_bytes() == (tmp_path / "b.jsonl").read_bytes()
+
+
+# ---------------------------------------------------------------------------------------------- crowds
+# In a crowd the walker's sight changes every few steps, so its cycles are forced but not one walk: each is
+# Looked and decided anew, and recorded as its own steps (Engine._forced_cycles).
+
+
+def crowd_case(seed: int, k: int) -> tuple:
+    """A random solvable start packed in a box of about 3k cells, a pattern and flips."""
+    rng = random.Random(seed)
+    start = random_solvable_start(k, rng)
+    return start, random_pattern(k, rng), [rng.random() < 0.5 for _ in range(k)]
+
+
+CROWDS = [
+    (seed, scheduler, algorithm)
+    for seed, (scheduler, algorithm) in enumerate(
+        [
+            ("async", "apf-opaque-grid"),
+            ("stale-first", "apf-opaque-grid"),
+            ("round-robin", "apf-opaque-grid"),
+            ("async", "apf-opaque-grid-literal"),
+        ]
+    )
+]
+
+
+@pytest.mark.parametrize(("seed", "scheduler", "algorithm"), CROWDS)
+def test_a_crowd_with_forced_cycles_is_the_step_by_step_run_event_for_event(seed, scheduler, algorithm):
+    case = crowd_case(seed, 40)
+    slow, fast = both(case, scheduler, seed, algorithm=algorithm)
+    assert slow.forced_walks == 0
+    assert fast.forced_walks > 0 or algorithm != "apf-opaque-grid"  # the literal paper has no watches
+    assert fast.history.events() == slow.history.events()
+    assert list(fast.history.steps) == list(slow.history.steps)
+    assert state_of(fast) == state_of(slow)
+
+
+def test_forced_cycles_carry_most_moves_of_a_crowd_and_stop_where_the_decision_changes():
+    case = crowd_case(7, 40)
+    slow, fast = both(case, "async", 7)
+    assert slow.outcome == fast.outcome == "formed"
+    # The same run again, counting the steps that walks and forced cycles applied.
+    e = engine(case, True)
+    sched = make_scheduler("async")
+    walked = 0
+    while not e.finished:
+        walked += e.walk()
+        if e.finished:
+            break
+        e.apply(sched.choose(e, step_rng(7, e.step_index)))
+    assert e.history.events() == slow.history.events()
+    assert walked > e.state.steps // 2  # most steps were taken in walks or forced cycles
+
+
+@pytest.mark.parametrize("cap", ["max_moves", "max_events"])
+def test_a_budget_that_ends_inside_forced_cycles_ends_both_runs_at_the_same_event(cap):
+    case = crowd_case(2, 40)
+    slow, fast = both(case, "async", 2, **{cap: 301})
+    assert slow.outcome == fast.outcome == "limit"
+    assert fast.forced_walks and fast.history.events() == slow.history.events()
+    assert state_of(fast) == state_of(slow)
+
+
+def test_a_crowd_advanced_a_few_steps_at_a_time_and_seeked_into_is_the_same_run():
+    case = crowd_case(3, 30)
+    slow, fast = engine(case, False), engine(case, True)
+    sched = make_scheduler("stale-first")
+    rng = random.Random(5)
+    while not slow.finished:
+        n = rng.randrange(1, 60)
+        assert advance(fast, sched, 3, steps=n) == advance(slow, sched, 3, steps=n)
+        assert state_of(fast) == state_of(slow)
+    assert fast.forced_walks > 0 and fast.finished
+    for at in rng.sample(range(slow.history.length), 5):  # checkpoints taken inside forced cycles
+        slow.seek(at)
+        fast.seek(at)
+        assert state_of(fast) == state_of(slow)

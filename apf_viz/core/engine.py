@@ -56,6 +56,10 @@ class Phase(IntEnum):
 
 NEXT_EVENT = ("look", "compute", "move")  # indexed by Phase
 _MAX_WALK_WAIT = 63  # cycles between two tries of a walk that did not go (see Engine.walk)
+# Cycles of a crowd's walker looked ahead for watches at once (Engine._forced_cycles): its decision
+# usually changes sooner, and a look further ahead costs no more.
+_FORCED_HORIZON = 256
+FOREVER = 1 << 62
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
 _IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
@@ -188,6 +192,7 @@ class Engine:
         self.use_watches = use_watches
         self.fast_forward = fast_forward and skip_noops
         self.walks = 0  # macro-steps applied by walk(), for benchmarks and tests
+        self.forced_walks = 0  # runs of forced cycles applied by walk() (each cycle its own steps)
         # Per robot, cycles to let pass before trying a walk again, and the last such wait: in a crowd its
         # sight changes every few steps, and trying at every cycle would cost more than the walks save.
         self._walk_wait = [0] * k
@@ -407,10 +412,10 @@ class Engine:
             return 0
         snap, ids = self._observe(r)
         decision = self._decide(r, snap)
-        if decision.stride < 2 or decision.move is None or decision.light != st.lights[r]:
+        if decision.move is None or decision.light != st.lights[r]:
             return 0
         per = 2 if self.light_semantics == "lc-atomic" else 3
-        n = decision.stride
+        n = FOREVER
         if self.max_events is not None:
             n = min(n, (self.max_events - st.events - 1) // 3)
         if self.max_moves is not None:
@@ -419,21 +424,80 @@ class Engine:
             n = min(n, max_steps // per)
         gmove = move_to_global(decision.move, self.y_up[r])
         delta = gmove.delta
-        if n < 2 or not hidden_only_on_line(st.positions, r, delta, snap.columns):
-            return 0
         here = self._views.points[r]
         # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
         # (grid.COORD_LIMIT); beyond them the run goes on step by step.
         n = min(n, COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1]))
-        n = steps_in_same_sight(snap.columns, decision.move, n)
-        if n >= 2:
-            n = self._watches.quiet_steps(r, here, delta, n)
-        if n < 2:
+        same = 0  # cycles that repeat this very decision on the same robots in sight
+        if decision.stride >= 2 and n >= 2 and hidden_only_on_line(st.positions, r, delta, snap.columns):
+            same = steps_in_same_sight(snap.columns, decision.move, min(n, decision.stride))
+        # Else, in a crowd, cycles the scheduler cannot interleave, each Looked and decided anew.
+        reach = same if same >= 2 else (min(n, _FORCED_HORIZON) if per == 3 else 0)
+        if reach >= 2:
+            reach = self._watches.quiet_steps(r, here, delta, reach)
+        if reach < 2:
             self._walk_wait[r] = self._walk_backoff[r] = min(2 * self._walk_backoff[r] + 1, _MAX_WALK_WAIT)
             return 0
         self._walk_backoff[r] = 0
-        self._walk(r, here, gmove, snap, ids, decision, n, per)
-        return n * per
+        if same >= 2:
+            self._walk(r, here, gmove, snap, ids, decision, reach, per)
+            return reach * per
+        return self._forced_cycles(r, here, gmove, reach)
+
+    def _forced_cycles(self, r: int, here: Point, gmove: Direction, n: int) -> int:
+        """Apply up to n whole cycles of robot r, each Look, Compute and Move recorded as its own step
+        exactly as the scheduler's forced choices would be, while its decision keeps its light and its
+        move (``gmove``, global): :meth:`walk` checked that those n moves concern no watcher and leave
+        every budget, so r stays the only eligible robot and no outcome can fall inside. Other robots'
+        watches are told of the whole way once at the end. Returns the steps applied (0: none)."""
+        st = self.state
+        dx, dy = gmove.delta
+        occupied = self._views.occupied
+        light = st.lights[r]
+        skipped = self.k - 1
+        record = _new(StepRecord, ((r,), None))
+        x, y = here
+        cycles = 0
+        while cycles < n:
+            if cycles:
+                decision = self._decide(r, self._observe(r)[0])
+                if decision.light != light or move_to_global(decision.move, self.y_up[r]) != gmove:
+                    break
+            if (x + dx, y + dy) in occupied:
+                break  # a collision: stepped as usual
+            for act in (self._look, self._compute, self._move_quietly):
+                position = st.steps
+                st.skipped += skipped
+                events = [act(r, None)]
+                st.last_act[r] = st.steps + 1
+                st.steps += 1
+                st.events += 1
+                self.history.record(position, record, events)
+                if st.steps % self.checkpoint_every == 0:
+                    self.history.checkpoint(st.steps, st.copy())
+            x, y = x + dx, y + dy
+            cycles += 1
+        if not cycles:
+            return 0
+        self.forced_walks += 1
+        self._dirty.update(self._watches.moved((here,), ((x, y),), (r,), occupied))
+        self._dirty.add(r)
+        self._update_outcome()
+        return 3 * cycles
+
+    def _move_quietly(self, r: int, round: int | None) -> Event:
+        """:meth:`_move_one` for a move that concerns no watcher and cannot collide (see
+        :meth:`_forced_cycles`): the watches are told afterwards."""
+        st = self.state
+        here = self._views.points[r]
+        dx, dy = move_to_global(st.pending[r].move, self.y_up[r]).delta
+        to = (here[0] + dx, here[1] + dy)
+        st.positions[r] = to
+        self._views.moved((r,), (here,))
+        st.moves += 1
+        st.version += 1
+        self._finish_cycle(r)
+        return _new(Event, (r, "move", None, None, None, None, to, round, False, None))
 
     def _walk(
         self,
