@@ -21,7 +21,7 @@ from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
-from apf_viz.core.watches import Watches
+from apf_viz.core.watches import Watches, _Path
 
 
 def case(k: int, seed: int):
@@ -356,3 +356,26 @@ def test_occupied_counts_kept_move_by_move_equal_counts_from_scratch():
             else:
                 assert w._occupied[r][1] == fresh and any(fresh)
     assert woken >= 3
+
+
+@pytest.mark.parametrize("scale", [5, 10**11])
+def test_the_first_point_between_a_robot_and_its_watchers_is_found_at_once_as_one_by_one(scale):
+    """_Path.first_between (one numpy pass over the watchers; Python integers when the offsets are too
+    large for int64 products) against _Path.between and first_in for each watcher."""
+    rng = random.Random(scale)
+    for _ in range(400):
+        start = (rng.randint(-scale, scale), rng.randint(-scale, scale))
+        delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
+        path = _Path(start, delta)
+
+        def near_line() -> tuple[int, int]:
+            # Often on the walk's line, or a few cells off it, so that segments cross it at lattice points.
+            off = rng.choice([0, 0, rng.randint(-3, 3), rng.randint(-scale, scale)])
+            along = rng.randint(-2 * scale, 2 * scale) if scale < 100 else rng.randint(-40, 40)
+            return (start[0] + along, start[1] + off) if delta[1] == 0 else (start[0] + off, start[1] + along)
+
+        q = near_line()
+        watchers = [near_line() for _ in range(rng.randint(1, 6))]
+        n = rng.randint(0, 3 * min(scale, 40))
+        expected = min(path.first_in(path.between(q, w), n) for w in watchers)
+        assert path.first_between(np.array(q), np.array(watchers, dtype=np.int64), n) == expected

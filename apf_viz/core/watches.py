@@ -37,6 +37,7 @@ WALK = 32  # lattice points walked, looking for a robot, before one numpy pass o
 FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 _BIG = 1 << 62
+_VECTOR_SPAN = 1 << 30  # offsets below this: products of two fit in int64
 
 
 def _lattice_points(x: int, y: int, dx: int, dy: int) -> list[Point]:
@@ -292,9 +293,10 @@ class Watches:
             return 0  # a watched light is news wherever it comes into sight
         path = _Path(start, delta)
         mine = self._followed.get(r, set())  # segments that follow the walker: taken along, not touched
+        any_at = self._any_at
         first = min(
             path.first_of(self._watchers_at, n + 1),
-            path.first_of((p for p, pairs in self._any_at.items() if not pairs <= mine), n + 1),
+            path.first_of((p for p in path.on_line(any_at) if not any_at[p] <= mine), n + 1),
         )  # the first point of the walk (0 … n) that some watched region contains
         for w, (boxes, longs) in self._boxed.items():
             for box in boxes:
@@ -349,12 +351,10 @@ class Watches:
         quiet = n
         P = self._P
         for q in (self.bits & self._watched).nonzero()[0].tolist():
-            watchers = (self.active & ((self._mask & self.bits[q]) != 0)).nonzero()[0].tolist()
-            qx, qy = int(P[q, 0]), int(P[q, 1])
-            for w in watchers:
-                if w != q:
-                    lo, hi = path.between((qx, qy), (int(P[w, 0]), int(P[w, 1])))
-                    quiet = min(quiet, path.first_in((lo, hi), n - 1))
+            watchers = self.active & ((self._mask & self.bits[q]) != 0)
+            watchers[q] = False
+            if watchers.any():
+                quiet = min(quiet, path.first_between(P[q], P[watchers], n - 1))
         return quiet
 
     def relit(self, m: int, light: str) -> list[int]:
@@ -646,6 +646,51 @@ class _Path:
         if num % den:
             return 1, 0
         return num // den, num // den
+
+    def first_between(self, q: np.ndarray, W: np.ndarray, n: int) -> int:
+        """``min(first_in(between(q, w), n) for w in W)``: vectorised where the products below fit in
+        int64 (offsets from the walk's start under 2^30), else in Python integers."""
+        span = max(int(np.abs(W - (self.x, self.y)).max()), abs(int(q[0]) - self.x), abs(int(q[1]) - self.y))
+        if span >= _VECTOR_SPAN:
+            qp = (int(q[0]), int(q[1]))
+            return min(
+                (self.first_in(self.between(qp, (int(x), int(y))), n) for x, y in W.tolist()), default=n + 2
+            )
+        if self.ey == 0:
+            aq, bq = (int(q[0]) - self.x) * self.ex, int(q[1]) - self.y
+            aw, bw = (W[:, 0] - self.x) * self.ex, W[:, 1] - self.y
+        else:
+            aq, bq = (int(q[1]) - self.y) * self.ey, int(q[0]) - self.x
+            aw, bw = (W[:, 1] - self.y) * self.ey, W[:, 0] - self.x
+        first = n + 2
+        if bq == 0:  # q on the walk's line: the points strictly between q and the watchers on it
+            on = bw == 0
+            if on.any():
+                lo = np.minimum(aw[on], aq) + 1
+                hi = np.maximum(aw[on], aq) - 1
+                lo = np.maximum(lo, 0)
+                hit = lo[lo <= np.minimum(hi, n)]
+                if hit.size:
+                    first = int(hit.min())
+            return first
+        cross = bw * bq < 0  # on the other side: the segment crosses the line once
+        if not cross.any():
+            return first
+        aw, bw = aw[cross], bw[cross]
+        den = bw - bq
+        num = aq * den - (aw - aq) * bq
+        exact = num % den == 0
+        t = num[exact] // den[exact]
+        t = t[(t >= 0) & (t <= n)]
+        return int(t.min()) if t.size else first
+
+    def on_line(self, points: Iterable[Point]) -> list[Point]:
+        """Those of these points on the walk's line (either way from its start)."""
+        if self.ey == 0:
+            y = self.y
+            return [p for p in points if p[1] == y]
+        x = self.x
+        return [p for p in points if p[0] == x]
 
     def first_of(self, points: Iterable[Point], limit: int) -> int:
         """The least t (0 ≤ t < limit) of these points on the walk; ``limit`` if none is."""
