@@ -140,7 +140,7 @@ def test_play_state_changes_only_through_the_run_controller():
     assert s.playing
     s.set_mode("edit-pattern")
     assert not s.playing
-    assert not s.play_step()
+    assert not s.play_steps()
 
 
 def test_reset_and_loads_rebuild_the_run_from_its_configuration():

@@ -633,3 +633,35 @@ def test_compare_steps_a_second_algorithm_with_the_run_and_names_the_first_diver
     assert s.view().compare is None
     with pytest.raises(ValueError):
         s.compare_with("os:abort")
+
+
+@pytest.mark.parametrize("spread", [False, True])
+def test_play_at_speed_walks_and_records_the_same_run_as_stepping(spread):
+    """Play with a large allowance per call (the render loop's budget at a high speed) takes walks and
+    forced cycles (core/fast_forward.py), yet records the very steps Step does, one by one."""
+    import random
+
+    from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+
+    rng = random.Random(5)
+    start = random_solvable_start(20, rng)
+    if spread:
+        start = [(x * 40 + rng.randrange(40), y * 40 + rng.randrange(40)) for x, y in start]
+    pattern = random_pattern(20, rng)
+    stepped, played = Session(start, pattern, seed=3), Session(start, pattern, seed=3)
+    while not stepped.engine.finished:
+        stepped.step()
+    played.toggle_play()
+    calls = 0
+    while played.playing:
+        taken = played.play_steps(150)
+        assert 0 <= taken <= 150
+        calls += 1
+    assert played.engine.outcome == stepped.engine.outcome == "formed"
+    assert played.engine.history.events() == stepped.engine.history.events()
+    assert calls * (10 if spread else 2) < played.engine.step_index  # many steps per call: walks
+    for s in (played, stepped):
+        s.seek(s.engine.step_index // 2)  # the timeline goes back inside them
+    assert played.engine.current_points() == stepped.engine.current_points()
+    a, b = played.view(), stepped.view()
+    assert (a.robots, a.stage, a.event, a.moves) == (b.robots, b.stage, b.event, b.moves)

@@ -368,14 +368,14 @@ def test_the_first_point_between_a_robot_and_its_watchers_is_found_at_once_as_on
         delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
         path = _Path(start, delta)
 
-        def near_line() -> tuple[int, int]:
+        def near_line(start: tuple[int, int], horizontal: bool) -> tuple[int, int]:
             # Often on the walk's line, or a few cells off it, so that segments cross it at lattice points.
             off = rng.choice([0, 0, rng.randint(-3, 3), rng.randint(-scale, scale)])
             along = rng.randint(-2 * scale, 2 * scale) if scale < 100 else rng.randint(-40, 40)
-            return (start[0] + along, start[1] + off) if delta[1] == 0 else (start[0] + off, start[1] + along)
+            return (start[0] + along, start[1] + off) if horizontal else (start[0] + off, start[1] + along)
 
-        q = near_line()
-        watchers = [near_line() for _ in range(rng.randint(1, 6))]
+        q = near_line(start, delta[1] == 0)
+        watchers = [near_line(start, delta[1] == 0) for _ in range(rng.randint(1, 6))]
         n = rng.randint(0, 3 * min(scale, 40))
         expected = min(path.first_in(path.between(q, w), n) for w in watchers)
         assert path.first_between(np.array(q), np.array(watchers, dtype=np.int64), n) == expected

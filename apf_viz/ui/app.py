@@ -236,9 +236,10 @@ class App:
                 budget = min(budget + (now - last) * s.speed, max(1.0, s.speed / FPS))
                 deadline = now + STEP_SHARE / FPS
                 while budget >= 1 and time.perf_counter() < deadline:
-                    budget -= 1
-                    if not s.play_step():  # the run ended, or Manual: play stops by itself
+                    taken = s.play_steps(int(budget))
+                    if not taken:  # the run ended, or Manual: play stops by itself
                         break
+                    budget -= taken
                 self._dirty.set()
             else:
                 budget = 0.0

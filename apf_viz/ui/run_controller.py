@@ -232,12 +232,19 @@ class RunController:
         with self.lock:
             self._speed = float(min(max(speed, 1.0), MAX_SPEED))
 
-    def play_step(self) -> bool:
-        """One step of Play; stops playing when nothing could run."""
+    def play_steps(self, allowance: int = 1) -> int:
+        """Up to ``allowance`` steps of Play, at least one; stops playing when nothing could run. Returns
+        the steps taken. Where the scheduler has no choice (one robot can act) and the allowance holds
+        whole cycles, they are one walk (core/fast_forward.py): the same steps, recorded one by one."""
         with self.lock:
             if not self._playing:
-                return False
+                return 0
+            scheduler = self.config.scheduler
+            if allowance >= 3 and not self.following and make_scheduler(scheduler).forced_when_alone:
+                taken = self.engine.walk(allowance)  # Manual is never forced: the person chooses
+                if taken:
+                    return taken
             if not self.step():
                 self._playing = False
-                return False
-            return True
+                return 0
+            return 1

@@ -249,13 +249,14 @@ class Session:
             return "Manual: click a robot to run its next phase"
         return "nothing could run"
 
-    def play_step(self) -> bool:
-        """One step of Play (the render thread's); stops playing when nothing ran."""
+    def play_steps(self, allowance: int = 1) -> int:
+        """Up to ``allowance`` steps of Play (the render thread's); stops playing when nothing ran.
+        Returns the steps taken (0: none)."""
         with self.lock:
             if self.mode != "run":
                 self.run.pause()
-                return False
-            return self.run.play_step()
+                return 0
+            return self.run.play_steps(allowance)
 
     def run_until(self, what: Literal["move", "stage"], limit: int = 1_000_000, seconds: float = 3.0) -> str:
         """Step until some robot moves, or the stage changes; stops early on an outcome, in Manual, or
