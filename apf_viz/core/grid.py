@@ -106,6 +106,7 @@ def visible_from(positions: np.ndarray, i: int) -> np.ndarray:
 
 
 _FAR = np.iinfo(np.int64).max
+_LEAST = np.iinfo(np.int64).min
 
 
 def table_scratch() -> np.ndarray:
@@ -137,18 +138,20 @@ def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
     return nearest.nonzero()[0]
 
 
-def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
+def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) -> np.ndarray:
     """The visible robots, given every robot's offset from observer ``i`` (shape (k, 2); row i is 0).
 
     "Nearest robot per primitive direction", vectorised: one gcd, one sort of k packed keys
     (direction, distance g), and the first of each direction wins; no lattice point is visited.
     The result is ordered by direction, a function of the offsets alone (no robot identity).
+    ``span``, if given, is a bound the caller knows: every |offset| coordinate < span.
     """
     k = offsets.shape[0]
     if k == 1:
         return np.empty(0, dtype=np.intp)
     dx, dy = offsets[:, 0], offsets[:, 1]
-    span = int(np.abs(offsets).max()) + 1
+    if span is None:
+        span = int(np.abs(offsets).max()) + 1
     if span <= TABLE_SPAN:
         # A crowd: every offset's distance and direction key looked up in tables made once, instead of a
         # gcd and two divisions per robot (distance ≤ TABLE_SPAN, so the packed key cannot collide).
@@ -156,8 +159,8 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
         at = table_index(offsets)
         key = direction[at]
         packed = key * (TABLE_SPAN + 1) + distance[at]
-        packed[i] = np.iinfo(np.int64).min
-        order = np.argsort(packed)  # the keys are distinct: no need for a stable sort
+        packed[i] = _LEAST
+        order = packed.argsort()  # the keys are distinct: no need for a stable sort
         sorted_key = key[order]
         first = np.empty(k, dtype=bool)
         np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
@@ -172,15 +175,15 @@ def nearest_per_direction(offsets: np.ndarray, i: int) -> np.ndarray:
         # |key| < (2·span + 1)², |packed| < (2·span + 1)² · span + span < 2^63.
         key = ddx * (2 * span + 1) + ddy  # unique per primitive direction
         packed = key * span + g  # by direction, nearest first
-        packed[i] = np.iinfo(np.int64).min
-        order = np.argsort(packed, kind="stable")
+        packed[i] = _LEAST
+        order = packed.argsort()  # distinct keys (a point is its direction and distance): any sort
         sorted_key = key[order]
         first = np.empty(k, dtype=bool)
         np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
     else:
         # Far apart: sort by the direction's two components and the distance as three keys, so no sum or
         # product of coordinates is formed (exact for every offset int64 holds).
-        ddx[i] = np.iinfo(np.int64).min  # the observer sorts first
+        ddx[i] = _LEAST  # the observer sorts first
         order = np.lexsort((g, ddy, ddx))
         sx, sy = ddx[order], ddy[order]
         first = np.empty(k, dtype=bool)

@@ -124,10 +124,12 @@ class Views:
             seen = P[order] - P[r]
             span = TABLE_SPAN
         else:
+            # The reach box bounds every offset (no pass over them to find the largest).
+            span = max(x1 - x0, y1 - y0) + 1
             offsets = P - P[r]
-            order = np.sort(nearest_per_direction(offsets, r))
+            order = nearest_per_direction(offsets, r, span)
+            order.sort()
             seen = offsets[order]
-            span = int(np.abs(seen).max(initial=0)) + 1
         sx, sy = seen[:, 0], seen[:, 1]
         self._raw[r] = (sx, sy, order)
         self._near[r] = None
@@ -135,7 +137,7 @@ class Views:
         # The view's order: by dx, then dy in r's own frame; one packed key sorts fastest where it cannot
         # overflow (|sx|, |ly| < span: |key| < (2·span + 1)·span + span).
         packed = span < PACKED_SPAN_LIMIT
-        by_offset = np.argsort(sx * (2 * span + 1) + ly) if packed else np.lexsort((ly, sx))
+        by_offset = (sx * (2 * span + 1) + ly).argsort() if packed else np.lexsort((ly, sx))
         codes = self._code_of[order[by_offset]]
         self._columns[r] = Columns(sx[by_offset], ly[by_offset], codes, self._palette)
         self._entries[r] = None
