@@ -379,3 +379,73 @@ def test_the_first_point_between_a_robot_and_its_watchers_is_found_at_once_as_on
         n = rng.randint(0, 3 * min(scale, 40))
         expected = min(path.first_in(path.between(q, w), n) for w in watchers)
         assert path.first_between(np.array(q), np.array(watchers, dtype=np.int64), n) == expected
+
+
+def _random_box(rng: random.Random) -> tuple:
+    """A box of a robot's frame that contains its origin, some sides unbounded."""
+
+    def side(lo: bool):
+        return None if rng.random() < 0.25 else (-rng.randint(0, 4) if lo else rng.randint(0, 4))
+
+    return (side(True), side(False), side(True), side(False))
+
+
+def _old_quiet_occupied(w: Watches, path: _Path, n: int) -> int:
+    """The bound as it was before the count test came first (session 11): the reference."""
+    quiet = n
+    for boxes, counts in w._occupied.values():
+        spans = [path.box(box) for box in boxes]
+        if any(count - (lo <= 0 <= hi) for count, (lo, hi) in zip(counts, spans, strict=True)):
+            continue
+        for t in [1] + [hi + 1 for _, hi in spans]:
+            if 1 <= t <= quiet and not any(lo <= t <= hi for lo, hi in spans):
+                quiet = t - 1
+    return quiet
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(seed):
+    """Watches.quiet_steps against the moves themselves: random robots, random watches (boxes, segments
+    to other robots, occupied boxes, a watched light), a walker; moved one lattice step at a time, it
+    concerns no watcher within the bound (the walk fast-forward and forced cycles rely on)."""
+    rng = random.Random(seed)
+    checked = bound_hit = 0
+    for _ in range(120):
+        k = rng.randint(3, 14)
+        points = rng.sample([(x, y) for x in range(-6, 7) for y in range(-6, 7)], k)
+        lights = ["leader" if i == 0 and rng.random() < 0.5 else "off" for i in range(k)]
+        P, _, w = watches_on(points, lights, [rng.random() < 0.5 for _ in range(k)])
+        walker = rng.randrange(1, k)
+        for r in range(k):
+            if r == walker or rng.random() < 0.3:
+                continue
+            x, y = points[r]
+            s = 1 if w._flip[r] == 1 else -1
+            others = [(px - x, s * (py - y)) for px, py in points if (px, py) != (x, y)]
+            watch = Watch(
+                boxes=tuple(_random_box(rng) for _ in range(rng.randint(0, 1))),
+                segments=tuple(rng.sample(others, rng.randint(0, 1))),
+                occupied=tuple(_random_box(rng) for _ in range(rng.randint(0, 2))),
+                lights=frozenset({"leader"}) if rng.random() < 0.5 else frozenset(),
+            )
+            w.register(r, watch)  # refused (an empty occupied box) is fine: r is then not watched
+        start = points[walker]
+        delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
+        n = rng.randint(1, 12)
+        path = _Path(start, delta)
+        assert w._quiet_occupied(path, n) == _old_quiet_occupied(w, path, n)
+        quiet = w.quiet_steps(walker, start, delta, n)
+        robot_at = {p: i for i, p in enumerate(points)}
+        here = start
+        for t in range(1, quiet + 1):
+            to = (here[0] + delta[0], here[1] + delta[1])
+            if to in robot_at:
+                break  # the walk would collide: the engine checks the next point itself
+            del robot_at[here]
+            robot_at[to] = walker
+            P[walker] = to
+            assert w.moved([here], [to], [walker], robot_at) == [], (seed, t, quiet)
+            here = to
+            checked += 1
+        bound_hit += quiet < n
+    assert checked > 150 and bound_hit > 20  # walks were taken, and the bound did cut some

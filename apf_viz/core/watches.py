@@ -336,10 +336,16 @@ class Watches:
     def _quiet_occupied(self, path: _Path, n: int) -> int:
         """Moves before the walker is the last robot to leave some watch's occupied boxes."""
         quiet = n
+        x, y = path.x, path.y  # where the walker stands
         for boxes, counts in self._occupied.values():
+            # Another robot keeps a box occupied whatever the walker does: a box counting two robots, or one
+            # that is not the walker. (Tested before the spans: most watches are skipped here.)
+            if any(
+                count > 1 or (count and not (x0 <= x <= x1 and y0 <= y <= y1))
+                for count, (x0, x1, y0, y1) in zip(counts, boxes, strict=True)
+            ):
+                continue
             spans = [path.box(box) for box in boxes]
-            if any(count - (lo <= 0 <= hi) for count, (lo, hi) in zip(counts, spans, strict=True)):
-                continue  # another robot keeps a box occupied whatever the walker does
             for t in [1] + [hi + 1 for _, hi in spans]:
                 if 1 <= t <= quiet and not any(lo <= t <= hi for lo, hi in spans):
                     quiet = t - 1
