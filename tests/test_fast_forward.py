@@ -138,15 +138,20 @@ def test_a_budget_that_ends_inside_a_walk_ends_both_runs_at_the_same_event(cap):
     assert state_of(fast) == state_of(slow)
 
 
-def test_advancing_a_few_steps_at_a_time_stops_inside_a_walk_exactly():
-    case = spread_case(3, k=6, scale=40)
+def in_chunks(case, scheduler: str, seed: int, rng: random.Random, most: int) -> tuple[Engine, Engine]:
+    """Both runs advanced the same random number of steps at a time (up to ``most``), compared after
+    each chunk, to the end."""
     slow, fast = engine(case, False), engine(case, True)
-    sched = make_scheduler("async")
-    rng = random.Random(4)
+    sched = make_scheduler(scheduler)
     while not slow.finished:
-        n = rng.randrange(1, 400)
-        assert advance(fast, sched, 1, steps=n) == advance(slow, sched, 1, steps=n)
+        n = rng.randrange(1, most)
+        assert advance(fast, sched, seed, steps=n) == advance(slow, sched, seed, steps=n)
         assert state_of(fast) == state_of(slow)
+    return slow, fast
+
+
+def test_advancing_a_few_steps_at_a_time_stops_inside_a_walk_exactly():
+    slow, fast = in_chunks(spread_case(3, k=6, scale=40), "async", 1, random.Random(4), 400)
     assert fast.walks > 0 and fast.finished
 
 
@@ -371,14 +376,8 @@ def test_a_budget_that_ends_inside_forced_cycles_ends_both_runs_at_the_same_even
 
 
 def test_a_crowd_advanced_a_few_steps_at_a_time_and_seeked_into_is_the_same_run():
-    case = crowd_case(3, 30)
-    slow, fast = engine(case, False), engine(case, True)
-    sched = make_scheduler("stale-first")
     rng = random.Random(5)
-    while not slow.finished:
-        n = rng.randrange(1, 60)
-        assert advance(fast, sched, 3, steps=n) == advance(slow, sched, 3, steps=n)
-        assert state_of(fast) == state_of(slow)
+    slow, fast = in_chunks(crowd_case(3, 30), "stale-first", 3, rng, 60)
     assert fast.forced_walks > 0 and fast.finished
     for at in rng.sample(range(slow.history.length), 5):  # checkpoints taken inside forced cycles
         slow.seek(at)
