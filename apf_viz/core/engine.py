@@ -392,12 +392,14 @@ class Engine:
         return events
 
     def walk(self, max_steps: int | None = None) -> int:
-        """Apply, as one macro-step, the cycles a lone robot would repeat: when it is the only robot
-        whose next event can change anything (so a scheduler that serves the eligible robots has no
-        choice), every other robot is watched, and its decision promises a ``stride``. The walk stops
-        short of anything the stride, the robot's sight, the other robots' watches, the budgets or
-        ``max_steps`` would change (:mod:`apf_viz.core.fast_forward`). Returns the steps applied (0: none;
-        the caller steps as usual)."""
+        """Apply the cycles of a lone robot at once: when it is the only robot whose next event can
+        change anything (so a scheduler that serves the eligible robots has no choice), every other robot
+        is watched, and its decision is a move that keeps its light. Where the decision promises a
+        ``stride`` and the robot's sight stays the same, the cycles are one macro-step; else (a crowd)
+        they are forced cycles, each Looked and decided anew (:meth:`_forced_cycles`). Either stops
+        short of anything the other robots' watches, the budgets or ``max_steps`` would change
+        (:mod:`apf_viz.core.fast_forward`). Returns the steps applied (0: none; the caller steps as
+        usual)."""
         st = self.state
         if not self.fast_forward or st.outcome is not None or self.history.length != st.steps:
             return 0
@@ -486,8 +488,8 @@ class Engine:
         return 3 * cycles
 
     def _move_quietly(self, r: int, round: int | None) -> Event:
-        """:meth:`_move_one` for a move that concerns no watcher and cannot collide (see
-        :meth:`_forced_cycles`): the watches are told afterwards."""
+        """Robot r's pending move, onto a free point, without telling the watches (:meth:`_move_one`
+        tells them of this move; :meth:`_forced_cycles` of the whole way, at its end)."""
         st = self.state
         here = self._views.points[r]
         dx, dy = move_to_global(st.pending[r].move, self.y_up[r]).delta
@@ -641,13 +643,9 @@ class Engine:
         if to in self._views.occupied:
             st.outcome = "collision"
             return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
-        st.positions[r] = to
-        self._views.moved((r,), (here,))
+        event = self._move_quietly(r, round)
         self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
-        st.moves += 1
-        st.version += 1
-        self._finish_cycle(r)
-        return [_new(Event, (r, "move", None, None, None, None, to, round, False, None))]
+        return [event]
 
     def _collisions(self, targets: dict[int, Point]) -> set[int]:
         """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""

@@ -18,6 +18,12 @@ nothing else changes), the engine may apply those n cycles at once, provided tha
 Then the step-by-step run would produce, event for event, the Looks (the same robots seen), Computes (the
 same decision) and Moves (one lattice step each) the macro-step records (docs/ALGORITHM.md,
 "Fast-forward"; ``tests/test_fast_forward.py`` compares both runs event for event).
+
+In a crowd, 1 fails within a few steps (a robot hidden off the walk's line is revealed at the next one),
+but 2 and 3 alone keep the scheduler's choice forced. The engine then runs the walker's *forced cycles*
+(``Engine._forced_cycles``): each with its real Look and Compute, recorded step by step, while the
+decision keeps its light and its move; what it spares is the scheduler, the eligibility sweep and the
+watches told of every move.
 """
 
 from __future__ import annotations
