@@ -17,7 +17,7 @@ import pytest
 from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, random_solvable_start
 from apf_viz.core import fast_forward
-from apf_viz.core.algorithm import Decision
+from apf_viz.core.algorithm import Decision, Watch
 from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.fast_forward import shifted, steps_in_same_sight
@@ -383,3 +383,50 @@ def test_a_crowd_advanced_a_few_steps_at_a_time_and_seeked_into_is_the_same_run(
         slow.seek(at)
         fast.seek(at)
         assert state_of(fast) == state_of(slow)
+
+
+class SlideAway:
+    """A plug-in: the robot with a robot just to its left (closer than 10) steps right, with a true stride
+    (the moves until 10 apart) or none; every other view stays, watching only its own row to its left. The
+    run ends formed at the last step of a walk or of forced cycles (found by review, session 12: the
+    checkpoint there was taken before the outcome was set)."""
+
+    name = "slide-away"
+    lights = ("off",)
+
+    def decide(self, view: Snapshot, pattern) -> Decision:
+        seen = view.robots
+        if len(seen) == 1 and seen[0].dy == 0 and -10 < seen[0].dx < 0:
+            stride = 10 + seen[0].dx if self.strides else 1
+            return Decision("off", Direction.RIGHT, "slide", "slide", stride=stride)
+        return Decision("off", None, "stay", "stay", watch=Watch(boxes=((-9, 0, 0, 0),)))
+
+    def __init__(self, strides: bool) -> None:
+        self.strides = strides
+
+
+@pytest.mark.parametrize("every", [9, 27])
+@pytest.mark.parametrize("strides", [False, True])
+def test_a_run_that_ends_with_a_walk_keeps_its_outcome_in_the_checkpoint_there(every, strides):
+    """The checkpoint at the last step of forced cycles (or of a walk) holds the outcome that step
+    reached, as a step-by-step checkpoint does: seeking there finds the run over."""
+    runs = []
+    for fast in (False, True):
+        e = Engine(
+            [(0, 0), (1, 0)],
+            [(0, 0), (10, 0)],
+            SlideAway(strides),
+            fast_forward=fast,
+            checkpoint_every=every,
+        )
+        advance(e, make_scheduler("async"), 0)
+        runs.append(e)
+    slow, fast = runs
+    assert slow.outcome == fast.outcome == "formed" and slow.state.steps == 27
+    assert fast.forced_walks + fast.walks > 0
+    end = slow.state.steps
+    assert fast.history.checkpoint_before(end)[1].outcome == slow.history.checkpoint_before(end)[1].outcome
+    for e in runs:
+        e.seek(end)
+    assert fast.finished and state_of(fast) == state_of(slow)
+    assert advance(fast, make_scheduler("async"), 0) == 0

@@ -485,6 +485,8 @@ class Engine:
         self._dirty.update(self._watches.moved((here,), ((x, y),), (r,), occupied))
         self._dirty.add(r)
         self._update_outcome()
+        if st.outcome is not None and st.steps % self.checkpoint_every == 0:
+            self.history.checkpoint(st.steps, st.copy())  # the loop's, of this step, predates the outcome
         return 3 * cycles
 
     def _move_quietly(self, r: int, round: int | None) -> Event:
@@ -542,9 +544,9 @@ class Engine:
             (r, "compute", None, decision.light, gmove, decision.rule or None, None, None, False, rule_id),
         )
         self.history.record_walk(position, Walk.of(r, n * per, per, look, compute, here, (dx, dy)))
+        self._update_outcome()  # before the checkpoint, as apply() does: a seek there restores the outcome
         if position // self.checkpoint_every != st.steps // self.checkpoint_every:
             self.history.checkpoint(st.steps, st.copy())
-        self._update_outcome()
 
     def _look(self, r: int, round: int | None) -> Event:
         st = self.state
