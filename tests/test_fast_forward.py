@@ -379,7 +379,7 @@ def test_a_crowd_advanced_a_few_steps_at_a_time_and_seeked_into_is_the_same_run(
     rng = random.Random(5)
     slow, fast = in_chunks(crowd_case(3, 30), "stale-first", 3, rng, 60)
     assert fast.forced_walks > 0 and fast.finished
-    for at in rng.sample(range(slow.history.length), 5):  # checkpoints taken inside forced cycles
+    for at in rng.sample(range(slow.history.length), 5):  # seeks into forced cycles
         slow.seek(at)
         fast.seek(at)
         assert state_of(fast) == state_of(slow)

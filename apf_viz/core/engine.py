@@ -59,7 +59,6 @@ _MAX_WALK_WAIT = 63  # cycles between two tries of a walk that did not go (see E
 # Cycles of a crowd's walker looked ahead for watches at once (Engine._forced_cycles): its decision
 # usually changes sooner, and a look further ahead costs no more.
 _FORCED_HORIZON = 256
-FOREVER = 1 << 62
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
 _IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
@@ -349,8 +348,7 @@ class Engine:
         position = st.steps
         events = self._apply(record)
         self.history.record(position, record, events)
-        if st.steps % self.checkpoint_every == 0:
-            self.history.checkpoint(st.steps, st.copy())
+        self._checkpoint_after(position)
         return events
 
     def _apply(self, record: StepRecord) -> list[Event]:
@@ -417,21 +415,22 @@ class Engine:
         if decision.move is None or decision.light != st.lights[r]:
             return 0
         per = 2 if self.light_semantics == "lc-atomic" else 3
-        n = FOREVER
+        gmove = move_to_global(decision.move, self.y_up[r])
+        delta = gmove.delta
+        here = self._views.points[r]
+        # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
+        # (grid.COORD_LIMIT); beyond them the run goes on step by step.
+        n = COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1])
         if self.max_events is not None:
             n = min(n, (self.max_events - st.events - 1) // 3)
         if self.max_moves is not None:
             n = min(n, self.max_moves - st.moves - 1)
         if max_steps is not None:
             n = min(n, max_steps // per)
-        gmove = move_to_global(decision.move, self.y_up[r])
-        delta = gmove.delta
-        here = self._views.points[r]
-        # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
-        # (grid.COORD_LIMIT); beyond them the run goes on step by step.
-        n = min(n, COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1]))
+        if n < 2:
+            return 0  # a budget or the caller's limit: no reason to wait before the next try
         same = 0  # cycles that repeat this very decision on the same robots in sight
-        if decision.stride >= 2 and n >= 2 and hidden_only_on_line(st.positions, r, delta, snap.columns):
+        if decision.stride >= 2 and hidden_only_on_line(st.positions, r, delta, snap.columns):
             same = steps_in_same_sight(snap.columns, decision.move, min(n, decision.stride))
         # Else, in a crowd, cycles the scheduler cannot interleave, each Looked and decided anew.
         reach = same if same >= 2 else (min(n, _FORCED_HORIZON) if per == 3 else 0)
@@ -453,49 +452,57 @@ class Engine:
         every budget, so r stays the only eligible robot and no outcome can fall inside. Other robots'
         watches are told of the whole way once at the end. Returns the steps applied (0: none)."""
         st = self.state
+        start = st.steps
         dx, dy = gmove.delta
         occupied = self._views.occupied
         light = st.lights[r]
-        skipped = self.k - 1
         record = _new(StepRecord, ((r,), None))
-        x, y = here
+        at = here
         cycles = 0
         while cycles < n:
             if cycles:
                 decision = self._decide(r, self._observe(r)[0])
                 if decision.light != light or move_to_global(decision.move, self.y_up[r]) != gmove:
                     break
-            if (x + dx, y + dy) in occupied:
+            to = (at[0] + dx, at[1] + dy)
+            if to in occupied:
                 break  # a collision: stepped as usual
-            for act in (self._look, self._compute, self._move_quietly):
-                position = st.steps
-                st.skipped += skipped
-                events = [act(r, None)]
-                st.last_act[r] = st.steps + 1
-                st.steps += 1
-                st.events += 1
-                self.history.record(position, record, events)
-                if st.steps % self.checkpoint_every == 0:
-                    self.history.checkpoint(st.steps, st.copy())
-            x, y = x + dx, y + dy
+            self._forced_step(record, self._look(r, None))
+            self._forced_step(record, self._compute(r, None))
+            self._forced_step(record, self._move_quietly(r, at, to, None))
+            at = to
             cycles += 1
         if not cycles:
             return 0
         self.forced_walks += 1
-        self._dirty.update(self._watches.moved((here,), ((x, y),), (r,), occupied))
+        self._dirty.update(self._watches.moved((here,), (at,), (r,), occupied))
         self._dirty.add(r)
         self._update_outcome()
-        if st.outcome is not None and st.steps % self.checkpoint_every == 0:
-            self.history.checkpoint(st.steps, st.copy())  # the loop's, of this step, predates the outcome
+        self._checkpoint_after(start)
         return 3 * cycles
 
-    def _move_quietly(self, r: int, round: int | None) -> Event:
-        """Robot r's pending move, onto a free point, without telling the watches (:meth:`_move_one`
-        tells them of this move; :meth:`_forced_cycles` of the whole way, at its end)."""
+    def _forced_step(self, record: StepRecord, event: Event) -> None:
+        """The bookkeeping :meth:`apply` does around a step, for one of :meth:`_forced_cycles`' events
+        (the robot already acted): the others skipped, its last act, the counts, the history."""
         st = self.state
-        here = self._views.points[r]
-        dx, dy = move_to_global(st.pending[r].move, self.y_up[r]).delta
-        to = (here[0] + dx, here[1] + dy)
+        st.skipped += self.k - 1
+        st.last_act[event.robot] = st.steps + 1
+        st.steps += 1
+        st.events += 1
+        self.history.record(st.steps - 1, record, [event])
+
+    def _checkpoint_after(self, position: int) -> None:
+        """A checkpoint of the state after the steps from ``position`` when they crossed a multiple of
+        ``checkpoint_every``; taken once the outcome is settled, so that a seek there restores it."""
+        st = self.state
+        if position // self.checkpoint_every != st.steps // self.checkpoint_every:
+            self.history.checkpoint(st.steps, st.copy())
+
+    def _move_quietly(self, r: int, here: Point, to: Point, round: int | None) -> Event:
+        """Robot r's pending move from ``here`` to ``to``, a free point, without telling the watches
+        (:meth:`_move_one` tells them of this move; :meth:`_forced_cycles` of the whole way, at its
+        end)."""
+        st = self.state
         st.positions[r] = to
         self._views.moved((r,), (here,))
         st.moves += 1
@@ -544,9 +551,8 @@ class Engine:
             (r, "compute", None, decision.light, gmove, decision.rule or None, None, None, False, rule_id),
         )
         self.history.record_walk(position, Walk.of(r, n * per, per, look, compute, here, (dx, dy)))
-        self._update_outcome()  # before the checkpoint, as apply() does: a seek there restores the outcome
-        if position // self.checkpoint_every != st.steps // self.checkpoint_every:
-            self.history.checkpoint(st.steps, st.copy())
+        self._update_outcome()
+        self._checkpoint_after(position)
 
     def _look(self, r: int, round: int | None) -> Event:
         st = self.state
@@ -645,7 +651,7 @@ class Engine:
         if to in self._views.occupied:
             st.outcome = "collision"
             return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
-        event = self._move_quietly(r, round)
+        event = self._move_quietly(r, here, to, round)
         self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
         return [event]
 

@@ -38,7 +38,7 @@ class RunConfig:
             max_events=budget.max_events,
             max_moves=budget.max_moves,
             skip_noops=self.skip_noops,
-            fast_forward=True,  # only Play at speed walks (RunController.play); a step is one step
+            fast_forward=True,  # only Play at speed walks (RunController.play_steps); a step is one step
         )
 
     def but(self, **changes) -> RunConfig:
