@@ -16,6 +16,6 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
   fi
 fi
-.venv/bin/python -m pip install -q -e '.[test,sweep]'
+.venv/bin/python -m pip install -q -e '.[test,sweep,fast]'
 .venv/bin/python -m ruff check .
 .venv/bin/python -m pytest "$@"

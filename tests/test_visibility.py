@@ -4,9 +4,11 @@ after any sequence of single moves, simultaneous moves and light changes."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from apf_viz.core import visibility
 from apf_viz.core.grid import visible_from_naive
 from apf_viz.core.view import Seen
 from apf_viz.core.visibility import Views
@@ -45,13 +47,19 @@ def scenarios(draw):
     return pts, y_up, lights, ops
 
 
+@pytest.mark.parametrize("kernel", [False, True], ids=["numpy", "kernel"])
 @settings(max_examples=300, deadline=None)
 @given(scenarios())
-def test_patched_views_equal_views_from_scratch(scenario):
+def test_patched_views_equal_views_from_scratch(kernel, scenario):
+    """With the numpy build, and with the compiled build (view_kernel.py) forced on for these few
+    robots: the views are built either way, then patched the same way."""
     pts, y_up, lights, ops = scenario
     positions = np.array(pts, dtype=np.int64).reshape(len(pts), 2)
     lights = list(lights)
-    views = Views(positions, lights, y_up)
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(visibility, "KERNEL_MIN_ROBOTS", 1 if kernel else 10**9)
+        views = Views(positions, lights, y_up)
+    assert (views._kernel is not None) == kernel
     for r in range(len(pts)):  # build every observer so that every patch path runs
         views.view(r)
     for kind, robots, steps, light in ops:

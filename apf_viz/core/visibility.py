@@ -34,6 +34,7 @@ from apf_viz.core.grid import (
     visible_in_crowd,
 )
 from apf_viz.core.view import Columns, Seen
+from apf_viz.core.view_kernel import KERNEL_MIN_ROBOTS, KERNEL_SPAN_LIMIT, compiled, new_tables
 
 Direction2 = tuple[int, int]  # a primitive direction (dx, dy)/gcd, global frame
 
@@ -78,6 +79,9 @@ class Views:
         self._built: set[int] = set()
         self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
         self._flat: np.ndarray | None = None  # x·TABLE_WIDTH + y per robot, with the scratch
+        # The compiled build (view_kernel.py) and its work arrays, where numba is installed.
+        self._kernel = compiled() if k >= KERNEL_MIN_ROBOTS else None
+        self._tables = new_tables(k) if self._kernel is not None else None
         # A box every robot has stayed in (it only grows): while it is narrower than the tables, every
         # offset is in them.
         lo, hi = positions.min(axis=0).tolist(), positions.max(axis=0).tolist()
@@ -114,6 +118,10 @@ class Views:
     def _build(self, r: int) -> None:
         P = self._P
         x0, y0, x1, y1 = self._reach
+        if self._kernel is not None and max(x1 - x0, y1 - y0) < KERNEL_SPAN_LIMIT:
+            order, sx, sy, dx, ly, codes = self._kernel(P, r, self._flip[r], self._code_of, *self._tables)
+            self._set_built(r, order, sx, sy, Columns(dx, ly, codes, self._palette))
+            return
         if x1 - x0 < TABLE_SPAN and y1 - y0 < TABLE_SPAN:  # a crowd: every offset is in the tables
             if self._scratch is None:
                 self._scratch = table_scratch()
@@ -131,15 +139,19 @@ class Views:
             order.sort()
             seen = offsets[order]
         sx, sy = seen[:, 0], seen[:, 1]
-        self._raw[r] = (sx, sy, order)
-        self._near[r] = None
         ly = sy if self._flip[r] == 1 else -sy
         # The view's order: by dx, then dy in r's own frame; one packed key sorts fastest where it cannot
         # overflow (|sx|, |ly| < span: |key| < (2·span + 1)·span + span).
         packed = span < PACKED_SPAN_LIMIT
         by_offset = (sx * (2 * span + 1) + ly).argsort() if packed else np.lexsort((ly, sx))
         codes = self._code_of[order[by_offset]]
-        self._columns[r] = Columns(sx[by_offset], ly[by_offset], codes, self._palette)
+        self._set_built(r, order, sx, sy, Columns(sx[by_offset], ly[by_offset], codes, self._palette))
+
+    def _set_built(self, r: int, order: np.ndarray, sx: np.ndarray, sy: np.ndarray, columns: Columns) -> None:
+        """Robot r's view is built: the robots it sees (increasing), their global offsets, its arrays."""
+        self._raw[r] = (sx, sy, order)
+        self._near[r] = None
+        self._columns[r] = columns
         self._entries[r] = None
         self._ids[r] = order.tolist()
         self._built.add(r)

@@ -1,0 +1,155 @@
+"""The compiled view build (core/view_kernel.py) gives exactly the numpy build's view, and a run with it
+is the same run, event for event, as a run without it."""
+
+from __future__ import annotations
+
+import math
+import random
+import sys
+
+import numba  # noqa: F401  (the test extra installs it: the compiled path is tested, not skipped)
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from apf_viz.algorithms import get_algorithm
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.core import view_kernel, visibility
+from apf_viz.core.budget import run_budget
+from apf_viz.core.engine import Engine
+from apf_viz.core.grid import visible_from_naive
+from apf_viz.core.run import advance
+from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.visibility import Views
+
+LIGHTS = ("a", "b", "c", "d")
+
+
+def numpy_view(positions, lights, y_up, r, monkeypatch):
+    """Robot r's view as the numpy build makes it (no kernel)."""
+    with monkeypatch.context() as m:
+        m.setattr(visibility, "compiled", lambda: None)
+        views = Views(positions.copy(), list(lights), y_up, LIGHTS)
+    robots, ids = views.view(r)
+    return ids, robots.dx.tolist(), robots.dy.tolist(), robots.code.tolist()
+
+
+def kernel_view(kernel, positions, lights, y_up, r):
+    codes = np.array([LIGHTS.index(x) for x in lights], dtype=np.uint8)
+    ids, sx, sy, dx, ly, code = kernel(
+        positions, r, 1 if y_up[r] else -1, codes, *view_kernel.new_tables(len(lights))
+    )
+    assert (sx == positions[ids, 0] - positions[r, 0]).all()
+    assert (sy == positions[ids, 1] - positions[r, 1]).all()
+    return tuple(ids.tolist()), dx.tolist(), ly.tolist(), code.tolist()
+
+
+@st.composite
+def configurations(draw):
+    scale = draw(st.sampled_from([3, 8, 40, 200, 5000, view_kernel.KERNEL_SPAN_LIMIT // 2 - 1]))
+    pts = draw(
+        st.lists(
+            st.tuples(st.integers(-scale, scale), st.integers(-scale, scale)),
+            min_size=1,
+            max_size=40,
+            unique=True,
+        )
+    )
+    k = len(pts)
+    y_up = draw(st.lists(st.booleans(), min_size=k, max_size=k))
+    lights = draw(st.lists(st.sampled_from(LIGHTS), min_size=k, max_size=k))
+    r = draw(st.integers(0, k - 1))
+    return np.array(pts, dtype=np.int64).reshape(k, 2), lights, y_up, r
+
+
+@pytest.mark.parametrize("compiled", [False, True], ids=["python", "numba"])
+@settings(max_examples=300, deadline=None)
+@given(configurations())
+def test_the_kernel_builds_the_numpy_view(compiled, configuration):
+    """Both the compiled kernel and the same code run as plain Python (so that the kernel's logic is
+    tested where numba is missing too) equal the numpy build, and its robots are the oracle's."""
+    positions, lights, y_up, r = configuration
+    kernel = view_kernel.compiled() if compiled else view_kernel.build_view
+    assert kernel is not None
+    mp = pytest.MonkeyPatch()
+    try:
+        expected = numpy_view(positions, lights, y_up, r, mp)
+    finally:
+        mp.undo()
+    got = kernel_view(kernel, positions, lights, y_up, r)
+    assert got == expected
+    if np.abs(positions).max() <= 40:
+        assert got[0] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], r))
+
+
+def test_lines_of_sight_in_a_crowd():
+    """Robots on rows, columns and diagonals through the observer: only the nearest of each is seen."""
+    pts = [(x, y) for x in range(-6, 7) for y in range(-6, 7)]
+    positions = np.array(pts, dtype=np.int64)
+    r = pts.index((0, 0))
+    lights = [LIGHTS[i % 4] for i in range(len(pts))]
+    ids, dx, ly, code = kernel_view(view_kernel.compiled(), positions, lights, [False] * len(pts), r)
+    assert ids == tuple(visible_from_naive(pts, r))
+    assert len(ids) == sum(math.gcd(x, y) == 1 for x, y in pts) == 96  # the primitive directions
+    seen = list(zip(dx, ly, strict=True))
+    assert (1, 0) in seen and (2, 0) not in seen
+    assert seen == sorted(seen)
+
+
+def test_the_environment_turns_the_kernel_off(monkeypatch):
+    monkeypatch.setenv("APF_VIZ_KERNELS", "0")
+    assert view_kernel.compiled() is None
+    monkeypatch.setenv("APF_VIZ_KERNELS", "1")
+    assert view_kernel.compiled() is not None
+
+
+def test_without_numba_views_are_built_with_numpy(monkeypatch):
+    monkeypatch.setitem(sys.modules, "numba", None)  # as if it were not installed
+    assert view_kernel.compiled() is None
+    positions = np.array([(i, i % 3) for i in range(view_kernel.KERNEL_MIN_ROBOTS)], dtype=np.int64)
+    views = Views(positions, ["a"] * len(positions), [True] * len(positions))
+    assert views._kernel is None
+    assert views.view(0)[1] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], 0))
+
+
+def test_small_runs_do_not_use_the_kernel():
+    positions = np.array([(i, 0) for i in range(view_kernel.KERNEL_MIN_ROBOTS - 1)], dtype=np.int64)
+    assert Views(positions, ["a"] * len(positions), [True] * len(positions))._kernel is None
+    positions = np.array([(i, 0) for i in range(view_kernel.KERNEL_MIN_ROBOTS)], dtype=np.int64)
+    assert Views(positions, ["a"] * len(positions), [True] * len(positions))._kernel is not None
+
+
+def run(k: int, seed: int, scheduler: str, kernel: bool, monkeypatch) -> Engine:
+    rng = random.Random(k * 1000 + seed)
+    start = random_solvable_start(k, rng)
+    pattern = random_pattern(k, rng)
+    y_up = [rng.random() < 0.5 for _ in range(k)]
+    budget = run_budget(start, pattern, True)
+    with monkeypatch.context() as m:
+        if not kernel:
+            m.setattr(visibility, "compiled", lambda: None)
+        engine = Engine(
+            start,
+            pattern,
+            get_algorithm("apf-opaque-grid"),
+            y_up=y_up,
+            max_events=budget.max_events,
+            max_moves=budget.max_moves,
+        )
+    assert (engine._views._kernel is not None) == kernel
+    advance(engine, make_scheduler(scheduler), seed)
+    return engine
+
+
+@pytest.mark.parametrize(("k", "seed", "scheduler"), [(60, 1, "async"), (50, 2, "stale-first")])
+def test_a_run_with_the_kernel_is_the_same_run(k, seed, scheduler, monkeypatch):
+    with_kernel = run(k, seed, scheduler, True, monkeypatch)
+    without = run(k, seed, scheduler, False, monkeypatch)
+    assert with_kernel.outcome == without.outcome == "formed"
+    assert with_kernel.state.steps == without.state.steps
+    assert with_kernel.state.moves == without.state.moves
+    assert [with_kernel.history.packed(i) for i in range(with_kernel.history.length)] == [
+        without.history.packed(i) for i in range(without.history.length)
+    ]
+    assert (with_kernel.state.positions == without.state.positions).all()
