@@ -120,7 +120,7 @@ def test_small_runs_do_not_use_the_kernel():
     assert Views(positions, ["a"] * len(positions), [True] * len(positions))._kernel is not None
 
 
-def run(k: int, seed: int, scheduler: str, kernel: bool, monkeypatch) -> Engine:
+def run(k: int, seed: int, scheduler: str, kernel: bool, monkeypatch, primed: bool = True) -> Engine:
     rng = random.Random(k * 1000 + seed)
     start = random_solvable_start(k, rng)
     pattern = random_pattern(k, rng)
@@ -138,18 +138,27 @@ def run(k: int, seed: int, scheduler: str, kernel: bool, monkeypatch) -> Engine:
             max_moves=budget.max_moves,
         )
     assert (engine._views._kernel is not None) == kernel
-    advance(engine, make_scheduler(scheduler), seed)
+    with monkeypatch.context() as m:
+        if not primed:  # every Look's bits packed from its tuple
+            m.setattr(visibility, "prime_seen", lambda seen, bits: None)
+        advance(engine, make_scheduler(scheduler), seed)
     return engine
 
 
 @pytest.mark.parametrize(("k", "seed", "scheduler"), [(60, 1, "async"), (50, 2, "stale-first")])
 def test_a_run_with_the_kernel_is_the_same_run(k, seed, scheduler, monkeypatch):
-    with_kernel = run(k, seed, scheduler, True, monkeypatch)
-    without = run(k, seed, scheduler, False, monkeypatch)
-    assert with_kernel.outcome == without.outcome == "formed"
-    assert with_kernel.state.steps == without.state.steps
-    assert with_kernel.state.moves == without.state.moves
-    assert [with_kernel.history.packed(i) for i in range(with_kernel.history.length)] == [
-        without.history.packed(i) for i in range(without.history.length)
+    """With the kernel, without it, and without the bits of a Look made from the build's array
+    (history.prime_seen): the same steps, recorded the same."""
+    runs = [
+        run(k, seed, scheduler, True, monkeypatch),
+        run(k, seed, scheduler, False, monkeypatch),
+        run(k, seed, scheduler, True, monkeypatch, primed=False),
     ]
-    assert (with_kernel.state.positions == without.state.positions).all()
+    first = runs[0]
+    packed = [first.history.packed(i) for i in range(first.history.length)]
+    assert sum(1 for step in packed for e in step[2] if e[2]) > 1000  # many Looks, their bits compared
+    for other in runs[1:]:
+        assert other.outcome == first.outcome == "formed"
+        assert (other.state.steps, other.state.moves) == (first.state.steps, first.state.moves)
+        assert [other.history.packed(i) for i in range(other.history.length)] == packed
+        assert (other.state.positions == first.state.positions).all()

@@ -557,6 +557,7 @@ class Engine:
     def _look(self, r: int, round: int | None) -> Event:
         st = self.state
         snap, ids = self._observe(r)
+        self._views.prime_seen_bits(r, ids)
         st.snapshot[r] = snap
         st.seen[r] = ids
         st.look_step[r] = st.steps + 1

@@ -33,6 +33,7 @@ from apf_viz.core.grid import (
     table_scratch,
     visible_in_crowd,
 )
+from apf_viz.core.history import bits_of_sorted, prime_seen
 from apf_viz.core.view import Columns, Seen
 from apf_viz.core.view_kernel import KERNEL_MIN_ROBOTS, KERNEL_SPAN_LIMIT, compiled, new_tables
 
@@ -74,7 +75,8 @@ class Views:
         # in the observer's frame (``_entries``); the other is None.
         self._columns: list[Columns | None] = [None] * k
         self._entries: list[list[Seen] | None] = [[] for _ in range(k)]
-        self._ids: list[list[int]] = [[] for _ in range(k)]  # sorted robot indices
+        # Sorted robot indices; None while the build's array (in ``_raw``) still says them.
+        self._ids: list[list[int] | None] = [[] for _ in range(k)]
         self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
         self._built: set[int] = set()
         self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
@@ -100,8 +102,17 @@ class Views:
                 self._build(r)
             entries = self._entries[r]
             robots = self._columns[r] if entries is None else tuple(entries)
-            cached = self._cached[r] = (robots, tuple(self._ids[r]))
+            ids = self._ids[r]
+            cached = self._cached[r] = (robots, tuple(ids if ids is not None else self._raw[r][2].tolist()))
         return cached
+
+    def prime_seen_bits(self, r: int, ids: tuple[int, ...]) -> None:
+        """Robot r Looked and saw ``ids`` (from :meth:`view`): while its view is as built, the history's
+        bits of them are made from the build's array (a few µs at k = 1,000) instead of from the tuple."""
+        raw = self._raw[r]
+        cached = self._cached[r]
+        if raw is not None and cached is not None and cached[1] is ids:
+            prime_seen(ids, bits_of_sorted(raw[2]))
 
     def seen(self, r: int) -> tuple[tuple[Seen, ...], tuple[int, ...]]:
         """:meth:`view` with the robots as :class:`~apf_viz.core.view.Seen` tuples."""
@@ -153,7 +164,7 @@ class Views:
         self._near[r] = None
         self._columns[r] = columns
         self._entries[r] = None
-        self._ids[r] = order.tolist()
+        self._ids[r] = None  # made from ``order`` when a patch first needs it (most views are never patched)
         self._built.add(r)
 
     def _track(self, m: int) -> None:
@@ -185,6 +196,7 @@ class Views:
                     strict=True,
                 )
             )
+            self._ids[r] = ids.tolist()
             self._raw[r] = None
         return near
 
