@@ -37,9 +37,10 @@ def numpy_view(positions, lights, y_up, r, monkeypatch):
 
 def kernel_view(kernel, positions, lights, y_up, r):
     codes = np.array([LIGHTS.index(x) for x in lights], dtype=np.uint8)
-    ids, sx, sy, dx, ly, code = kernel(
+    ids, sx, sy, dx, ly, code, present = kernel(
         positions, r, 1 if y_up[r] else -1, codes, *view_kernel.new_tables(len(lights))
     )
+    assert present == sum(1 << c for c in set(code.tolist()))
     assert (sx == positions[ids, 0] - positions[r, 0]).all()
     assert (sy == positions[ids, 1] - positions[r, 1]).all()
     return tuple(ids.tolist()), dx.tolist(), ly.tolist(), code.tolist()

@@ -61,10 +61,10 @@ class Direction(Enum):
 
     @classmethod
     def from_delta(cls, dx: int, dy: int) -> Direction:
-        for d, v in _DELTAS.items():
-            if v == (dx, dy):
-                return d
-        raise ValueError(f"({dx}, {dy}) is not a unit grid move")
+        d = _FROM_DELTA.get((dx, dy))
+        if d is None:
+            raise ValueError(f"({dx}, {dy}) is not a unit grid move")
+        return d
 
 
 _DELTAS: dict[Direction, Point] = {
@@ -73,6 +73,7 @@ _DELTAS: dict[Direction, Point] = {
     Direction.UP: (0, 1),
     Direction.DOWN: (0, -1),
 }
+_FROM_DELTA: dict[Point, Direction] = {v: d for d, v in _DELTAS.items()}
 
 # Below this offset span one packed int64 sort key per robot is exact; above it, a three-key sort.
 PACKED_SPAN_LIMIT = 1 << 20

@@ -34,12 +34,14 @@ class Seen(NamedTuple):
 @dataclass(frozen=True, eq=False, slots=True)
 class Columns:
     """The visible robots as arrays, in the snapshot's order: ``dx``, ``dy`` (int64) and ``code``, each
-    robot's light as an index into ``palette`` (a tuple of light names)."""
+    robot's light as an index into ``palette`` (a tuple of light names); ``present``, if known, the
+    codes that occur, a bit each (the compiled view build counts them on its way)."""
 
     dx: np.ndarray
     dy: np.ndarray
     code: np.ndarray
     palette: tuple[str, ...]
+    present: int | None = None
 
     def showing(self, light: str) -> np.ndarray:
         """Boolean mask of the robots showing this light."""
@@ -135,5 +137,8 @@ class Snapshot:
         if self._robots is not None:
             return {s.light for s in self._robots}
         c = self._columns
+        if c.present is not None:
+            palette, bits = c.palette, c.present
+            return {palette[i] for i in range(bits.bit_length()) if bits >> i & 1}
         counts = np.bincount(c.code, minlength=len(c.palette))
         return {c.palette[i] for i in counts.nonzero()[0].tolist()}

@@ -42,7 +42,7 @@ _KEY_OFFSET = 1 << 21  # a primitive direction (ux, uy), |ux|, |uy| < 2^20, pack
 _KEY_WIDTH = 1 << 22
 
 # (positions, observer, flip, light codes, reduced table, keys, robots, distances)
-#   → (ids, sx, sy, dx, ly, code)
+#   → (ids, sx, sy, dx, ly, code, lights present)
 Kernel = Callable[..., tuple[np.ndarray, ...]]
 
 
@@ -112,8 +112,9 @@ def build_view(
         reduced: :func:`reduced_table`. hk, hv, hg: work arrays of one power-of-two size ≥ 2k.
 
     Returns:
-        ids (visible robots, increasing), sx, sy (their global offsets, in ids' order), and the view
-        sorted by (dx, dy) in r's frame: dx, ly (its local y) and code.
+        ids (visible robots, increasing), sx, sy (their global offsets, in ids' order), the view
+        sorted by (dx, dy) in r's frame: dx, ly (its local y) and code, and the codes present as a bit
+        each (−1 if some code is too large for the bits: then unknown).
     """
     k = P.shape[0]
     mask = hk.shape[0] - 1
@@ -185,12 +186,15 @@ def build_view(
     dx_sorted = np.empty(n, dtype=np.int64)
     ly_sorted = np.empty(n, dtype=np.int64)
     code = np.empty(n, dtype=np.uint8)
+    present = 0
     for i in range(n):
         o = by_offset[i]
         dx_sorted[i] = sx[o]
         ly_sorted[i] = ly[o]
-        code[i] = code_of[ids[o]]
-    return ids, sx, sy, dx_sorted, ly_sorted, code
+        c = code_of[ids[o]]
+        code[i] = c
+        present = present | (1 << c) if c < 62 and present >= 0 else -1
+    return ids, sx, sy, dx_sorted, ly_sorted, code, present
 
 
 def _order_by_offset(sx: np.ndarray, ly: np.ndarray, span: int) -> np.ndarray:

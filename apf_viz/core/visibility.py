@@ -130,8 +130,11 @@ class Views:
         P = self._P
         x0, y0, x1, y1 = self._reach
         if self._kernel is not None and max(x1 - x0, y1 - y0) < KERNEL_SPAN_LIMIT:
-            order, sx, sy, dx, ly, codes = self._kernel(P, r, self._flip[r], self._code_of, *self._tables)
-            self._set_built(r, order, sx, sy, Columns(dx, ly, codes, self._palette))
+            order, sx, sy, dx, ly, codes, present = self._kernel(
+                P, r, self._flip[r], self._code_of, *self._tables
+            )
+            columns = Columns(dx, ly, codes, self._palette, present if present >= 0 else None)
+            self._set_built(r, order, sx, sy, columns)
             return
         if x1 - x0 < TABLE_SPAN and y1 - y0 < TABLE_SPAN:  # a crowd: every offset is in the tables
             if self._scratch is None:

@@ -320,9 +320,11 @@ class Watches:
         the walker's segment; the watcher's answer stays "same light, stay" either way.)"""
         quiet = n
         P = self._P
-        for w in {w for w, _ in mine}:
-            intact = self._intact[w]
-            if intact - {i for v, i in mine if v == w}:
+        touched: dict[int, set[int]] = {}  # watcher → its witnesses the walk touches
+        for w, i in mine:
+            touched.setdefault(w, set()).add(i)
+        for w, used in touched.items():
+            if self._intact[w] - used:
                 continue
             within = self._within[w]
             if within is not None:

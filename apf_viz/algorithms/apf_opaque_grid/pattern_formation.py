@@ -185,7 +185,8 @@ def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENC
 
 
 def _frame_region(ev: Evidence, frame: LeaderFrame) -> None:
-    ev.region(Frame(frame.origin, frame.s, "the leader's frame"))
+    if ev.active:  # the traveller decides at each of its steps: no mark made to be thrown away
+        ev.region(Frame(frame.origin, frame.s, "the leader's frame"))
 
 
 def pattern_formation_off(
@@ -212,7 +213,8 @@ def pattern_formation_off(
     frame = follower_frame(view, leader)
     _frame_region(ev, frame)
     x, y = frame.me
-    ev.test("my place in the leader's frame", f"({x}, {y})", "the line is row −1, L_H1 is row 0")
+    if ev.active:
+        ev.test("my place in the leader's frame", f"({x}, {y})", "the line is row −1, L_H1 is row 0")
     if y > -1:
         # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
         leftmost = leftmost_on_own_row(view, ev)
@@ -287,7 +289,7 @@ def _between_rows(frame: LeaderFrame) -> Box | None:
 
 
 def _compose(decision: Decision, rule_id: str) -> Decision:
-    return replace(decision, rule_id=f"{rule_id}/{decision.rule_id}")
+    return decision.named(decision.rule, f"{rule_id}/{decision.rule_id}")
 
 
 def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str, rule_id: str) -> Decision:
@@ -299,9 +301,7 @@ def _to_target(frame: LeaderFrame, j: int, targets: tuple[Point, ...], why: str,
             f"{rule_id}/TargetMove.missing",
         )
     decision = target_move(frame, j, targets[j], "off")
-    return replace(
-        decision, rule=f"Phase 3 (off): {why} → {decision.rule}", rule_id=f"{rule_id}/{decision.rule_id}"
-    )
+    return decision.named(f"Phase 3 (off): {why} → {decision.rule}", f"{rule_id}/{decision.rule_id}")
 
 
 def pattern_formation_leader(
