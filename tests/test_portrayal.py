@@ -172,3 +172,46 @@ def test_the_legend_follows_the_overlays_as_they_appear():
         assert ">K</span></div>" in panels.legend.content  # the swatch of K, in K's colour
     finally:
         server.stop()
+
+
+def test_while_playing_the_slow_folders_follow_at_most_four_times_a_second(monkeypatch):
+    """The Paper, History and Moves folders skip a playing frame within PLAYING_REFRESH_S of their last
+    refresh; the Run folder never does, and a paused view (the frame that ends Play) refreshes all."""
+    from apf_viz.ui import panels as panels_module
+    from apf_viz.ui.panels import PLAYING_REFRESH_S, Panels
+
+    server = viser.ViserServer(port=free_port(), verbose=False)
+    clock = [100.0]
+    monkeypatch.setattr(panels_module.time, "monotonic", lambda: clock[0])
+    try:
+        s = demo_session()
+        panels = Panels(server, s, lambda: None)
+        paper = next(f for f in panels.folders if type(f).__name__ == "PaperFolder")
+        run = next(f for f in panels.folders if type(f).__name__ == "RunFolder")
+        s.toggle_play()
+        while True:  # a playing frame refreshes all (the first), then the slow ones wait
+            assert s.step()
+            view = s.view()
+            if view.paper_text and view.paper_text != paper.html.content:
+                break
+        panels.refresh(view)
+        assert view.playing and paper.html.content == view.paper_text
+        shown = paper.html.content
+        while s.view().paper_text == shown:
+            assert s.step()
+        clock[0] += PLAYING_REFRESH_S / 2
+        view = s.view()
+        panels.refresh(view)
+        assert run.event.value == view.event  # every frame
+        assert paper.html.content == shown != view.paper_text  # not yet
+        clock[0] += PLAYING_REFRESH_S / 2
+        panels.refresh(view)
+        assert paper.html.content == view.paper_text  # a quarter of a second later
+        while s.view().paper_text == view.paper_text:
+            assert s.step()
+        s.pause()
+        view = s.view()
+        panels.refresh(view)  # at once: the run is paused
+        assert not view.playing and paper.html.content == view.paper_text
+    finally:
+        server.stop()

@@ -9,6 +9,7 @@ never feeds back into it; what a callback has to say goes to the browser that ca
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable, Hashable
 
 from apf_viz.ui.panels.adversary import AdversaryFolder
@@ -49,6 +50,13 @@ FOLDERS = (
 )
 
 
+# While playing, the Paper's pseudocode (re-highlighted as the actor changes), the History (timeline, log,
+# stats) and the Moves chart are re-laid out and repainted by the page for each change, about a tenth of
+# a software-rendered page's frame each (docs/PERFORMANCE.md): at most four times a second they follow.
+SLOW_FOLDERS = (PaperFolder, HistoryFolder, MovesFolder)
+PLAYING_REFRESH_S = 0.25
+
+
 class Panels:
     """One browser's panel (``owner``: the viser client, or the server for a panel every browser
     shares); :meth:`refresh` shows that browser's view."""
@@ -75,6 +83,7 @@ class Panels:
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
+        self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
 
     @property
     def presenting(self) -> bool:
@@ -82,8 +91,16 @@ class Panels:
         return self.presentation.on
 
     def refresh(self, view: SessionView) -> None:
+        """Every folder shows the view; while the run plays, the folders that redraw much of the page for
+        a change (:data:`SLOW_FOLDERS`) at most every :data:`PLAYING_REFRESH_S`. A paused run, a step or
+        the frame that ends Play refreshes them all."""
+        now = time.monotonic()
+        slow = not view.playing or now - self._slow_refreshed >= PLAYING_REFRESH_S
+        if slow:
+            self._slow_refreshed = now
         for folder in self.folders:
-            folder.refresh(view)
+            if slow or not isinstance(folder, SLOW_FOLDERS):
+                folder.refresh(view)
 
     def _folder(self, kind: type):
         return next(f for f in self.folders if isinstance(f, kind))
