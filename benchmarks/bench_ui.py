@@ -95,11 +95,14 @@ def main() -> None:
         session.toggle_play()
         time.sleep(1)
         frames_before = app.frames
+        stage_before = session.view().stage
         rate, page_fps = page.evaluate(COUNT_CHANGES, [5000])
         sent = (app.frames - frames_before) / 5.0
         session.pause()
         server_fps = app.frames
         where = f"{args.robots} robots, {args.stage}"
+        # The engine is fast enough to leave a stage within the window: say where the window was.
+        print(f"(the window ran from '{stage_before}' to '{session.view().stage}')")
         print(f"| scene updates/s in the browser while playing, {where} | {rate:.1f} |")
         print(f"| frames/s the server sent meanwhile (one atomic update each) | {sent:.1f} |")
         print(f"| frames/s the page drew meanwhile (some show no new update) | {page_fps:.1f} |")
