@@ -13,15 +13,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import view_kernel, visibility
-from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.grid import visible_from_naive
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.visibility import Views
+from tests.test_fast_forward import engine as budgeted_engine
 
 LIGHTS = ("a", "b", "c", "d")
 
@@ -124,20 +123,11 @@ def test_small_runs_do_not_use_the_kernel():
 def run(k: int, seed: int, scheduler: str, kernel: bool, monkeypatch, primed: bool = True) -> Engine:
     rng = random.Random(k * 1000 + seed)
     start = random_solvable_start(k, rng)
-    pattern = random_pattern(k, rng)
-    y_up = [rng.random() < 0.5 for _ in range(k)]
-    budget = run_budget(start, pattern, True)
+    case = (start, random_pattern(k, rng), [rng.random() < 0.5 for _ in range(k)])
     with monkeypatch.context() as m:
         if not kernel:
             m.setattr(visibility, "compiled", lambda: None)
-        engine = Engine(
-            start,
-            pattern,
-            get_algorithm("apf-opaque-grid"),
-            y_up=y_up,
-            max_events=budget.max_events,
-            max_moves=budget.max_moves,
-        )
+        engine = budgeted_engine(case, True)
     assert (engine._views._kernel is not None) == kernel
     with monkeypatch.context() as m:
         if not primed:  # every Look's bits packed from its tuple

@@ -87,8 +87,9 @@ def compiled() -> Kernel | None:
 @functools.cache
 def _compile(numba) -> Kernel:
     jit = numba.njit(cache=True, nogil=True)
-    # build_view calls _order_by_offset as a global: compiled code must find the compiled one there.
-    global _order_by_offset
+    # build_view calls its helpers as globals: compiled code must find the compiled ones there.
+    global _counting_pass, _order_by_offset
+    _counting_pass = jit(_counting_pass)
     _order_by_offset = jit(_order_by_offset)
     return jit(build_view)
 
@@ -200,27 +201,22 @@ def build_view(
 def _order_by_offset(sx: np.ndarray, ly: np.ndarray, span: int) -> np.ndarray:
     """The permutation sorting the points by (sx, ly), every |coordinate| < span: two stable counting
     sorts, by ly then by sx (linear; compiled sorts of hundreds of keys cost more)."""
-    n = sx.shape[0]
+    return _counting_pass(sx, _counting_pass(ly, np.arange(sx.shape[0]), span), span)
+
+
+def _counting_pass(keys: np.ndarray, order: np.ndarray, span: int) -> np.ndarray:
+    """``order`` stably re-sorted by ``keys[order[t]]`` (every |key| < span)."""
+    n = order.shape[0]
     width = 2 * span + 1
     count = np.zeros(width + 1, dtype=np.int64)
-    for i in range(n):
-        count[ly[i] + span + 1] += 1
-    for v in range(width):
-        count[v + 1] += count[v]
-    by_y = np.empty(n, dtype=np.int64)
-    for i in range(n):
-        v = ly[i] + span
-        by_y[count[v]] = i
-        count[v] += 1
-    count[:] = 0
-    for i in range(n):
-        count[sx[i] + span + 1] += 1
-    for v in range(width):
-        count[v + 1] += count[v]
-    order = np.empty(n, dtype=np.int64)
     for t in range(n):
-        i = by_y[t]
-        v = sx[i] + span
-        order[count[v]] = i
+        count[keys[order[t]] + span + 1] += 1
+    for v in range(width):
+        count[v + 1] += count[v]
+    out = np.empty(n, dtype=np.int64)
+    for t in range(n):
+        i = order[t]
+        v = keys[i] + span
+        out[count[v]] = i
         count[v] += 1
-    return order
+    return out
