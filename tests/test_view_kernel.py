@@ -153,3 +153,30 @@ def test_a_run_with_the_kernel_is_the_same_run(k, seed, scheduler, monkeypatch):
         assert (other.state.steps, other.state.moves) == (first.state.steps, first.state.moves)
         assert [other.history.packed(i) for i in range(other.history.length)] == packed
         assert (other.state.positions == first.state.positions).all()
+
+
+def test_a_cache_numba_cannot_write_compiles_without_one(monkeypatch):
+    """Where numba has nowhere to keep its cache (a read-only install, no writable home) it raises on
+    ``cache=True``; the kernel is then compiled in each process instead of refused."""
+    import numba as real
+
+    calls = []
+
+    def njit(**options):
+        calls.append(options)
+        if options.get("cache"):
+            raise RuntimeError("cannot cache function: no locator available")
+        return real.njit(**options)
+
+    class NoCache:
+        pass
+
+    fake = NoCache()
+    fake.njit = njit
+    monkeypatch.setattr(view_kernel, "_counting_pass", view_kernel._counting_pass)
+    monkeypatch.setattr(view_kernel, "_order_by_offset", view_kernel._order_by_offset)
+    kernel = view_kernel._compile.__wrapped__(fake)
+    assert calls[0].get("cache") and not any(c.get("cache") for c in calls[1:])
+    positions = np.array([(i, i % 3) for i in range(10)], dtype=np.int64)
+    got = kernel_view(kernel, positions, ["a"] * 10, [True] * 10, 0)
+    assert got[0] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], 0))

@@ -86,11 +86,17 @@ def compiled() -> Kernel | None:
 
 @functools.cache
 def _compile(numba) -> Kernel:
-    jit = numba.njit(cache=True, nogil=True)
     # build_view calls its helpers as globals: compiled code must find the compiled ones there.
     global _counting_pass, _order_by_offset
-    _counting_pass = jit(_counting_pass)
-    _order_by_offset = jit(_order_by_offset)
+    counting, order = (getattr(f, "py_func", f) for f in (_counting_pass, _order_by_offset))
+    try:
+        jit = numba.njit(cache=True, nogil=True)
+        compiled_counting = jit(counting)
+    except RuntimeError:  # numba has nowhere to write its cache (a read-only install, no writable home)
+        jit = numba.njit(nogil=True)
+        compiled_counting = jit(counting)
+    _counting_pass = compiled_counting
+    _order_by_offset = jit(order)
     return jit(build_view)
 
 
