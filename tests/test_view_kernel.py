@@ -22,7 +22,7 @@ from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.visibility import Views
 from tests.test_fast_forward import engine as budgeted_engine
 
-LIGHTS = ("a", "b", "c", "d")
+LIGHTS = tuple("abcdefghijkl")  # codes up to 11: the bits of `present` beyond a byte
 
 
 def numpy_view(positions, lights, y_up, r, monkeypatch):
@@ -88,7 +88,7 @@ def test_lines_of_sight_in_a_crowd():
     pts = [(x, y) for x in range(-6, 7) for y in range(-6, 7)]
     positions = np.array(pts, dtype=np.int64)
     r = pts.index((0, 0))
-    lights = [LIGHTS[i % 4] for i in range(len(pts))]
+    lights = [LIGHTS[i % len(LIGHTS)] for i in range(len(pts))]
     ids, dx, ly, code = kernel_view(view_kernel.compiled(), positions, lights, [False] * len(pts), r)
     assert ids == tuple(visible_from_naive(pts, r))
     assert len(ids) == sum(math.gcd(x, y) == 1 for x, y in pts) == 96  # the primitive directions

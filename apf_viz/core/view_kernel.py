@@ -200,7 +200,7 @@ def build_view(
         ly_sorted[i] = ly[o]
         c = code_of[ids[o]]
         code[i] = c
-        present = present | (1 << c) if c < 62 and present >= 0 else -1
+        present = present | (np.int64(1) << np.int64(c)) if c < 62 and present >= 0 else -1
     return ids, sx, sy, dx_sorted, ly_sorted, code, present
 
 
