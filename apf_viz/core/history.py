@@ -104,11 +104,7 @@ def _pack_seen(seen: tuple[int, ...]) -> bytes:
     primed = _primed
     if primed[0] is seen:
         return primed[1]
-    if not seen:
-        return b""
-    mask = np.zeros(seen[-1] + 1, dtype=bool)  # seen is sorted
-    mask[np.fromiter(seen, dtype=np.intp, count=len(seen))] = True
-    return np.packbits(mask).tobytes()
+    return bits_of_sorted(np.fromiter(seen, dtype=np.intp, count=len(seen)))  # seen is sorted
 
 
 def _unpack_seen(packed: bytes) -> tuple[int, ...]:
