@@ -11,7 +11,7 @@ import viser
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.ui.app import free_port
-from apf_viz.ui.scene import DENSE, GRID_SECTION_PX, VIEW_PX, SceneRenderer, grid_steps
+from apf_viz.ui.scene import DENSE, GRID_SECTION_PX, VIEW_PX, SceneRenderer, cells_label_at, grid_steps
 from apf_viz.ui.session import Session
 
 
@@ -198,3 +198,18 @@ def test_the_cameras_are_framed_again_when_a_new_run_starts():
             time.sleep(0.1)
     finally:
         app.stop()
+
+
+def test_a_cells_label_never_covers_a_robot():
+    """Above the cells by default; below when robots stand above; beside them when robots stand both
+    above and below (the Unsolvable box demo: its pattern is drawn between two rows of robots)."""
+    cells = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], dtype=np.float32)
+    far = np.array([[10, 10]], dtype=np.float32)
+    assert cells_label_at(cells, far)[1] == pytest.approx(1.6)
+    above = np.array([[0, 2], [1, 2]], dtype=np.float32)
+    assert cells_label_at(cells, above)[1] == pytest.approx(-0.9)
+    both = np.array([[0, 2], [1, 2], [0, -1], [1, -1]], dtype=np.float32)
+    x, y, _ = cells_label_at(cells, both)
+    assert x > 1 and y == 1  # to the right of the top row
+    for rx, ry in both:  # and not on a robot
+        assert not (abs(ry - y) < 0.8 and x - 0.5 <= rx)

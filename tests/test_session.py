@@ -477,8 +477,15 @@ def test_a_scenario_runs_its_own_algorithm_and_an_unsolvable_one_starts_afresh_i
     v = s.view()
     assert v.mode == "edit-robots" and v.event == 0 and v.outcome is None and v.trace_position is None
     assert v.never_act == () and v.scenario_note.startswith("Theorem 1")
+    # Play and Step say why nothing runs, naming the drafts' problem (not only "switch to Run": Run
+    # would refuse these robots too).
+    said = s.toggle_play()
+    assert said.startswith("Play runs in Run mode") and "unsolvable start" in said and not s.playing
+    assert not s.step() and "unsolvable start" in s.why_not_step()
     s.editor.robots[0] = (0, 1)  # move one robot onto the axis: solvable
+    assert s.why_not_step() == "Step runs in Run mode: switch Mode back to Run"
     assert s.set_mode("run") is None and s.view().scenario_note == ""  # the text no longer applies
+    assert s.toggle_play() is None and s.playing
 
 
 def test_the_literal_collision_scenario_ends_located_after_41_events():

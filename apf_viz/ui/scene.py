@@ -525,9 +525,8 @@ class SceneRenderer:
         cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
         if cells is not None and cells.points and view.mode != "edit-pattern":
             local = self._local(cells.points)
-            labels.append(
-                (cells.label, (float(local[:, 0].min()) - 0.4, float(local[:, 1].max()) + 0.6, 0.1))
-            )
+            robots = self._local([r.position for r in view.robots])
+            labels.append((cells.label, cells_label_at(local, robots)))
         self._labels("/marks/labels", labels)
 
     def _line(self, mark: Line) -> np.ndarray:
@@ -701,6 +700,25 @@ class SceneRenderer:
         except AssertionError:
             return None, aspect  # the browser has not reported its camera yet; its initial pose is right
         return position, aspect
+
+
+def cells_label_at(cells: np.ndarray, robots: np.ndarray) -> tuple[float, float, float]:
+    """Where a set of cells' label goes: just above their top row; when a robot stands where the text
+    would be (a pattern drawn among the robots, as the Unsolvable box demo's is), just below their bottom
+    row, else to the right of their top row; above when all three are taken. So the label does not
+    cover a robot."""
+    left, right = float(cells[:, 0].min()) - 0.4, float(cells[:, 0].max())
+    top, bottom = float(cells[:, 1].max()), float(cells[:, 1].min())
+    # (x, y, and the x-span the text covers there: the cells' width above and below, 3 cells beside)
+    for x, y, x_end in (
+        (left, top + 0.6, right + 0.5),
+        (left, bottom - 0.9, right + 0.5),
+        (right + 0.7, top, right + 3.7),
+    ):
+        near = (np.abs(robots[:, 1] - y) < 0.8) & (robots[:, 0] >= x - 0.5) & (robots[:, 0] <= x_end + 0.5)
+        if not near.any():
+            return (x, y, 0.1)
+    return (left, top + 0.6, 0.1)
 
 
 def ray_through(camera, screen: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:

@@ -239,10 +239,10 @@ class Session:
                 return True
             return self.run.step()
 
-    def why_not_step(self) -> str:
-        """Why Step ran nothing, for the person who pressed it."""
+    def why_not_step(self, control: str = "Step") -> str:
+        """Why Step (or Play: ``control``) ran nothing, for the person who pressed it."""
         if self.mode != "run":
-            return "Step runs in Run mode: switch Mode back to Run"
+            return self._why_editing(control)
         if self.engine.finished:
             return f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
         if self.scheduler_name == "manual":
@@ -337,10 +337,20 @@ class Session:
     def set_speed(self, speed: float) -> None:
         self.run.set_speed(speed)
 
-    def toggle_play(self) -> None:
+    def toggle_play(self) -> str | None:
+        """Play or pause; in an edit mode nothing plays, and why is returned (for the browser that
+        asked): the drafts' problem if they have one, else the way back to Run."""
         with self.lock:
-            if self.mode == "run":
-                self.run.toggle_play()
+            if self.mode != "run":
+                return self._why_editing("Play")
+            self.run.toggle_play()
+            return None
+
+    def _why_editing(self, control: str) -> str:
+        problem = self.editor.problem()
+        if problem:  # e.g. the Unsolvable box demo: Run would refuse the drafts as they are
+            return f"{control} runs in Run mode, and these drafts cannot start a run: {problem}"
+        return f"{control} runs in Run mode: switch Mode back to Run"
 
     def pause(self) -> None:
         self.run.pause()

@@ -117,7 +117,9 @@ class RunFolder:
         elif value == "Back":
             s.back()
         elif value in ("Play", "Pause"):
-            s.toggle_play()
+            said = s.toggle_play()
+            if said:
+                tell(event.client, "Play", said)
         elif value == "Reset":
             s.reset()
         self.ctx.changed()
