@@ -72,6 +72,8 @@ def test_serve_with_a_bad_file_is_one_line_and_exit_2(tmp_path):
     ],
 )
 def test_bad_serve_options_are_one_line_errors(args, message):
+    if "--port" not in args:  # not the default 8080: another server on this machine may hold it
+        args = (*args, "--port", str(free_port()))
     proc = subprocess.run(
         [sys.executable, "-m", "apf_viz.cli", "serve", *args], capture_output=True, text=True, timeout=60
     )
