@@ -3,6 +3,8 @@ its sentences carry (robot numbers, cells, rule ids), never by whole sentences."
 
 from __future__ import annotations
 
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -11,6 +13,7 @@ from apf_viz.core.formats import InputError
 from apf_viz.ui.app import demo_session
 from apf_viz.ui.presenter import for_browser, present, present_run
 from apf_viz.ui.presenter.staleness import changes
+from apf_viz.ui.presenter.story import OUTCOME_ICONS
 from apf_viz.ui.screen_state import BrowserState
 from apf_viz.ui.session import Session
 
@@ -338,3 +341,13 @@ def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, s
     assert said not in lecture_html(s.view())
     s.seek(10**9)
     assert said in lecture_html(s.view())
+
+
+@pytest.mark.skipif(shutil.which("fc-list") is None, reason="no fontconfig (fc-list)")
+@pytest.mark.parametrize("outcome", sorted(OUTCOME_ICONS))
+def test_the_outcome_banners_icon_is_in_a_font_this_machine_has(outcome):
+    """The banner's icon must draw on a fresh machine (Debian's Chromium with its DejaVu fonts): the emoji
+    it once used drew as empty boxes there."""
+    code = f"{ord(OUTCOME_ICONS[outcome]):04x}"
+    fonts = subprocess.run(["fc-list", f":charset={code}", "family"], capture_output=True, text=True).stdout
+    assert fonts.strip(), f"no installed font draws U+{code.upper()} ({OUTCOME_ICONS[outcome]})"

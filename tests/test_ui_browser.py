@@ -454,7 +454,7 @@ def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_d
     while app.session.step():
         pass
     app.request_render()
-    page.get_by_role("heading", name="⛔ STUCK").wait_for()
+    page.get_by_role("heading", name="⊘ STUCK").wait_for()
     assert app.session.engine.history.events()[-1].rule.endswith("(leader1 is shown as decider: merged)")
     shot(page, "merged-variant-verify")
     page.get_by_role("combobox", name="Demo").click()
@@ -466,7 +466,7 @@ def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_d
     while app.session.step():
         pass
     app.request_render()
-    page.get_by_role("heading", name="⛔ STUCK").wait_for()
+    page.get_by_role("heading", name="⊘ STUCK").wait_for()
     assert app.session.engine.step_index == 10
     shot(page, "merged-variant-demo")
     page.close()
@@ -516,7 +516,7 @@ def test_a_collision_is_shown_with_the_robots_and_the_cell(browser, app):
         pass
     app.request_render()
     page = open_page(browser, app)
-    page.get_by_role("heading", name="💥 COLLISION").wait_for()
+    page.get_by_role("heading", name="✖ COLLISION").wait_for()
     page.get_by_text("on a snapshot taken at step").wait_for()
     shot(page, "collision")
     page.close()
@@ -575,7 +575,7 @@ def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_colli
         for n in range(1, 42):
             step.click()
             wait_for(lambda n=n: served.session.engine.step_index == n)  # one event per click
-        page.get_by_role("heading", name="💥 COLLISION").wait_for()
+        page.get_by_role("heading", name="✖ COLLISION").wait_for()
         last = page.locator("p", has_text="Last event:").first
         wait_for(lambda: last.inner_text().endswith("robot 3 · Move → (0, 1): COLLISION"))
         page.get_by_text("robot 3 moved onto robot 1 at (0, 1)").first.wait_for()
@@ -601,7 +601,7 @@ def test_the_demo_played_to_formed_keeps_the_robots_on_the_target_cells(browser,
     speed.press("Enter")
     wait_for(lambda: app.session.speed == 5000)
     page.get_by_role("button", name="Play").click()
-    page.get_by_role("heading", name="✅ FORMED").wait_for(timeout=300_000)
+    page.get_by_role("heading", name="✔ FORMED").wait_for(timeout=300_000)
     v = app.session.view()
     assert v.outcome == "formed"
     assert {r.position for r in v.robots} == set(v.targets)  # the targets stayed where the pattern formed
@@ -755,7 +755,7 @@ def test_verify_shows_verified_on_a_small_start_and_loads_the_literal_papers_vio
     while app.session.step():
         pass
     app.request_render()
-    page.get_by_role("heading", name="💥 COLLISION").wait_for()
+    page.get_by_role("heading", name="✖ COLLISION").wait_for()
     shot(page, "verify-violation")
     page.close()
 

@@ -12,7 +12,9 @@ from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.presenter.staleness import SeenRobot, changes
 
 MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
-_ICONS = {"formed": "✅", "collision": "💥", "stuck": "⛔", "limit": "⏱"}
+# Symbols, not emoji: a fresh machine's browser may have no colour-emoji font (Debian's Chromium with
+# only DejaVu drew the banner's emoji as empty boxes); these four are in DejaVu Sans, as ↻ is.
+OUTCOME_ICONS = {"formed": "✔", "collision": "✖", "stuck": "⊘", "limit": "◷"}
 
 
 _FLIPPED = {"up": "down", "down": "up", "left": "left", "right": "right"}
@@ -241,7 +243,7 @@ def banner(
         detail = "\n\nEvery robot is on a target cell of the pattern."
     if why:
         detail += f"\n\n**{'Waiting' if stuck else 'Why'}:**  \n{why}"
-    return f"## {_ICONS.get(outcome, '')} {outcome.upper()}{detail}"
+    return f"## {OUTCOME_ICONS.get(outcome, '')} {outcome.upper()}{detail}"
 
 
 def stats(algorithm: str, numbers: Mapping[str, object]) -> str:
