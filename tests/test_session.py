@@ -137,6 +137,25 @@ def test_edit_pattern_toggles_cells_and_validates_the_size():
     assert sorted(s.pattern) == [(0, 0), (0, 1), (1, 0), (2, 0)] and s.view().steps == 0
 
 
+def test_a_demo_loaded_over_a_drawing_keeps_it_for_undo_and_says_so():
+    s = demo_session()
+    s.load_scenario("Heart from 10 robots")
+    assert s.take_kept_drafts_note() is None  # nothing was drawn: nothing to tell
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    for cell in [(0, 0), (1, 0), (2, 0)]:
+        s.click(cell)
+    drawn = list(s.editor.pattern)
+    s.load_scenario("One robot on L1")  # over the unfinished drawing
+    assert s.mode == "run" and len(s.editor.pattern) == 3 and s.editor.pattern != drawn
+    note = s.take_kept_drafts_note()
+    assert note and "Undo brings it back" in note and s.take_kept_drafts_note() is None  # told once
+    s.set_mode("edit-pattern")
+    assert s.transform("Undo") == "undone" and s.editor.pattern == drawn  # the drawing, back
+    assert "3 points" in s.set_mode("run")  # refused: the drawing is still unfinished, and still there
+    assert s.editor.pattern == drawn
+
+
 def test_edit_robots_adds_flips_removes_and_rejects_an_unsolvable_start():
     s = session()
     s.set_mode("edit-robots")

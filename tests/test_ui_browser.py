@@ -1243,3 +1243,44 @@ def test_in_edit_robots_a_robot_moves_with_the_move_tool(browser, app):
     assert len(s.editor.robots) == s.engine.k
     shot(page, "studio-move-robot")
     page.close()
+
+
+def test_back_to_run_from_the_mode_dropdown_gives_the_keys_back_to_the_run(browser, app):
+    """Mode → Run in the Edit folder: the dropdown lets go of the keyboard (as the Demo's does), so Space
+    plays the run instead of opening the dropdown again."""
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    open_folder(page, "Edit")
+    choose_mode(page, app, "Edit pattern", "edit-pattern")
+    choose_mode(page, app, "Run", "run")
+    wait_for(lambda: page.evaluate("document.activeElement === document.body"))
+    page.keyboard.press("Space")
+    wait_for(lambda: app.session.playing)
+    page.keyboard.press("Space")
+    wait_for(lambda: not app.session.playing)
+    page.close()
+
+
+def test_a_demo_picked_over_a_drawing_says_where_the_drawing_went_and_undo_brings_it_back(browser, app):
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    open_folder(page, "Edit")
+    choose_mode(page, app, "Edit pattern", "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    wait_for(lambda: not app.session.editor.pattern)
+    for cell in [(20, 0), (21, 0), (22, 0)]:  # drawn by clicks (the studio test draws with the mouse)
+        app.session.click(cell)
+    drawn = list(app.session.editor.pattern)
+    page.get_by_role("combobox", name="Demo").click()
+    page.get_by_role("option", name="One robot on L1").click()
+    page.get_by_text("Undo brings it back").wait_for()
+    shot(page, "demo-over-a-drawing")
+    choose_mode(page, app, "Edit pattern", "edit-pattern")
+    page.get_by_role("button", name="Undo").click()
+    wait_for(lambda: app.session.editor.pattern == drawn)
+    page.close()
+
+
+def choose_mode(page, app: App, label: str, mode: str) -> None:
+    """The Edit folder's Mode dropdown (the folder open), as a person picks it."""
+    page.get_by_role("combobox", name="Mode").click()
+    page.get_by_role("option", name=label, exact=True).click()
+    wait_for(lambda: app.session.mode == mode)

@@ -53,6 +53,14 @@ class Editor:
         self._restore(self._redo.pop())
         return "redone"
 
+    def start_from(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> None:
+        """A new run's start and pattern become the drafts; the drafts as they were go into the history,
+        so one Undo brings back what was drawn (a Demo or a file loaded over a drawing never loses it)."""
+        new: Draft = (tuple(map(tuple, robots)), tuple(y_up), tuple(map(tuple, pattern)))  # type: ignore[assignment]
+        if new != self._draft():
+            self._record()
+            self._restore(new)
+
     # ------------------------------------------------------------------ changes
     def set_pattern(self, cells: Sequence[Point], said: str) -> str:
         """The pattern becomes ``cells`` (distinct, in drawing order); one Undo brings the old one back."""

@@ -94,6 +94,7 @@ class Session:
         self.run = RunController(config, plugins)
         self.lock = self.run.lock
         self.screen = SharedScreen(Editor(config.robots, config.y_up, config.pattern))
+        self.kept_drafts = False  # a load replaced drafts never run (:meth:`take_kept_drafts_note`)
         # The presenter's browser state: the first browser to connect holds it (the projector), and so
         # do the calls made without a browser (scripts, tests). Other browsers get their own.
         self.presenter = BrowserState()
@@ -194,11 +195,30 @@ class Session:
     # ------------------------------------------------------------------ building runs
     def _start(self, config: RunConfig) -> None:
         """A new run from ``config``; the drafts follow it and the selection is cleared."""
+        self._drafts_follow(config)
         self.run.restart(config)
-        self.editor = Editor(config.robots, config.y_up, config.pattern)
         self._clear_selections()
         self.mode = "run"
         self.scenario_note = ""  # what a Demo scenario shows no longer applies
+
+    def _drafts_follow(self, config: RunConfig) -> None:
+        """The drafts become ``config``'s start and pattern, the old ones kept for Undo; drafts that the
+        run did not have (drawn, not yet run) are noted in :attr:`kept_drafts` for the browser to be
+        told."""
+        e, now = self.editor, self.run.config
+        drawn = (tuple(e.robots), tuple(e.y_up), tuple(e.pattern))
+        if drawn == (tuple(config.robots), tuple(config.y_up), tuple(config.pattern)):
+            return  # the run starts from the drafts themselves (Mode back to Run)
+        ran = (tuple(now.robots), tuple(now.y_up), tuple(now.pattern))
+        self.kept_drafts = self.kept_drafts or drawn != ran
+        e.start_from(config.robots, config.y_up, config.pattern)
+
+    def take_kept_drafts_note(self) -> str | None:
+        """Once, after a load replaced drafts that had not been run: how to get them back."""
+        kept, self.kept_drafts = self.kept_drafts, False
+        if not kept:
+            return None
+        return "what you drew in Edit is kept: in the Edit folder, Undo brings it back"
 
     def reset(self) -> None:
         """Back to the start of the current run (same start, pattern, flips, algorithm)."""
@@ -530,7 +550,7 @@ class Session:
                         f"points: the run uses the demo pattern {offered[0]} ({len(points)} points); "
                         "Edit pattern or Upload pattern to change it"
                     )
-            self.editor = Editor(points, y_up, pattern)
+            self._drafts_follow(self.config.but(robots=points, y_up=y_up, pattern=pattern))
             problem = self.editor.problem()
             if problem is None:
                 self._start(self.config.but(robots=points, y_up=y_up, pattern=pattern))
@@ -580,9 +600,9 @@ class Session:
             scheduler=h.scheduler if h.scheduler in SCHEDULER_LABELS.values() else self.scheduler_name,
         )
         with self.lock:
+            self._drafts_follow(config)
             self.run.adopt(config, loaded.engine, loaded.events, h.options)
             self.scenario_note = ""
-            self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.mode = "run"
             self._clear_selections()
 
@@ -598,8 +618,8 @@ class Session:
                     pass
             except ScheduleError as e:
                 notes.append(f"{e}; the run follows the schedule up to there")
+            self._drafts_follow(config)
             self.run.adopt(config, engine, engine.state.events, what=f"the schedule {filename}")
-            self.editor = Editor(config.robots, config.y_up, config.pattern)
             self.scenario_note = ""
             self.mode = "run"
             self._clear_selections()

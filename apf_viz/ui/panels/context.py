@@ -92,6 +92,7 @@ class PanelContext:
     verifier: SharedVerifier
     toggle_presentation: Callable = lambda event=None: None  # set by the browser's Presentation
     presenting: Callable[[], bool] = lambda: False  # set by the browser's Presentation
+    release_focus: Callable[[], None] = lambda: None  # set by the Run folder: the keys drive the run again
     client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
     # The grid cell under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     cell_at: Callable[[object, tuple[float, float]], tuple[int, int] | None] = lambda client, point: None
@@ -108,6 +109,9 @@ class PanelContext:
                     tell(event.client, title, said)
             except (InputError, ValueError) as err:
                 tell(event.client, "Refused", str(err), error=True)
+            kept = self.session.take_kept_drafts_note()
+            if kept:  # a Demo or a file replaced a drawing that was never run: say where it went
+                tell(event.client, "Your drawing is kept", kept)
             self.changed()
 
         return wrapped

@@ -70,6 +70,8 @@ class EditFolder:
         if problem:  # refused: the drafts stay, and the browser that asked is told why
             self.mode.value = MODE_LABELS[s.mode]
             tell(event.client, "Still editing", problem, error=True)
+        elif s.mode == "run":  # back to the run: Space plays it, not the dropdown
+            self.ctx.release_focus()
         self.ctx.changed()
 
     def _box(self, event, erase: bool) -> None:

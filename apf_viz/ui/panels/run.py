@@ -35,6 +35,7 @@ class RunFolder:
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
             self._release = gui.add_html("")
             self._releases = 0
+            ctx.release_focus = self.release_focus  # for the other folders' fields (Edit's Mode)
             self.lecture = gui.add_dropdown(
                 "Lecture", ("—", *lectures()), initial_value="—",
                 hint="a guided lecture: PageDown / Next stop runs to each stop and shows its words",
