@@ -343,6 +343,24 @@ def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, s
     assert said in lecture_html(s.view())
 
 
+def test_the_caption_names_every_light_in_use_at_a_deadlocks_end_in_one_row():
+    """At the end the waits take the caption's room: the lights become one row of names (their meanings
+    are in the Legend), so that none is pushed out of the caption's box."""
+    from apf_viz.ui.presenter.legend import lecture_html
+
+    s = demo_session()
+    s.load_scenario("The literal paper deadlocks")
+    v = s.view()
+    meaning = v.legend["off"].meaning
+    assert meaning in lecture_html(v)  # before the end: each light with its meaning
+    s.seek(10**9)
+    v = s.view()
+    caption = lecture_html(v)
+    assert v.outcome == "stuck" and meaning not in caption
+    assert set(v.lights_in_use) >= {"off", "terminal1", "leader1"}
+    assert all(f"<b>{light}</b>" in caption for light in v.lights_in_use)
+
+
 @pytest.mark.skipif(shutil.which("fc-list") is None, reason="no fontconfig (fc-list)")
 @pytest.mark.parametrize("outcome", sorted(OUTCOME_ICONS))
 def test_the_outcome_banners_icon_is_in_a_font_this_machine_has(outcome):

@@ -34,7 +34,7 @@ class Presentation:
         if self.panel is None:
             self.gui.main_panel.minimize()
             self.panel = self.gui.add_panel()
-            with self.panel.add_tab("Lecture"):
+            with self.panel.add_tab("Caption"):
                 self.html = self.gui.add_html("")
             height = canvas_size(event.client)[0] if event is not None and event.client is not None else 768
             self.panel.float(x=12, y=8, width=560, height=int(PRESENTATION_TOP_ROOM * height) - 12)

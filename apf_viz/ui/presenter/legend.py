@@ -147,13 +147,28 @@ def legend_html(view: SessionView) -> str:
 def lecture_html(view: SessionView) -> str:
     """Presentation mode's caption, large enough for the back of a lecture room: the stage, the last
     event, the outcome located, and the lights in use with their meaning."""
-    lights = "".join(
-        f'<div style="display:flex;align-items:center;gap:8px">{_swatch(view.legend[light].color)}'
-        f"<b>{html.escape(light)}</b>&nbsp;"
-        f'<span style="color:#444">{symbol_html(view.legend[light].meaning)}</span></div>'
-        for light in view.lights_in_use
-        if light in view.legend
-    )
+    in_use = [light for light in view.lights_in_use if light in view.legend]
+    # With an outcome, a never-ending walk or a lecture stop's words, the caption's room is theirs: the
+    # lights are one wrapped row of names (the Legend folder has their meanings), else the caption ran
+    # past its box and hid the last lights (a deadlock's waits take three lines).
+    busy = bool(view.outcome or view.endless is not None or view.lecture is not None)
+    if busy:
+        lights = (
+            '<div style="display:flex;flex-wrap:wrap;align-items:center;gap:4px 14px">'
+            + "".join(
+                f'<span style="display:inline-flex;align-items:center;gap:6px">'
+                f"{_swatch(view.legend[light].color)}<b>{html.escape(light)}</b></span>"
+                for light in in_use
+            )
+            + "</div>"
+        )
+    else:
+        lights = "".join(
+            f'<div style="display:flex;align-items:center;gap:8px">{_swatch(view.legend[light].color)}'
+            f"<b>{html.escape(light)}</b>&nbsp;"
+            f'<span style="color:#444">{symbol_html(view.legend[light].meaning)}</span></div>'
+            for light in in_use
+        )
     last = html.escape(view.last_events[0]) if view.last_events else "—"
     outcome = ""
     if view.outcome:
