@@ -369,3 +369,20 @@ def test_the_outcome_banners_icon_is_in_a_font_this_machine_has(outcome):
     code = f"{ord(OUTCOME_ICONS[outcome]):04x}"
     fonts = subprocess.run(["fc-list", f":charset={code}", "family"], capture_output=True, text=True).stdout
     assert fonts.strip(), f"no installed font draws U+{code.upper()} ({OUTCOME_ICONS[outcome]})"
+
+
+def test_formed_upside_down_says_why_that_counts():
+    """A pattern formed as its mirror image in y (the robots agree only on left and right) is FORMED,
+    and the banner says the shape is the drawn one upside down and why that counts; one formed as drawn
+    says nothing of the kind."""
+    said = {}
+    for scenario in ("Symmetric start that needs call", "Heart from 10 robots"):
+        s = demo_session()
+        s.load_scenario(scenario)
+        while s.step():
+            pass
+        v = s.view()
+        assert v.outcome == "formed"
+        said[scenario] = v.banner
+    assert "upside down" in said["Symmetric start that needs call"]
+    assert "upside down" not in said["Heart from 10 robots"]

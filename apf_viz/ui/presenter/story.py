@@ -228,9 +228,11 @@ def banner(
     stuck: bool,
     why: str = "",
     endless: tuple[str, str] | None = None,
+    mirrored: bool = False,
 ) -> str:
     """The outcome as a heading, and where it happened; ``endless``: a livelock's or an escape's trace
-    played to its end (the engine sees a run still going)."""
+    played to its end (the engine sees a run still going); ``mirrored``: formed as the pattern's mirror
+    image in y."""
     if outcome is None:
         if endless is not None:
             verdict, words = endless
@@ -241,6 +243,12 @@ def banner(
         detail = "\n\nNo next cycle of any robot changes anything: all (each in a grey square) will never act"
     if outcome == "formed":
         detail = "\n\nEvery robot is on a target cell of the pattern."
+        if mirrored:
+            detail += (
+                " The shape is the drawn pattern upside down: the robots agree only on which way is "
+                "right, not on which way is up, so a pattern and its mirror image top to bottom are the "
+                "same pattern to them (the leader's y-axis chose)."
+            )
     if why:
         detail += f"\n\n**{'Waiting' if stuck else 'Why'}:**  \n{why}"
     return f"## {OUTCOME_ICONS.get(outcome, '')} {outcome.upper()}{detail}"
