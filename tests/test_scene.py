@@ -11,7 +11,15 @@ import viser
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.ui.app import free_port
-from apf_viz.ui.scene import DENSE, GRID_SECTION_PX, VIEW_PX, SceneRenderer, cells_label_at, grid_steps
+from apf_viz.ui.scene import (
+    DENSE,
+    GRID_SECTION_PX,
+    VIEW_PX,
+    SceneRenderer,
+    cells_label_at,
+    frame_label_at,
+    grid_steps,
+)
 from apf_viz.ui.session import Session
 
 
@@ -213,3 +221,14 @@ def test_a_cells_label_never_covers_a_robot():
     assert x > 1 and y == 1  # to the right of the top row
     for rx, ry in both:  # and not on a robot
         assert not (abs(ry - y) < 0.8 and x - 0.5 <= rx)
+
+
+def test_a_frames_label_goes_under_its_origin_unless_a_robot_or_its_number_is_there():
+    alone = np.array([[10.0, 10.0]], dtype=np.float32)
+    assert frame_label_at((0.0, 0.0), 1, alone)[:2] == (0.0, pytest.approx(-0.6))
+    assert frame_label_at((0.0, 0.0), -1, alone)[:2] == (0.0, pytest.approx(0.6))  # away from +y
+    # A robot just under the origin (its number at its upper right reaches the label's row): beyond the
+    # x arm instead, on the origin's row.
+    under = np.array([[0.0, -1.0]], dtype=np.float32)
+    x, y, _ = frame_label_at((0.0, 0.0), 1, under)
+    assert x > 2 and y == 0

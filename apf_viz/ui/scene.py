@@ -505,6 +505,7 @@ class SceneRenderer:
         lines = [m for m in view.overlays.marks if isinstance(m, Line)]
         frames = [m for m in view.overlays.marks if isinstance(m, Frame)]
         labels: list[tuple[str, tuple[float, float, float]]] = []
+        robots = self._local([r.position for r in view.robots])  # labels go where no robot is
         for i in range(max(len(lines), self._slots.get("line", 0))):
             mark = lines[i] if i < len(lines) else None
             segs = self._line(mark) if mark else np.zeros((0, 2, 3), np.float32)
@@ -520,12 +521,12 @@ class SceneRenderer:
                 f"/marks/frame{i}", segs, (mark.color if mark else None) or MARK_COLORS["frame"], 3.0
             )
             if mark:
-                labels.append((mark.label, tuple(segs[0, 0] + np.array([0.0, -0.6, 0.0], np.float32))))
+                origin = (float(segs[0, 0, 0]), float(segs[0, 0, 1]))
+                labels.append((mark.label, frame_label_at(origin, mark.y_sign, robots)))
         self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
         cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
         if cells is not None and cells.points and view.mode != "edit-pattern":
             local = self._local(cells.points)
-            robots = self._local([r.position for r in view.robots])
             labels.append((cells.label, cells_label_at(local, robots)))
         self._labels("/marks/labels", labels)
 
@@ -702,23 +703,44 @@ class SceneRenderer:
         return position, aspect
 
 
+def free_label_spot(
+    spots: list[tuple[float, float, float]], robots: np.ndarray
+) -> tuple[float, float, float]:
+    """The first of ``spots`` — (x, y, and the x where the text ends) — where the text covers no robot
+    and no robot's number (upper right of its disc); the first if every one does."""
+    for x, y, x_end in spots:
+        covered = (
+            (robots[:, 1] - 0.4 < y + 0.25)
+            & (robots[:, 1] + 0.7 > y - 0.25)
+            & (robots[:, 0] - 0.5 < x_end)
+            & (robots[:, 0] + 0.7 > x)
+        )
+        if not covered.any():
+            return (x, y, 0.1)
+    return (spots[0][0], spots[0][1], 0.1)
+
+
 def cells_label_at(cells: np.ndarray, robots: np.ndarray) -> tuple[float, float, float]:
     """Where a set of cells' label goes: just above their top row; when a robot stands where the text
     would be (a pattern drawn among the robots, as the Unsolvable box demo's is), just below their bottom
-    row, else to the right of their top row; above when all three are taken. So the label does not
-    cover a robot."""
+    row, else to the right of their top row. So the label does not cover a robot."""
     left, right = float(cells[:, 0].min()) - 0.4, float(cells[:, 0].max())
     top, bottom = float(cells[:, 1].max()), float(cells[:, 1].min())
-    # (x, y, and the x-span the text covers there: the cells' width above and below, 3 cells beside)
-    for x, y, x_end in (
-        (left, top + 0.6, right + 0.5),
-        (left, bottom - 0.9, right + 0.5),
-        (right + 0.7, top, right + 3.7),
-    ):
-        near = (np.abs(robots[:, 1] - y) < 0.8) & (robots[:, 0] >= x - 0.5) & (robots[:, 0] <= x_end + 0.5)
-        if not near.any():
-            return (x, y, 0.1)
-    return (left, top + 0.6, 0.1)
+    return free_label_spot(
+        [(left, top + 0.6, right + 0.5), (left, bottom - 0.9, right + 0.5), (right + 0.7, top, right + 3.7)],
+        robots,
+    )
+
+
+def frame_label_at(
+    origin: tuple[float, float], y_sign: int, robots: np.ndarray
+) -> tuple[float, float, float]:
+    """Where a frame's label goes: under its origin (on the side away from its +y arm), else beyond the
+    end of its x arm, else past the tip of its y arm; not over a robot or its number where one of these
+    is free (the leader's neighbours crowd its row), and under the origin when none is."""
+    ox, oy = origin
+    under, beyond_x = (ox, oy - 0.6 * y_sign, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
+    return free_label_spot([under, beyond_x, (ox - 0.4, oy + 2.6 * y_sign, ox + 2.6)], robots)
 
 
 def ray_through(camera, screen: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
