@@ -108,11 +108,11 @@ operations = st.lists(
 def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_them(ops):
     editor, studio = Editor(START, [True] * 4, PATTERN), Studio()
     studio.size = 2
-    drafts = [editor._draft()]
+    drafts = [editor.draft]
 
     def kept() -> None:
-        if editor._draft() != drafts[-1]:
-            drafts.append(editor._draft())
+        if editor.draft != drafts[-1]:
+            drafts.append(editor.draft)
 
     for kind, what, cell in ops:
         if kind == "click":
@@ -127,11 +127,11 @@ def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_th
         kept()
     for earlier in reversed(drafts[:-1]):
         editor.undo()
-        assert editor._draft() == earlier
+        assert editor.draft == earlier
     assert editor.undo() == "nothing to undo"
     for later in drafts[1:]:
         editor.redo()
-        assert editor._draft() == later
+        assert editor.draft == later
 
 
 def test_the_library_saves_by_name_lists_and_loads_never_a_path(tmp_path):

@@ -29,3 +29,11 @@ def matches_pattern(points: Iterable[Point], pattern: Iterable[Point]) -> bool:
     pts = normalise(points)
     pat = list(pattern)
     return pts == normalise(pat) or pts == normalise(mirror_y(pat))
+
+
+def matches_only_mirrored(points: Iterable[Point], pattern: Iterable[Point]) -> bool:
+    """True iff ``points`` is a translate of ``pattern``'s mirror image in y and not of ``pattern``
+    itself: formed upside down (a shape symmetric top to bottom never is)."""
+    pts = normalise(points)
+    pat = list(pattern)
+    return pts != normalise(pat) and pts == normalise(mirror_y(pat))

@@ -15,6 +15,11 @@ UNDO_DEPTH = 200  # drafts kept for Undo
 Draft = tuple[tuple[Point, ...], tuple[bool, ...], tuple[Point, ...]]  # robots, their flips, pattern
 
 
+def draft_of(robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> Draft:
+    """Robots, flips and pattern as a :data:`Draft` (points as tuples, so that drafts compare)."""
+    return tuple((p[0], p[1]) for p in robots), tuple(y_up), tuple((p[0], p[1]) for p in pattern)
+
+
 class Editor:
     """The robots and pattern being drawn, and their history (Undo / Redo). Nothing here touches the
     run: the session starts a run from the drafts once :meth:`problem` has nothing to say."""
@@ -27,7 +32,9 @@ class Editor:
         self._redo: list[Draft] = []
 
     # ------------------------------------------------------------------ history
-    def _draft(self) -> Draft:
+    @property
+    def draft(self) -> Draft:
+        """The drafts as they are now, comparable with :func:`draft_of` a run's start and pattern."""
         return tuple(self.robots), tuple(self.y_up), tuple(self.pattern)
 
     def _restore(self, draft: Draft) -> None:
@@ -36,30 +43,33 @@ class Editor:
 
     def _record(self) -> None:
         """Keep the draft as it is before a change (a new change forgets what Redo had)."""
-        self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], self._draft()]
+        self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], self.draft]
         self._redo = []
 
     def undo(self) -> str:
         if not self._undo:
             return "nothing to undo"
-        self._redo.append(self._draft())
+        self._redo.append(self.draft)
         self._restore(self._undo.pop())
         return "undone"
 
     def redo(self) -> str:
         if not self._redo:
             return "nothing to redo"
-        self._undo.append(self._draft())
+        self._undo.append(self.draft)
         self._restore(self._redo.pop())
         return "redone"
 
-    def start_from(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> None:
+    def start_from(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> bool:
         """A new run's start and pattern become the drafts; the drafts as they were go into the history,
-        so one Undo brings back what was drawn (a Demo or a file loaded over a drawing never loses it)."""
-        new: Draft = (tuple(map(tuple, robots)), tuple(y_up), tuple(map(tuple, pattern)))  # type: ignore[assignment]
-        if new != self._draft():
-            self._record()
-            self._restore(new)
+        so one Undo brings back what was drawn (a Demo or a file loaded over a drawing never loses it).
+        Returns whether the drafts changed."""
+        new = draft_of(robots, y_up, pattern)
+        if new == self.draft:
+            return False
+        self._record()
+        self._restore(new)
+        return True
 
     # ------------------------------------------------------------------ changes
     def set_pattern(self, cells: Sequence[Point], said: str) -> str:

@@ -250,7 +250,7 @@ class SceneRenderer:
         self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
         axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
-        self._marks(view)
+        self._marks(view, pts)
         x0, _, _, y1 = self.bounds
         self._labels("/title", [(title, (x0 - 0.5, y1 + 2.0, 0.1))] if title else [])
         if self.layer == "all":
@@ -499,13 +499,13 @@ class SceneRenderer:
         points = self._local(cells.points if cells else ())
         self._points("/targets", _xyz(points, 0.005), TARGET_COLORS[style], 0.8)
 
-    def _marks(self, view: SessionView) -> None:
-        """Lines and frames of the overlays, each labelled on the canvas. A handful per run: a node each,
-        created once per slot and updated in place."""
+    def _marks(self, view: SessionView, robots: np.ndarray) -> None:
+        """Lines and frames of the overlays, each labelled on the canvas (``robots``: their scene points; a
+        label goes where none is). A handful per run: a node each, created once per slot and updated in
+        place."""
         lines = [m for m in view.overlays.marks if isinstance(m, Line)]
         frames = [m for m in view.overlays.marks if isinstance(m, Frame)]
         labels: list[tuple[str, tuple[float, float, float]]] = []
-        robots = self._local([r.position for r in view.robots])  # labels go where no robot is
         for i in range(max(len(lines), self._slots.get("line", 0))):
             mark = lines[i] if i < len(lines) else None
             segs = self._line(mark) if mark else np.zeros((0, 2, 3), np.float32)

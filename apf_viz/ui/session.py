@@ -35,7 +35,7 @@ from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.lecture import Lecture
 from apf_viz.ui import loader
 from apf_viz.ui.compare import Twin
-from apf_viz.ui.editor import Editor
+from apf_viz.ui.editor import Editor, draft_of
 from apf_viz.ui.lecturer import Lecturer, Reached
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.presenter import SessionView, for_browser, present, present_run, stage_of
@@ -206,12 +206,10 @@ class Session:
         run did not have (drawn, not yet run) are noted in :attr:`kept_drafts` for the browser to be
         told."""
         e, now = self.editor, self.run.config
-        drawn = (tuple(e.robots), tuple(e.y_up), tuple(e.pattern))
-        if drawn == (tuple(config.robots), tuple(config.y_up), tuple(config.pattern)):
-            return  # the run starts from the drafts themselves (Mode back to Run)
-        ran = (tuple(now.robots), tuple(now.y_up), tuple(now.pattern))
-        self.kept_drafts = self.kept_drafts or drawn != ran
-        e.start_from(config.robots, config.y_up, config.pattern)
+        unrun = e.draft != draft_of(now.robots, now.y_up, now.pattern)
+        # No change when the run starts from the drafts themselves (Mode back to Run).
+        if e.start_from(config.robots, config.y_up, config.pattern):
+            self.kept_drafts = self.kept_drafts or unrun
 
     def take_kept_drafts_note(self) -> str | None:
         """Once, after a load replaced drafts that had not been run: how to get them back."""
@@ -259,10 +257,10 @@ class Session:
                 return True
             return self.run.step()
 
-    def why_not_step(self, control: str = "Step") -> str:
-        """Why Step (or Play: ``control``) ran nothing, for the person who pressed it."""
+    def why_not_step(self) -> str:
+        """Why Step ran nothing, for the person who pressed it."""
         if self.mode != "run":
-            return self._why_editing(control)
+            return self._why_editing("Step")
         if self.engine.finished:
             return f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
         if self.scheduler_name == "manual":

@@ -17,7 +17,7 @@ from apf_viz.core.budget import paper_D
 from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
-from apf_viz.core.pattern_match import mirror_y, normalise
+from apf_viz.core.pattern_match import matches_only_mirrored
 from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of, pseudocode_of
 from apf_viz.core.portrayal import stage_of as algorithm_stage
 from apf_viz.ui.presenter import story
@@ -105,7 +105,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
     at_end = position is not None and position[0] >= position[1]
     if at_end and _walks(run):
         view = replace(view, endless=story.endless_words(run.trace_options))
-    mirrored = view.outcome == "formed" and formed_mirrored(e.current_points(), run.config.pattern)
+    mirrored = view.outcome == "formed" and matches_only_mirrored(e.current_points(), run.config.pattern)
     return replace(view, **_sentences(view, crash[0] if crash else None, stuck, mirrored))
 
 
@@ -134,12 +134,6 @@ def _trail_moves(run: RunController, screen: SharedScreen) -> int:
 def _walks(run: RunController) -> bool:
     """The run follows a trace of a walk that never ends."""
     return run.following and run.trace_options.get("verdict") in story.ENDLESS
-
-
-def formed_mirrored(points, pattern) -> bool:
-    """The robots stand in the pattern's mirror image in y, not in the pattern as drawn (the robots agree
-    only on which way is right, so for them the two are one pattern: pattern_match.matches_pattern)."""
-    return normalise(points) != normalise(pattern) and normalise(points) == normalise(mirror_y(pattern))
 
 
 def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool = False) -> dict[str, str]:

@@ -147,7 +147,11 @@ def legend_html(view: SessionView) -> str:
 def lecture_html(view: SessionView) -> str:
     """Presentation mode's caption, large enough for the back of a lecture room: the stage, the last
     event, the outcome located, and the lights in use with their meaning."""
-    in_use = [light for light in view.lights_in_use if light in view.legend]
+    named = {  # each light in use: its swatch and name
+        light: f"{_swatch(view.legend[light].color)}<b>{html.escape(light)}</b>"
+        for light in view.lights_in_use
+        if light in view.legend
+    }
     # With an outcome, a never-ending walk or a lecture stop's words, the caption's room is theirs: the
     # lights are one wrapped row of names (the Legend folder has their meanings), else the caption ran
     # past its box and hid the last lights (a deadlock's waits take three lines).
@@ -156,18 +160,16 @@ def lecture_html(view: SessionView) -> str:
         lights = (
             '<div style="display:flex;flex-wrap:wrap;align-items:center;gap:4px 14px">'
             + "".join(
-                f'<span style="display:inline-flex;align-items:center;gap:6px">'
-                f"{_swatch(view.legend[light].color)}<b>{html.escape(light)}</b></span>"
-                for light in in_use
+                f'<span style="display:inline-flex;align-items:center;gap:6px">{name}</span>'
+                for name in named.values()
             )
             + "</div>"
         )
     else:
         lights = "".join(
-            f'<div style="display:flex;align-items:center;gap:8px">{_swatch(view.legend[light].color)}'
-            f"<b>{html.escape(light)}</b>&nbsp;"
+            f'<div style="display:flex;align-items:center;gap:8px">{name}&nbsp;'
             f'<span style="color:#444">{symbol_html(view.legend[light].meaning)}</span></div>'
-            for light in in_use
+            for light, name in named.items()
         )
     last = html.escape(view.last_events[0]) if view.last_events else "—"
     outcome = ""
