@@ -3,12 +3,17 @@
 - scene update rate while playing with 1,000 robots (target ≥ 20 updates/s): how often the browser's
   `Event` number changes per second (each change is one rendered frame reaching the page), beside how
   many frames the page drew (a frame drawn before the next update arrives shows nothing new);
+- with ``--stage election`` (the default): the window is leader election itself, from the first step of
+  the run until the leader stands at its corner (at 1,000 robots about 40 steps, two or three seconds
+  of play: its steps are the dearest of the run, every robot seeing hundreds). The event that ends it is
+  found first by stepping a copy of the run without a browser. The update rate counted after it, to the
+  end of a 5-second window, is printed too, as the start of pattern formation;
+- with ``--stage pattern``: pattern formation: the run is first stepped (no browser yet) until the
+  leader is elected and ``--line`` robots have travelled to the line, so the scene holds the leader's
+  frame, the line and all k targets; then 5 seconds of play;
 - click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event;
 - with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
-  watching (wall time, and the page's update rate meanwhile);
-- with ``--stage pattern``: the same measures in pattern formation, not leader election: the run is first
-  stepped (no browser yet) until the leader is elected and ``--line`` robots have travelled to the line,
-  so the scene holds the leader's frame, the line and all k targets.
+  watching (wall time, and the page's update rate meanwhile).
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern];
 python benchmarks/bench_ui.py --robots 100 --to-formed
@@ -17,6 +22,7 @@ python benchmarks/bench_ui.py --robots 100 --to-formed
 from __future__ import annotations
 
 import argparse
+import itertools
 import random
 import statistics
 import sys
@@ -39,29 +45,36 @@ ARGS = [
     "--no-first-run",
 ]
 
-COUNT_CHANGES = """
-async ([ms]) => {
-  const input = [...document.querySelectorAll('label')].find(l => l.textContent === 'Event');
-  const el = document.getElementById(input.htmlFor);
-  let last = el.value, changes = 0, frames = 0;
-  const t0 = performance.now();
-  while (performance.now() - t0 < ms) {
-    await new Promise(r => requestAnimationFrame(r));
-    frames++;
-    if (el.value !== last) { changes++; last = el.value; }
-  }
-  return [changes / (ms / 1000), frames / (ms / 1000)];
-}
-"""
-
-WAIT_CHANGE = """
-async () => {
+# Started without waiting for it (the promise is kept in the page), so that the click or the play that
+# it measures happens while it already watches; collected later by awaiting window.__probe.
+START_WAIT_CHANGE = """
+() => {
   const input = [...document.querySelectorAll('label')].find(l => l.textContent === 'Event');
   const el = document.getElementById(input.htmlFor);
   const before = el.value, t0 = performance.now();
-  window.__clickAt = t0;
-  while (el.value === before && performance.now() - t0 < 5000) await new Promise(r => setTimeout(r, 1));
-  return performance.now() - t0;
+  window.__probe = (async () => {
+    while (el.value === before && performance.now() - t0 < 5000) await new Promise(r => setTimeout(r, 1));
+    return performance.now() - t0;
+  })();
+}
+"""
+
+# Every animation frame's time and every change of the Event number (time, new value), for ms.
+START_RECORD = """
+([ms]) => {
+  const input = [...document.querySelectorAll('label')].find(l => l.textContent === 'Event');
+  const el = document.getElementById(input.htmlFor);
+  window.__probe = (async () => {
+    let last = el.value;
+    const frames = [], changes = [], t0 = performance.now();
+    while (performance.now() - t0 < ms) {
+      await new Promise(r => requestAnimationFrame(r));
+      const t = performance.now() - t0;
+      frames.push(t);
+      if (el.value !== last) { last = el.value; changes.push([t, Number(last)]); }
+    }
+    return [frames, changes];
+  })();
 }
 """
 
@@ -72,13 +85,17 @@ def main() -> None:
     ap.add_argument("--to-formed", action="store_true", help="play at top speed until the run ends")
     ap.add_argument("--stage", choices=("election", "pattern"), default="election")
     ap.add_argument("--line", type=int, default=20, help="with --stage pattern: robots on the line first")
+    ap.add_argument("--speed", type=float, default=2000.0, help="steps/s requested while playing")
     args = ap.parse_args()
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
     pattern = random_pattern(args.robots, rng)
     session = Session(start, pattern, seed=1)
+    elected_at = None
     if args.stage == "pattern":
         reach_pattern_formation(session, args.line)
+    elif not args.to_formed:
+        elected_at = election_end(Session(start, pattern, seed=1))
     app = App(session, port=free_port(), verbose=False)
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
@@ -91,37 +108,74 @@ def main() -> None:
             browser.close()
             app.stop()
             return
-        session.set_speed(2000.0)  # the speed of every earlier measurement (the slider's top is 5,000)
-        session.toggle_play()
-        time.sleep(1)
-        frames_before = app.frames
+        session.set_speed(args.speed)  # 2,000: the speed of every earlier measurement (the top is 5,000)
+        where = f"{args.robots} robots, {args.stage}, {args.speed:g} steps/s"
+        if elected_at is None:  # pattern formation: a second of play first, then a 5-second window
+            session.toggle_play()
+            time.sleep(1)
         stage_before = session.view().stage
-        rate, page_fps = page.evaluate(COUNT_CHANGES, [5000])
+        frames_before = app.frames
+        page.evaluate(START_RECORD, [5000])
+        if elected_at is not None:  # leader election: the window starts with the run
+            session.toggle_play()
+        frames, changes = page.evaluate("window.__probe")
         sent = (app.frames - frames_before) / 5.0
         session.pause()
         server_fps = app.frames
-        where = f"{args.robots} robots, {args.stage}"
-        # The engine is fast enough to leave a stage within the window: say where the window was.
-        print(f"(the window ran from '{stage_before}' to '{session.view().stage}')")
-        print(f"| scene updates/s in the browser while playing, {where} | {rate:.1f} |")
-        print(f"| frames/s the server sent meanwhile (one atomic update each) | {sent:.1f} |")
-        print(f"| frames/s the page drew meanwhile (some show no new update) | {page_fps:.1f} |")
+        if elected_at is not None:
+            election_window(frames, changes, elected_at, where)
+        else:
+            print(f"(the window ran from '{stage_before}' to '{session.view().stage}')")
+            print(f"| scene updates/s in the browser while playing, {where} | {len(changes) / 5.0:.1f} |")
+            print(f"| frames/s the page drew meanwhile (some show no new update) | {len(frames) / 5.0:.1f} |")
+        print(f"| frames/s the server sent in the 5-second window (one atomic update each) | {sent:.1f} |")
         session.set_scheduler("manual")
         time.sleep(0.5)
         latencies = []
         for i in range(10):
             r = i * 7 % args.robots
             session.selected = r
-            t0 = time.perf_counter()
-            handle = page.evaluate_handle(WAIT_CHANGE)
+            page.evaluate(START_WAIT_CHANGE)
             session.click(session.engine.current_points()[r])
             app.request_render()
-            latencies.append(handle.json_value())
-            _ = t0
+            latencies.append(page.evaluate("window.__probe"))
+            time.sleep(0.2)
         print(f"| click-to-update latency (median of 10), {where} | {statistics.median(latencies):.0f} ms |")
         print(f"(server rendered {server_fps} frames in all)")
         browser.close()
     app.stop()
+
+
+def election_end(session: Session) -> int:
+    """The event at which the leader first stands at its corner (Phase 3 begins), found by stepping a
+    copy of the run without a browser: the run is deterministic, so the played one reaches it there."""
+    while session.engine.outcome is None and not session.view().stage.startswith("Phase 3"):
+        session.run.step()
+    return session.engine.state.events
+
+
+def election_window(frames: list[float], changes: list[list[float]], elected_at: int, where: str) -> None:
+    """Print the update rate of the election (from the play's start to the first update showing the
+    leader at its corner) and of the rest of the window."""
+    ends = [t for t, event in changes if event >= elected_at]
+    if not ends:
+        print(f"(the election did not end within the window: {len(changes)} updates in 5 s)")
+        end = 5000.0
+    else:
+        end = ends[0]
+    during = sum(1 for t, _ in changes if t <= end)
+    drawn = sum(1 for t in frames if t <= end)
+    seconds = end / 1000
+    after = len(changes) - during
+    times = [0.0] + [t for t, _ in changes if t <= end]
+    gap = max(b - a for a, b in itertools.pairwise(times)) if len(times) > 1 else end
+    print(f"(leader election lasted {seconds:.2f} s of play: {elected_at} events, {during} updates shown)")
+    print(f"| longest wait for an update during the election | {gap:.0f} ms |")
+    print(f"| scene updates/s in the browser while playing, {where} | {during / seconds:.1f} |")
+    print(f"| frames/s the page drew meanwhile (some show no new update) | {drawn / seconds:.1f} |")
+    if ends and end < 4500:
+        rest = (5000 - end) / 1000
+        print(f"| scene updates/s after it, start of pattern formation ({rest:.1f} s) | {after / rest:.1f} |")
 
 
 def reach_pattern_formation(session: Session, line: int) -> None:
@@ -160,7 +214,9 @@ def to_formed(app: App, session: Session, page) -> None:
     watcher.start()
     rates = []
     while watcher.is_alive():
-        rate, _ = page.evaluate(COUNT_CHANGES, [2000])
+        page.evaluate(START_RECORD, [2000])
+        _, changes = page.evaluate("window.__probe")
+        rate = len(changes) / 2.0
         if watcher.is_alive():  # a window that saw the run end would count the idle page too
             rates.append(rate)
     wall = ended[0] - t0

@@ -119,3 +119,34 @@ def test_a_snapshot_made_as_arrays_equals_the_same_snapshot_made_as_tuples():
     assert not a.columns.showing("call").any()  # a light nobody shows
     assert Snapshot("done", robots) != b
     assert pickle.loads(pickle.dumps(b)) == a
+
+
+def test_ranges_of_a_snapshot_read_the_same_off_arrays_and_off_tuples():
+    """The rules that scan part of a large view (a vertical line, the left half) read it by ranges; a
+    snapshot made as arrays answers them without becoming tuples, and exactly as the tuples would."""
+    import numpy as np
+
+    from apf_viz.core.view import Columns
+
+    rng = np.random.default_rng(5)
+    cells = sorted({(int(x), int(y)) for x, y in rng.integers(-30, 30, size=(300, 2))} - {(0, 0)})
+    names = ("off", "leader", "done")
+    lights = [names[i] for i in rng.integers(0, 3, size=len(cells))]
+    robots = tuple(Seen(x, y, light) for (x, y), light in zip(cells, lights, strict=True))
+    columns = Columns(
+        np.array([c[0] for c in cells]),
+        np.array([c[1] for c in cells]),
+        np.array([names.index(s) for s in lights], dtype=np.uint8),
+        names,
+    )
+    a, b = Snapshot("off", robots), Snapshot("off", columns=columns)
+    for dx in (-31, -30, -3, 0, 1, 7, 29, 30):
+        for lo in (0, 5, 100):
+            i = a.column_start(dx, lo)
+            assert b.column_start(dx, lo) == i
+            assert all(s.dx >= dx for s in robots[i:]) and all(s.dx < dx for s in robots[lo:i])
+    assert [b.dx_at(i) for i in (0, 17, len(cells) - 1)] == [robots[i].dx for i in (0, 17, len(cells) - 1)]
+    assert b.between(3, 40) == robots[3:40] and b.between(50, 50) == ()
+    assert list(b.iter_between(2, 71)) == list(robots[2:71])  # across several chunks
+    assert [b.count(light) for light in (*names, "call")] == [lights.count(x) for x in (*names, "call")]
+    assert b._robots is None  # none of it made the whole tuple

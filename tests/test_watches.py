@@ -449,3 +449,22 @@ def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(se
             checked += 1
         bound_hit += quiet < n
     assert checked > 150 and bound_hit > 20  # walks were taken, and the bound did cut some
+
+
+def test_a_decision_is_the_same_on_a_view_read_as_arrays_and_read_as_tuples():
+    """The rules read large views by ranges off the arrays (Snapshot.column_start, iter_between): every
+    robot's decision, its watch included, is the one made on the same view as tuples. k = 60, so views
+    are built by the compiled kernel where it is installed, through election and formation."""
+    start, pattern, y_up = case(60, 3)
+    e = Engine(start, pattern, get_algorithm("apf-opaque-grid"), y_up=y_up)
+    sched, compared = make_scheduler("async"), 0
+    while not e.finished:
+        advance(e, sched, 5, steps=40)
+        for r in range(e.k):
+            view = e.look(r)
+            a = e.algorithm.decide(Snapshot(view.light, columns=view.columns), e.pattern)
+            b = e.algorithm.decide(Snapshot(view.light, tuple(view.robots)), e.pattern)
+            # Decision equality leaves out the watch and the stride: they are compared here.
+            assert (a, a.watch, a.stride) == (b, b.watch, b.stride), (e.step_index, r)
+            compared += 1
+    assert e.outcome == "formed" and compared > 5_000

@@ -14,6 +14,8 @@ to the algorithm: both describe the same robots.
 
 from __future__ import annotations
 
+from bisect import bisect_left
+from collections.abc import Iterator
 from dataclasses import dataclass
 from itertools import repeat
 from typing import NamedTuple
@@ -21,6 +23,8 @@ from typing import NamedTuple
 import numpy as np
 
 from apf_viz.core.grid import Point
+
+_CHUNK = 16  # robots turned into tuples at a time by Snapshot.iter_between
 
 
 class Seen(NamedTuple):
@@ -50,12 +54,16 @@ class Columns:
         except ValueError:
             return np.zeros(self.code.shape, dtype=bool)
 
-    def entries(self) -> list[Seen]:
-        """Every robot as a :class:`Seen`, in order."""
-        names = [self.palette[i] for i in self.code.tolist()]
+    def entries(self, lo: int = 0, hi: int | None = None) -> list[Seen]:
+        """The robots lo..hi (every robot by default) as :class:`Seen`, in order."""
+        names = [self.palette[i] for i in self.code[lo:hi].tolist()]
         # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, 20× slower here.
         return list(
-            map(tuple.__new__, repeat(Seen), zip(self.dx.tolist(), self.dy.tolist(), names, strict=True))
+            map(
+                tuple.__new__,
+                repeat(Seen),
+                zip(self.dx[lo:hi].tolist(), self.dy[lo:hi].tolist(), names, strict=True),
+            )
         )
 
     def seen(self, i: int) -> Seen:
@@ -121,6 +129,43 @@ class Snapshot:
 
     def __reduce__(self):
         return (Snapshot, (self.light, self.robots))
+
+    # Ranges of the view, in its order, read off whichever form it has: a rule that needs a vertical line
+    # or the left half of a large view need not turn all of it into tuples (a leader's appearance makes
+    # a thousand robots decide anew, each over hundreds of robots).
+    def column_start(self, dx: int, lo: int = 0) -> int:
+        """The index of the first robot from ``lo`` on whose offset is at least ``dx`` horizontally (the
+        view is sorted by dx: a bisection)."""
+        robots = self._robots
+        if robots is not None:
+            return bisect_left(robots, (dx,), lo)
+        return lo + int(np.searchsorted(self._columns.dx[lo:], dx))
+
+    def dx_at(self, i: int) -> int:
+        """The horizontal offset of the i-th robot."""
+        robots = self._robots
+        return robots[i].dx if robots is not None else int(self._columns.dx[i])
+
+    def between(self, lo: int, hi: int) -> tuple[Seen, ...]:
+        """The robots lo..hi (a slice of :attr:`robots`)."""
+        robots = self._robots
+        return robots[lo:hi] if robots is not None else tuple(self._columns.entries(lo, hi))
+
+    def iter_between(self, lo: int, hi: int) -> Iterator[Seen]:
+        """The robots lo..hi one by one, made as they are asked for (in chunks): for a scan that usually
+        stops after a few."""
+        robots = self._robots
+        if robots is not None:
+            yield from robots[lo:hi]
+            return
+        for a in range(lo, hi, _CHUNK):
+            yield from self._columns.entries(a, min(a + _CHUNK, hi))
+
+    def count(self, light: str) -> int:
+        """How many of the robots it sees show this light."""
+        if self._robots is not None:
+            return sum(1 for s in self._robots if s.light == light)
+        return int(np.count_nonzero(self._columns.showing(light)))
 
     def at(self, dx: int, dy: int) -> Seen | None:
         """The visible robot at this offset, if any."""

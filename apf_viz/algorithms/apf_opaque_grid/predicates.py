@@ -17,7 +17,6 @@ contiguous run found by bisection: L_I, L_V and R_I cost O(log k), not a scan of
 
 from __future__ import annotations
 
-from bisect import bisect_left
 from operator import itemgetter
 
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence, HalfPlane, Line
@@ -45,12 +44,12 @@ def _columns(view: Snapshot) -> tuple[list[Seen], list[Seen], list[Seen]]:
     last = _last_columns
     if last[0] is view:
         return last[1]
-    robots = view.robots
-    i0 = bisect_left(robots, (0,))
-    i1 = bisect_left(robots, (1,), i0)
-    left = list(robots[bisect_left(robots, (robots[i0 - 1].dx,), 0, i0) : i0]) if i0 else []
-    right = list(robots[i1 : bisect_left(robots, (robots[i1].dx + 1,), i1)]) if i1 < len(robots) else []
-    columns = (left, list(robots[i0:i1]), right)
+    n = len(view)
+    i0 = view.column_start(0)
+    i1 = view.column_start(1, i0)
+    left = list(view.between(view.column_start(view.dx_at(i0 - 1)), i0)) if i0 else []
+    right = list(view.between(i1, view.column_start(view.dx_at(i1) + 1, i1))) if i1 < n else []
+    columns = (left, list(view.between(i0, i1)), right)
     _last_columns = (view, columns)
     return columns
 
@@ -89,7 +88,7 @@ def _neighbour_line(view: Snapshot, which: int, name: str, side: str, ev: Eviden
 
 def left_open_half_empty(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_L^O(r) = ∅: no robot strictly left of r (exact by V1). Equivalently, r is on L_1."""
-    value = not view.robots or view.robots[0].dx >= 0
+    value = not len(view) or view.dx_at(0) >= 0
     if ev.active:
         ev.region(HalfPlane("x", 0, -1, False, "H_L^O"))
         ev.test("H_L^O(r) = ∅", value, "no robot strictly left of me, in the open half-plane (I am on L_1)")
@@ -98,7 +97,7 @@ def left_open_half_empty(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
 
 def left_closed_half_has_other(view: Snapshot, ev: Evidence = NO_EVIDENCE) -> bool:
     """H_L^C(r) ∖ {r} ≠ ∅: some robot with dx ≤ 0 (exact by V1)."""
-    value = bool(view.robots) and view.robots[0].dx <= 0
+    value = bool(len(view)) and view.dx_at(0) <= 0
     if ev.active:
         ev.region(HalfPlane("x", 0, -1, True, "H_L^C"))
         ev.test("H_L^C(r) ∖ {r} ≠ ∅", value, "another robot on my line or to its left (closed half-plane)")

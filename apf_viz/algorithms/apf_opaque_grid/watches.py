@@ -16,10 +16,8 @@ would do, up to :data:`WITNESSES` are watched (``any_of``).
 
 from __future__ import annotations
 
-from bisect import bisect_left
 from collections.abc import Iterable
 from math import gcd
-from operator import itemgetter
 
 from apf_viz.algorithms.apf_opaque_grid.predicates import left_neighbour_line
 from apf_viz.core.algorithm import Box, Watch
@@ -59,14 +57,20 @@ def sparsest(candidates: Iterable[Seen]) -> Seen:
 
 
 def some_witnesses(candidates: Iterable[Seen], far: bool = False) -> tuple[tuple[int, int], ...]:
-    """Up to :data:`WITNESSES` of the candidates, sparsest first: any one of them suffices (``any_of``)."""
-    candidates = list(candidates)
-    if not far:  # the usual case, cheaply: enough witnesses whose segment is a single point
-        single = [s for s in candidates if gcd(s.dx, s.dy) == 1]
-        if len(single) >= WITNESSES:
-            return tuple(map(_offset, single[:WITNESSES]))
+    """Up to :data:`WITNESSES` of the candidates, sparsest first: any one of them suffices (``any_of``).
+    The candidates are read only as far as needed (a view's lazy range, :meth:`Snapshot.iter_between`)."""
+    if far:
+        taken = list(candidates)
+    else:  # the usual case, cheaply: the first witnesses whose segment is a single point
+        taken, single = [], []
+        for s in candidates:
+            taken.append(s)
+            if gcd(s.dx, s.dy) == 1:
+                single.append(s)
+                if len(single) == WITNESSES:
+                    return tuple(map(_offset, single))
     sign = -1 if far else 1
-    chosen = sorted(candidates, key=lambda s: _sparsity(s, sign))[:WITNESSES]
+    chosen = sorted(taken, key=lambda s: _sparsity(s, sign))[:WITNESSES]
     return tuple(map(_offset, chosen))
 
 
@@ -88,9 +92,10 @@ def phase1_wait(view: Snapshot) -> Watch:
     Tighter when r sees no terminal1 robot and some robot w to its left: with w in sight there (any of
     several, wherever they move in the left half) H_L^O is not empty, so the terminal rule cannot fire,
     and with no terminal1 robot coming into sight L_I cannot hold two; nothing else is read."""
-    left = view.robots[: bisect_left(view.robots, (0,))]
-    if left and "terminal1" not in map(itemgetter(2), view.robots):
-        return Watch(any_of=some_witnesses(left), within=LEFT_HALF, lights=PHASES_2_3 | {"terminal1"})
+    left = view.column_start(0)
+    if left and "terminal1" not in view.lights():
+        witnesses = some_witnesses(view.iter_between(0, left))
+        return Watch(any_of=witnesses, within=LEFT_HALF, lights=PHASES_2_3 | {"terminal1"})
     return Watch(boxes=(_to_my_line_from_left_line(view),), lights=PHASES_2_3)
 
 
@@ -128,15 +133,16 @@ def not_my_turn(view: Snapshot, leader: Seen, between: Box | None) -> Watch | No
     leader: wait) or runs Phases 1–2, where no decider means no Phase 2, G1 at most waits, and
     Algorithm 1's off rules need H_L^O empty (w is there) or two terminal1 robots on L_I (none in
     sight). With two leaders in sight the first in the view's order is taken: no watch."""
-    lights = list(map(itemgetter(2), view.robots))
-    if lights.count("leader") != 1:
+    if view.count("leader") != 1:
         return None
     occupied = (ROW_LEFT, between) if between is not None else (ROW_LEFT,)
-    left = view.robots[: bisect_left(view.robots, (0,))]
+    left = view.column_start(0)
+    lights = view.lights()
     if left and "terminal1" not in lights and "decider" not in lights:
-        others = [s for s in left if s.light != "leader"]
+        # Any robot but the leader; only if the leader is all there is to the left, the leader.
+        witnesses = some_witnesses(s for s in view.iter_between(0, left) if s.light != "leader")
         return Watch(
-            any_of=some_witnesses(others or left),
+            any_of=witnesses or some_witnesses(view.iter_between(0, left)),
             within=LEFT_HALF,
             occupied=occupied,
             lights=frozenset({"leader", "terminal1", "decider"}),
