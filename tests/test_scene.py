@@ -232,3 +232,21 @@ def test_a_frames_label_goes_under_its_origin_unless_a_robot_or_its_number_is_th
     under = np.array([[0.0, -1.0]], dtype=np.float32)
     x, y, _ = frame_label_at((0.0, 0.0), 1, under)
     assert x > 2 and y == 0
+
+
+def test_a_camera_reframed_for_a_growing_run_leaves_room_beyond_the_sides_it_grew():
+    from apf_viz.ui.app import _inside
+    from apf_viz.ui.scene import grown_box
+
+    framed = (0.0, 0.0, 10.0, 5.0)
+    grown = grown_box((0.0, 0.0, 11.0, 5.0), framed)  # the line reached one cell further right
+    assert grown == (0.0, 0.0, 11.0 + 0.2 * 11.0, 5.0)  # only the side it grew past moves
+    # Growing a cell at a time, the camera moves every few cells, not at every one.
+    reframes, f = 0, framed
+    for right in range(11, 41):
+        box = (0.0, 0.0, float(right), 5.0)
+        if not _inside(box, f):
+            f, reframes = grown_box(box, f), reframes + 1
+        assert _inside(box, f)
+    assert 0 < reframes <= 8
+    assert grown_box((-3.0, -1.0, 10.0, 5.0), framed)[:2] == (-3.0 - 2.6, -1.0 - 2.6)  # left and down

@@ -78,3 +78,41 @@ def test_bad_serve_options_are_one_line_errors(args, message):
         [sys.executable, "-m", "apf_viz.cli", "serve", *args], capture_output=True, text=True, timeout=60
     )
     assert proc.returncode == 2 and message in proc.stderr and proc.stderr.count("\n") == 1, proc.stderr
+
+
+def test_play_keeps_the_speed_asked_when_frames_run_a_little_short():
+    """At a speed near FPS, frames a little shorter than 1/FPS still take a step each (a budget capped
+    at exactly one frame's share lost the fraction: every other frame stepped nothing); a stalled
+    frame is not made up in a burst."""
+    from apf_viz.ui.app import FPS, play_budget
+
+    budget, steps = 1.0, 0
+    for _ in range(300):
+        budget = play_budget(budget, 0.98 / FPS, float(FPS))
+        while budget >= 1:
+            budget, steps = budget - 1, steps + 1
+    assert steps >= 0.98 * 300 - 1
+    assert play_budget(0.0, 5.0, 2000.0) == 2000.0 / FPS + 1.0  # five seconds stalled: one frame's worth
+    assert play_budget(0.0, 5.0, 2.0) == 2.0  # slow play: at most two steps at once
+
+
+def test_settling_memory_collects_garbage_and_exempts_what_survives():
+    import gc
+    import weakref
+
+    from apf_viz.ui.app import settle_memory
+
+    class Node:
+        pass
+
+    a, b = Node(), Node()
+    a.other, b.other = b, a  # a cycle: only a collection frees it
+    gone = weakref.ref(a)
+    kept = [Node()]
+    del a, b
+    try:
+        settle_memory()
+        assert gone() is None and gc.get_freeze_count() > 0
+        assert any(x is kept for x in gc.get_referrers(kept[0]))  # what survives is still there
+    finally:
+        gc.unfreeze()

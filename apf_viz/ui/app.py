@@ -8,6 +8,7 @@ second, each frame one atomic update, so clicks stay responsive while the engine
 from __future__ import annotations
 
 import argparse
+import gc
 import socket
 import threading
 import time
@@ -30,11 +31,30 @@ from apf_viz.lecture import load_lecture
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
-from apf_viz.ui.scene import NARROW_ASPECT, SceneRenderer, camera_aspect, ray_through
+from apf_viz.ui.scene import NARROW_ASPECT, Box, SceneRenderer, camera_aspect, grown_box, ray_through
 from apf_viz.ui.session import Session
 
 FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
+
+
+def play_budget(budget: float, elapsed: float, speed: float) -> float:
+    """The steps a frame of Play may take: what is left over, plus ``speed`` for the time since the last
+    frame, capped at a frame's share plus one step in hand. The cap keeps a stalled frame from being
+    made up in a burst; the step in hand keeps a frame a little shorter than 1/FPS, at a speed near FPS,
+    from losing its fraction of a step (every other frame would step nothing: half the speed asked)."""
+    return min(budget + elapsed * speed, max(1.0, speed / FPS) + 1.0)
+
+
+def settle_memory() -> None:
+    """Collect garbage once, then exempt what survives from later collections (``gc.freeze``), as play
+    starts: a full collection scans every object a large run holds (its history, the decisions'
+    memo), about 60 ms at 1,000 robots, and came about once a second of play, each one a frame the
+    page waited for. Objects made while playing are still collected; the next play start re-collects
+    everything (``unfreeze`` first), so nothing unreachable stays frozen for long."""
+    gc.unfreeze()
+    gc.collect()
+    gc.freeze()
 
 
 def free_port(host: str = "127.0.0.1") -> int:
@@ -97,13 +117,14 @@ class BrowserScreen:
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
-    def frame(self, renderer: SceneRenderer) -> None:
+    def frame(self, renderer: SceneRenderer, bounds: Box | None = None) -> None:
+        """Frame its camera on the run, or on ``bounds`` (the run with room to grow)."""
         room = PRESENTATION_TOP_ROOM if self.panels.presenting else 0.0
-        position, self._framed_aspect = renderer.frame_camera(self.client.camera, room)
+        position, self._framed_aspect = renderer.frame_camera(self.client.camera, room, bounds)
         if position is not None:
             self._sending(position)
         self.state.camera = "framed"
-        self.state.framed_bounds = renderer.bounds
+        self.state.framed_bounds = renderer.bounds if bounds is None else bounds
 
 
 def _same_pose(position: np.ndarray, sent: np.ndarray) -> bool:
@@ -227,13 +248,18 @@ class App:
         stepping: a run too slow for the requested speed plays slower instead of starving the frames."""
         budget = 0.0
         last = tick = time.perf_counter()
+        was_playing = False
         while not self._stop.is_set():
             if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
                 self._dirty.wait(timeout=1.0 / FPS)
             now = time.perf_counter()
             s = self.session
             if s.playing:
-                budget = min(budget + (now - last) * s.speed, max(1.0, s.speed / FPS))
+                if not was_playing:  # the first step at once, after the collection it waited for
+                    settle_memory()
+                    now = last = time.perf_counter()
+                    budget = 1.0
+                budget = play_budget(budget, now - last, s.speed)
                 deadline = now + STEP_SHARE / FPS
                 while budget >= 1 and time.perf_counter() < deadline:
                     taken = s.play_steps(int(budget))
@@ -243,6 +269,7 @@ class App:
                 self._dirty.set()
             else:
                 budget = 0.0
+            was_playing = s.playing
             last = now
             if self._dirty.is_set():
                 self._dirty.clear()
@@ -285,15 +312,16 @@ class App:
                 screen.frame(self.renderer)
             return
         if not _inside(b, self._initial_bounds):
-            self._frame_initial()
+            f = self._initial_bounds
+            self._frame_initial(None if f is None else grown_box(b, f))
         for screen in screens:
             f = screen.state.framed_bounds
             if screen.state.camera == "framed" and (f is None or not _inside(b, f)):
-                screen.frame(self.renderer)
+                screen.frame(self.renderer, None if f is None else grown_box(b, f))
 
-    def _frame_initial(self) -> None:
-        self.renderer.frame_initial_camera(self.server.initial_camera)
-        self._initial_bounds = self.renderer.bounds
+    def _frame_initial(self, bounds: Box | None = None) -> None:
+        self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
+        self._initial_bounds = self.renderer.bounds if bounds is None else bounds
 
     def _render_compare(self, view) -> None:
         """The second run of Compare beside the first, at a fixed distance to its right (the width of

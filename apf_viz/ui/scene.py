@@ -665,13 +665,17 @@ class SceneRenderer:
 
     # ------------------------------------------------------------------ camera
     def camera_pose(
-        self, aspect: float = NARROW_ASPECT, top_room: float = 0.0
+        self,
+        aspect: float = NARROW_ASPECT,
+        top_room: float = 0.0,
+        bounds: tuple[float, float, float, float] | None = None,
     ) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
         """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between), for
         a canvas ``aspect`` = width / height (the field of view is vertical, so a narrow canvas needs the
         camera higher to fit the run's width); ``top_room``: the share of the canvas's height to leave
-        free at the top (presentation mode's caption floats there)."""
-        x0, y0, x1, y1 = self.bounds
+        free at the top (presentation mode's caption floats there). ``bounds``: a box to show instead of
+        the run's own (one with room to grow, :func:`grown_box`)."""
+        x0, y0, x1, y1 = self.bounds if bounds is None else bounds
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
         fov = float(np.deg2rad(50))
         extent = max((y1 - y0 + 4) / (1 - top_room), (x1 - x0 + 4) / max(aspect, 0.2), 10)
@@ -680,20 +684,22 @@ class SceneRenderer:
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
 
-    def frame_initial_camera(self, initial) -> None:
-        """The pose new browsers start from (and "Reset View" returns to)."""
-        position, look_at, fov = self.framed_pose = self.camera_pose()
+    def frame_initial_camera(self, initial, bounds: tuple[float, float, float, float] | None = None) -> None:
+        """The pose new browsers start from (and "Reset View" returns to): the run, or ``bounds``."""
+        position, look_at, fov = self.framed_pose = self.camera_pose(bounds=bounds)
         initial.fov = fov
         initial.up = (0.0, 0.0, 1.0)
         initial.position = position
         initial.look_at = look_at
 
-    def frame_camera(self, camera, top_room: float = 0.0) -> tuple[tuple[float, float, float] | None, float]:
-        """Move a connected browser's camera to the whole run (position first: it drags look_at along),
-        fitted to that browser's canvas (``top_room``: :meth:`camera_pose`). Returns the position sent
-        (None if none could be) and the aspect it was fitted to."""
+    def frame_camera(
+        self, camera, top_room: float = 0.0, bounds: tuple[float, float, float, float] | None = None
+    ) -> tuple[tuple[float, float, float] | None, float]:
+        """Move a connected browser's camera to the whole run, or to ``bounds`` (position first: it drags
+        look_at along), fitted to that browser's canvas (``top_room``: :meth:`camera_pose`). Returns the
+        position sent (None if none could be) and the aspect it was fitted to."""
         aspect = camera_aspect(camera)
-        position, look_at, fov = self.camera_pose(aspect, top_room)
+        position, look_at, fov = self.camera_pose(aspect, top_room, bounds)
         try:
             camera.fov = fov
             camera.position = position
@@ -701,6 +707,26 @@ class SceneRenderer:
         except AssertionError:
             return None, aspect  # the browser has not reported its camera yet; its initial pose is right
         return position, aspect
+
+
+GROWTH_ROOM = 0.2
+"""Of the run's extent: the room a camera re-framed for a growing run leaves beyond each side it grew."""
+
+Box = tuple[float, float, float, float]
+
+
+def grown_box(box: Box, framed: Box) -> Box:
+    """What a camera shows when the run (``box``) has grown out of the ``framed`` box: both, with room
+    beyond each side that grew. A run that grows a cell at a time (the line reaching out from the leader,
+    a robot walking away) then moves the camera every few cells, not at every frame: a steadier picture,
+    and no camera messages in the frames between."""
+    room = GROWTH_ROOM * max(box[2] - box[0], box[3] - box[1], 5.0)
+    return (
+        box[0] - room if box[0] < framed[0] else framed[0],
+        box[1] - room if box[1] < framed[1] else framed[1],
+        box[2] + room if box[2] > framed[2] else framed[2],
+        box[3] + room if box[3] > framed[3] else framed[3],
+    )
 
 
 def free_label_spot(

@@ -3,6 +3,8 @@ story of the last events."""
 
 from __future__ import annotations
 
+import time
+
 from viser._messages import GuiSliderMark
 
 from apf_viz.demos import scenarios
@@ -18,6 +20,12 @@ RELEASE_FOCUS = (
     '<img alt="" src="data:,{n}" style="display:none" '
     'onerror="document.activeElement && document.activeElement.blur && document.activeElement.blur()">'
 )
+
+
+LAST_EVENT_REFRESH_S = 0.125
+"""While playing, the last event's line changes at most this often: every event of a run played at up to
+8 steps a second, and no markdown re-rendered in every frame of a fast one (nobody reads 30 lines a
+second; the page draws fewer frames for each)."""
 
 
 class RunFolder:
@@ -64,6 +72,7 @@ class RunFolder:
             self.fatal.on_click(ctx.guard(self._to_fatal))
             self.event = gui.add_number("Event", initial_value=0, disabled=True)
             self.last_event = gui.add_markdown("")
+            self._last_event_at = -LAST_EVENT_REFRESH_S  # when the line last changed while playing
 
     def _trace_controls(self, gui) -> None:
         s = self.ctx.session
@@ -141,8 +150,12 @@ class RunFolder:
         self.controls.options = ("Step", "Back", "Pause" if view.playing else "Play", "Reset")
         self.event.value = view.event
         last = f"**Last event:** {view.last_events[0]}" if view.last_events else "**Last event:** —"
-        if self.last_event.content != last:
+        now = time.monotonic()
+        if self.last_event.content != last and (
+            not view.playing or now - self._last_event_at >= LAST_EVENT_REFRESH_S
+        ):
             self.last_event.content = last
+            self._last_event_at = now
         note = f"<small>{symbol_html(view.scenario_note)}</small>" if view.scenario_note else ""
         if self.demo_note.content != note:
             self.demo_note.content = note
