@@ -250,3 +250,25 @@ def test_a_camera_reframed_for_a_growing_run_leaves_room_beyond_the_sides_it_gre
         assert _inside(box, f)
     assert 0 < reframes <= 8
     assert grown_box((-3.0, -1.0, 10.0, 5.0), framed)[:2] == (-3.0 - 2.6, -1.0 - 2.6)  # left and down
+
+
+def test_zoomed_out_a_frames_label_does_not_cover_the_targets_label():
+    """Over a 100-robot run a label is a cell or two tall (labels keep their size on screen): the targets'
+    label under their bottom row and the leader's frame's label under its origin, just below, used to
+    be drawn over each other."""
+    from apf_viz.ui.scene import label_box, text_cells
+
+    height = text_cells(80.0)  # the canvas shows 80 cells top to bottom
+    assert height > 1.0 and text_cells(10.0) == pytest.approx(0.35)
+    cells = np.array([[x, y] for x in range(10) for y in range(1, 11)], dtype=np.float32)
+    robots = np.array([[x, 10.0] for x in range(10)] + [[x, 0.0] for x in range(12, 40)], dtype=np.float32)
+    spot = cells_label_at(cells, robots, "targets", height)  # robots on the top row: below the cells
+    assert spot[1] < 1.0 - height
+    targets = label_box("targets", (spot[0], spot[1], spot[0]), height)
+    frame = frame_label_at((0.0, 0.0), 1, robots, "the leader's frame", height, [targets])
+    box = label_box("the leader's frame", (frame[0], frame[1], frame[0]), height)
+    assert not (box[0] < targets[2] and targets[0] < box[2] and box[1] < targets[3] and targets[1] < box[3])
+    # Without the targets' label in the way it goes under the origin, as when zoomed in.
+    assert frame_label_at((0.0, 0.0), 1, robots, "the leader's frame", height)[1] == pytest.approx(
+        -0.25 - height
+    )

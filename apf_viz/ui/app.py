@@ -160,6 +160,7 @@ class App:
         self._stop = threading.Event()
         self._framed_engine = session.engine  # the run the cameras were last framed on
         self._initial_bounds: tuple[float, float, float, float] | None = None
+        self._framed_end = False  # the cameras were framed on the run's end
         self.frames = 0
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
@@ -302,15 +303,25 @@ class App:
         """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;
         a run growing out of a framed box (robots, targets, the leader's frame) re-frames the browsers
         whose camera is framed — one moved by hand is left alone — and the initial camera of browsers
-        yet to join."""
+        yet to join, with room to grow; and a run that ends re-frames them on its end, which a camera
+        framed for the run's widest moment (the line) shows small."""
         engine = self.session.engine
         b = self.renderer.bounds
+        ended = engine.outcome is not None
         if engine is not self._framed_engine:
-            self._framed_engine = engine
+            self._framed_engine, self._framed_end = engine, ended
             self._frame_initial()
             for screen in screens:
                 screen.frame(self.renderer)
             return
+        if ended != self._framed_end:
+            self._framed_end = ended
+            if ended:  # the run's last picture (FORMED, or where it stuck) fills the framed cameras
+                self._frame_initial()
+                for screen in screens:
+                    if screen.state.camera == "framed":
+                        screen.frame(self.renderer)
+                return
         if not _inside(b, self._initial_bounds):
             f = self._initial_bounds
             self._frame_initial(None if f is None else grown_box(b, f))
@@ -322,6 +333,7 @@ class App:
     def _frame_initial(self, bounds: Box | None = None) -> None:
         self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
         self._initial_bounds = self.renderer.bounds if bounds is None else bounds
+        self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more
 
     def _render_compare(self, view) -> None:
         """The second run of Compare beside the first, at a fixed distance to its right (the width of

@@ -514,6 +514,14 @@ class SceneRenderer:
             if mark:
                 labels.append((mark.label, tuple(segs[0, 1])))
         self._slots["line"] = max(len(lines), self._slots.get("line", 0))
+        height = text_cells(self._visible_height())
+        taken = []  # the cells' label first: a frame's label has more places to go
+        cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
+        if cells is not None and cells.points and view.mode != "edit-pattern":
+            local = self._local(cells.points)
+            spot = cells_label_at(local, robots, cells.label, height)
+            labels.append((cells.label, spot))
+            taken.append(label_box(cells.label, (spot[0], spot[1], spot[0]), height))
         for i in range(max(len(frames), self._slots.get("frame", 0))):
             mark = frames[i] if i < len(frames) else None
             segs = self._frame(mark) if mark else np.zeros((0, 2, 3), np.float32)
@@ -522,12 +530,10 @@ class SceneRenderer:
             )
             if mark:
                 origin = (float(segs[0, 0, 0]), float(segs[0, 0, 1]))
-                labels.append((mark.label, frame_label_at(origin, mark.y_sign, robots)))
+                spot = frame_label_at(origin, mark.y_sign, robots, mark.label, height, taken)
+                labels.append((mark.label, spot))
+                taken.append(label_box(mark.label, (spot[0], spot[1], spot[0]), height))
         self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
-        cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
-        if cells is not None and cells.points and view.mode != "edit-pattern":
-            local = self._local(cells.points)
-            labels.append((cells.label, cells_label_at(local, robots)))
         self._labels("/marks/labels", labels)
 
     def _line(self, mark: Line) -> np.ndarray:
@@ -684,6 +690,12 @@ class SceneRenderer:
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
 
+    def _visible_height(self) -> float:
+        """How many cells tall the framed view is (the initial camera's pose: what browsers are framed
+        to, near enough for laying out labels)."""
+        position, look_at, fov = self.framed_pose
+        return 2.0 * abs(position[2] - look_at[2]) * float(np.tan(fov / 2))
+
     def frame_initial_camera(self, initial, bounds: tuple[float, float, float, float] | None = None) -> None:
         """The pose new browsers start from (and "Reset View" returns to): the run, or ``bounds``."""
         position, look_at, fov = self.framed_pose = self.camera_pose(bounds=bounds)
@@ -729,44 +741,92 @@ def grown_box(box: Box, framed: Box) -> Box:
     )
 
 
+LABEL_TEXT_PX = 15.0  # a label's height on screen, padding included (viser's labels keep a screen size)
+TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for (1400×900 and 1024×768 windows)
+TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)
+
+Spot = tuple[float, float, float]  # (x, y, x where the text ends), in scene units
+
+
+def text_cells(visible_height: float) -> float:
+    """A label's height in grid cells when the canvas shows ``visible_height`` cells: a label keeps its
+    size on screen, so zoomed out over a large run it is several cells tall."""
+    return max(TEXT_CELLS_MIN, LABEL_TEXT_PX * visible_height / TYPICAL_CANVAS_PX)
+
+
+def label_box(text: str, spot: Spot, height: float) -> tuple[float, float, float, float]:
+    """The rectangle (x0, y0, x1, y1) a label's text covers, drawn from ``spot`` (its lower left)."""
+    x, y, x_end = spot
+    return (x, y - 0.25, max(x_end, x + 0.55 * height * len(text)), y - 0.25 + max(0.5, height))
+
+
+def _overlaps(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
 def free_label_spot(
-    spots: list[tuple[float, float, float]], robots: np.ndarray
+    spots: list[Spot],
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[tuple[float, float, float, float]] | None = None,
 ) -> tuple[float, float, float]:
-    """The first of ``spots`` — (x, y, and the x where the text ends) — where the text covers no robot
-    and no robot's number (upper right of its disc); the first if every one does."""
-    for x, y, x_end in spots:
+    """The first of ``spots`` where the text covers no robot, no robot's number (upper right of its
+    disc) and no label already placed (``taken``: their :func:`label_box`); else the first that covers
+    no label (a label over a robot still reads, two labels over each other do not); else the first."""
+    taken = taken or []
+    clear_of_labels = []
+    for spot in spots:
+        box = label_box(text, spot, height)
+        if any(_overlaps(box, t) for t in taken):
+            continue
+        clear_of_labels.append(spot)
         covered = (
-            (robots[:, 1] - 0.4 < y + 0.25)
-            & (robots[:, 1] + 0.7 > y - 0.25)
-            & (robots[:, 0] - 0.5 < x_end)
-            & (robots[:, 0] + 0.7 > x)
+            (robots[:, 1] - 0.4 < box[3])
+            & (robots[:, 1] + 0.7 > box[1])
+            & (robots[:, 0] - 0.5 < box[2])
+            & (robots[:, 0] + 0.7 > box[0])
         )
         if not covered.any():
-            return (x, y, 0.1)
-    return (spots[0][0], spots[0][1], 0.1)
+            return (spot[0], spot[1], 0.1)
+    x, y, _ = (clear_of_labels or spots)[0]
+    return (x, y, 0.1)
 
 
-def cells_label_at(cells: np.ndarray, robots: np.ndarray) -> tuple[float, float, float]:
+def cells_label_at(
+    cells: np.ndarray, robots: np.ndarray, text: str = "", height: float = TEXT_CELLS_MIN
+) -> tuple[float, float, float]:
     """Where a set of cells' label goes: just above their top row; when a robot stands where the text
     would be (a pattern drawn among the robots, as the Unsolvable box demo's is), just below their bottom
     row, else to the right of their top row. So the label does not cover a robot."""
     left, right = float(cells[:, 0].min()) - 0.4, float(cells[:, 0].max())
     top, bottom = float(cells[:, 1].max()), float(cells[:, 1].min())
+    below = bottom - 0.55 - height  # its text ends just under the bottom row, however tall it is
     return free_label_spot(
-        [(left, top + 0.6, right + 0.5), (left, bottom - 0.9, right + 0.5), (right + 0.7, top, right + 3.7)],
+        [(left, top + 0.6, right + 0.5), (left, below, right + 0.5), (right + 0.7, top, right + 3.7)],
         robots,
+        text,
+        height,
     )
 
 
 def frame_label_at(
-    origin: tuple[float, float], y_sign: int, robots: np.ndarray
+    origin: tuple[float, float],
+    y_sign: int,
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[tuple[float, float, float, float]] | None = None,
 ) -> tuple[float, float, float]:
     """Where a frame's label goes: under its origin (on the side away from its +y arm), else beyond the
     end of its x arm, else past the tip of its y arm; not over a robot or its number where one of these
-    is free (the leader's neighbours crowd its row), and under the origin when none is."""
+    is free (the leader's neighbours crowd its row), never over another label (``taken``) where one is
+    free of labels, and under the origin when none is."""
     ox, oy = origin
-    under, beyond_x = (ox, oy - 0.6 * y_sign, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
-    return free_label_spot([under, beyond_x, (ox - 0.4, oy + 2.6 * y_sign, ox + 2.6)], robots)
+    away = oy + 0.6 if y_sign < 0 else oy - 0.25 - height
+    tip = oy + 2.6 if y_sign > 0 else oy - 2.25 - height
+    under, beyond_x = (ox, away, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
+    return free_label_spot([under, beyond_x, (ox - 0.4, tip, ox + 2.6)], robots, text, height, taken)
 
 
 def ray_through(camera, screen: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
