@@ -272,3 +272,26 @@ def test_zoomed_out_a_frames_label_does_not_cover_the_targets_label():
     assert frame_label_at((0.0, 0.0), 1, robots, "the leader's frame", height)[1] == pytest.approx(
         -0.25 - height
     )
+
+
+def test_the_first_click_of_a_two_click_tool_is_marked_until_the_second(renderer):
+    """Edit, the move tool: after the first click the cell it picked shows a diamond and a word; the
+    second click clears both (the Edit panel's hint says the same: test_ui_browser)."""
+    s = Session([(0, 0), (3, 0), (5, 1), (2, 2)], [(0, 0), (1, 0), (2, 0), (0, 1)], y_up=[True] * 4)
+    s.set_mode("edit-pattern")
+    s.set_tool("move")
+    s.click((1, 0))
+    view = s.view()
+    assert view.anchor == (1, 0)
+    renderer.render(view)
+    mark = renderer._handles["/anchor"]
+    assert mark.visible and mark.point_shape == "diamond"
+    assert np.asarray(mark.points)[0, :2].tolist() == list(renderer.to_scene((1, 0)))
+    assert renderer._handles["/anchor_label/0"].text.startswith("first click")
+    s.click((4, 2))
+    view = s.view()
+    assert view.anchor is None
+    renderer.render(view)
+    assert not renderer._handles["/anchor"].visible and not renderer._handles["/anchor_label/0"].visible
+    s.set_mode("run")
+    assert s.view().anchor is None

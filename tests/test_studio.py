@@ -121,7 +121,11 @@ def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_th
             kept()
             studio.click(editor, "edit-pattern", (cell[0] + 2, cell[1] + 1))  # a two-click tool's second
         elif kind == "transform":
-            studio.transform(editor, "edit-pattern", what)
+            before = editor.draft
+            try:
+                studio.transform(editor, "edit-pattern", what)
+            except shapes.ShapeError:  # e.g. Scale ×2 three times over 10,000 cells: refused, unchanged
+                assert editor.draft == before
         else:
             studio.box(editor, "edit-pattern", cell, (cell[0] + 1, cell[1] + 2), erase=what)
         kept()

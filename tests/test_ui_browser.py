@@ -1235,12 +1235,18 @@ def test_in_edit_robots_a_robot_moves_with_the_move_tool(browser, app):
     free = (start[0], start[1] - 2)
     while free in s.editor.robots:
         free = (free[0], free[1] - 1)
-    for cell in (start, free):
-        x, y = screen_of(app, page, cell)
-        page.mouse.click(x, y)
-        time.sleep(0.3)
+    x, y = screen_of(app, page, start)
+    page.mouse.click(x, y)
+    # The first click is seen to wait for the second: the panel says so, the cell is marked.
+    page.get_by_text(f"first click at {start}").wait_for()
+    page.get_by_text("where it goes").first.wait_for()
+    wait_for(lambda: app.renderer._handles["/anchor"].visible)
+    shot(page, "studio-move-first-click")
+    x, y = screen_of(app, page, free)
+    page.mouse.click(x, y)
     wait_for(lambda: free in s.editor.robots and start not in s.editor.robots)
     assert len(s.editor.robots) == s.engine.k
+    wait_for(lambda: not app.renderer._handles["/anchor"].visible)
     shot(page, "studio-move-robot")
     page.close()
 

@@ -37,6 +37,7 @@ MARK_COLORS: dict[str, Color] = {
     "region": (0, 114, 178),  # the first of REGION_COLORS: the legend's swatch
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),
+    "anchor": (213, 94, 0),  # Edit: the first click of a two-click tool, waiting for the second
 }
 # The regions a Why explanation tested, each its own colour (in order: the rule's first test first), so
 # that "1" on the canvas and "1" in the panel are the same region at a glance. Okabe & Ito again.
@@ -61,4 +62,5 @@ MARK_SHAPES: dict[str, str] = {
     "never": "square",
     "selected": "circle",
     "last": "circle",
+    "anchor": "diamond",
 }

@@ -45,6 +45,7 @@ _VISER_POINT_SCALE = 0.5
 Z = 0.12  # the robots' discs
 _LAYER = {
     "diverged": 0.015,  # Compare's diverging robot: a diamond under everything
+    "anchor": 0.016,  # Edit: a two-click tool's first click, a diamond whose corners show round a robot
     "selected": 0.02,  # rings, widest at the bottom
     "never": 0.03,
     "last": 0.04,
@@ -251,10 +252,21 @@ class SceneRenderer:
         axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
         self._marks(view, pts)
+        self._anchor(view)
         x0, _, _, y1 = self.bounds
         self._labels("/title", [(title, (x0 - 0.5, y1 + 2.0, 0.1))] if title else [])
         if self.layer == "all":
             self._selection(view)
+
+    def _anchor(self, view: SessionView) -> None:
+        """Edit: the first click of a two-click tool, marked until the second (a diamond and a word), so
+        the drawing is seen to wait for it."""
+        at = self._local([view.anchor]) if view.anchor is not None else np.zeros((0, 2), np.float32)
+        self._points("/anchor", _xyz(at, _LAYER["anchor"]), MARK_COLORS["anchor"], 1.5, MARK_SHAPES["anchor"])
+        said = [
+            ("first click: now the second", (float(x) + 0.5, float(y) + 0.35, 0.1)) for x, y in at.tolist()
+        ]
+        self._labels("/anchor_label", said)
 
     def _trails(self, view: SessionView) -> None:
         """Each robot's recent path as segments in its light's colour, under the robots, one line set

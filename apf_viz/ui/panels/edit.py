@@ -103,7 +103,11 @@ class EditFolder:
         studio = self.ctx.session.screen.studio
         if self.tool.value != studio.tool:
             self.tool.value = studio.tool
-        self.tool_hint.content = f"<small>{TOOLS[studio.tool]}</small>"
+        hint = TOOLS[studio.tool]
+        if view.anchor is not None:  # the first of two clicks is in: say what the second does
+            second = "where it goes" if studio.tool == "move" else "the second"
+            hint = f"**first click at {view.anchor}**: now click {second} ({hint})"
+        self.tool_hint.content = f"<small>{hint}</small>"
         self._boxes(view.mode != "run" and studio.tool == "box")
         options = ("—", *self.ctx.session.saved)
         if tuple(self.saved.options) != options:

@@ -89,6 +89,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         draft_count=len(screen.editor.pattern),  # the pattern drawn (Edit), or the run's
         robot_count=len(screen.editor.robots) if screen.mode != "run" else e.k,
         axis=screen.editor.axis() if screen.mode == "edit-robots" else None,
+        anchor=screen.studio.anchor if screen.mode != "run" else None,
         move_series=run.series.at(e.history, e.step_index),
         scheduler=run.config.scheduler,
         playing=run.playing,

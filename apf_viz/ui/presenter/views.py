@@ -69,6 +69,7 @@ class SessionView:
     draft_count: int  # points of the pattern being drawn (in Run: the pattern)
     robot_count: int  # robots being placed (in Run: the run's)
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
+    anchor: Point | None = None  # Edit: the first click of a two-click tool (line, outline, move)
     selected: int | None = None  # this browser's (or, following, the presenter's) selected robot
     rays: tuple[tuple[Point, Point], ...] = ()  # to what the selected robot saw (its snapshot) or sees now
     ghosts: tuple[Ghost, ...] = ()  # where a robot was seen, in the light seen, if changed since
