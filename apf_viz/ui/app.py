@@ -31,7 +31,7 @@ from apf_viz.lecture import load_lecture
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
-from apf_viz.ui.scene import NARROW_ASPECT, Box, SceneRenderer, camera_aspect, grown_box, ray_through
+from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, grown_box, ray_through
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -117,7 +117,7 @@ class BrowserScreen:
         self.state.camera = "framed"
         self.state.framed_bounds = renderer.bounds
 
-    def frame(self, renderer: SceneRenderer, bounds: Box | None = None) -> None:
+    def frame(self, renderer: SceneRenderer, bounds: Bounds | None = None) -> None:
         """Frame its camera on the run, or on ``bounds`` (the run with room to grow)."""
         room = PRESENTATION_TOP_ROOM if self.panels.presenting else 0.0
         position, self._framed_aspect = renderer.frame_camera(self.client.camera, room, bounds)
@@ -308,20 +308,15 @@ class App:
         engine = self.session.engine
         b = self.renderer.bounds
         ended = engine.outcome is not None
-        if engine is not self._framed_engine:
+        new = engine is not self._framed_engine
+        if new or (ended and not self._framed_end):  # the run's last picture fills the framed cameras
             self._framed_engine, self._framed_end = engine, ended
             self._frame_initial()
             for screen in screens:
-                screen.frame(self.renderer)
+                if new or screen.state.camera == "framed":
+                    screen.frame(self.renderer)
             return
-        if ended != self._framed_end:
-            self._framed_end = ended
-            if ended:  # the run's last picture (FORMED, or where it stuck) fills the framed cameras
-                self._frame_initial()
-                for screen in screens:
-                    if screen.state.camera == "framed":
-                        screen.frame(self.renderer)
-                return
+        self._framed_end = ended
         if not _inside(b, self._initial_bounds):
             f = self._initial_bounds
             self._frame_initial(None if f is None else grown_box(b, f))
@@ -330,7 +325,7 @@ class App:
             if screen.state.camera == "framed" and (f is None or not _inside(b, f)):
                 screen.frame(self.renderer, None if f is None else grown_box(b, f))
 
-    def _frame_initial(self, bounds: Box | None = None) -> None:
+    def _frame_initial(self, bounds: Bounds | None = None) -> None:
         self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
         self._initial_bounds = self.renderer.bounds if bounds is None else bounds
         self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more

@@ -42,6 +42,7 @@ _VISER_POINT_SCALE = 0.5
 # Robots and their rings are flat discs in layers just above the grid, far enough apart for the depth
 # buffer (about 0.006 units at a typical camera distance) and close enough that perspective does not
 # shift one against another. Flat and unlit: a light's colour on the canvas is its legend swatch.
+Bounds = tuple[float, float, float, float]  # (x0, y0, x1, y1) in scene units: a run's box, a label's
 Z = 0.12  # the robots' discs
 _LAYER = {
     "diverged": 0.015,  # Compare's diverging robot: a diamond under everything
@@ -133,7 +134,7 @@ class SceneRenderer:
         self._counts: dict[str, int] = {}
         self._last: dict[str, tuple] = {}  # what each node shows now, to send only changes
         self._handles: dict[str, object] = {}
-        self.bounds: tuple[float, float, float, float] = (0, 0, 1, 1)  # scene units: grid minus origin
+        self.bounds: Bounds = (0, 0, 1, 1)  # scene units: grid minus origin
         self.origin: tuple[int, int] = (0, 0)  # the grid point drawn at the scene's (0, 0)
         self._grid_key: tuple[int, int, int, int] | None = None
         self._slots: dict[str, int] = {}  # nodes made so far per kind of mark (reused, hidden when idle)
@@ -686,7 +687,7 @@ class SceneRenderer:
         self,
         aspect: float = NARROW_ASPECT,
         top_room: float = 0.0,
-        bounds: tuple[float, float, float, float] | None = None,
+        bounds: Bounds | None = None,
     ) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
         """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between), for
         a canvas ``aspect`` = width / height (the field of view is vertical, so a narrow canvas needs the
@@ -708,7 +709,7 @@ class SceneRenderer:
         position, look_at, fov = self.framed_pose
         return 2.0 * abs(position[2] - look_at[2]) * float(np.tan(fov / 2))
 
-    def frame_initial_camera(self, initial, bounds: tuple[float, float, float, float] | None = None) -> None:
+    def frame_initial_camera(self, initial, bounds: Bounds | None = None) -> None:
         """The pose new browsers start from (and "Reset View" returns to): the run, or ``bounds``."""
         position, look_at, fov = self.framed_pose = self.camera_pose(bounds=bounds)
         initial.fov = fov
@@ -717,7 +718,7 @@ class SceneRenderer:
         initial.look_at = look_at
 
     def frame_camera(
-        self, camera, top_room: float = 0.0, bounds: tuple[float, float, float, float] | None = None
+        self, camera, top_room: float = 0.0, bounds: Bounds | None = None
     ) -> tuple[tuple[float, float, float] | None, float]:
         """Move a connected browser's camera to the whole run, or to ``bounds`` (position first: it drags
         look_at along), fitted to that browser's canvas (``top_room``: :meth:`camera_pose`). Returns the
@@ -736,10 +737,8 @@ class SceneRenderer:
 GROWTH_ROOM = 0.2
 """Of the run's extent: the room a camera re-framed for a growing run leaves beyond each side it grew."""
 
-Box = tuple[float, float, float, float]
 
-
-def grown_box(box: Box, framed: Box) -> Box:
+def grown_box(box: Bounds, framed: Bounds) -> Bounds:
     """What a camera shows when the run (``box``) has grown out of the ``framed`` box: both, with room
     beyond each side that grew. A run that grows a cell at a time (the line reaching out from the leader,
     a robot walking away) then moves the camera every few cells, not at every frame: a steadier picture,
@@ -766,13 +765,13 @@ def text_cells(visible_height: float) -> float:
     return max(TEXT_CELLS_MIN, LABEL_TEXT_PX * visible_height / TYPICAL_CANVAS_PX)
 
 
-def label_box(text: str, spot: Spot, height: float) -> tuple[float, float, float, float]:
+def label_box(text: str, spot: Spot, height: float) -> Bounds:
     """The rectangle (x0, y0, x1, y1) a label's text covers, drawn from ``spot`` (its lower left)."""
     x, y, x_end = spot
     return (x, y - 0.25, max(x_end, x + 0.55 * height * len(text)), y - 0.25 + max(0.5, height))
 
 
-def _overlaps(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> bool:
+def _overlaps(a: Bounds, b: Bounds) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
 
@@ -781,7 +780,7 @@ def free_label_spot(
     robots: np.ndarray,
     text: str = "",
     height: float = TEXT_CELLS_MIN,
-    taken: list[tuple[float, float, float, float]] | None = None,
+    taken: list[Bounds] | None = None,
 ) -> tuple[float, float, float]:
     """The first of ``spots`` where the text covers no robot, no robot's number (upper right of its
     disc) and no label already placed (``taken``: their :func:`label_box`); else the first that covers
@@ -828,7 +827,7 @@ def frame_label_at(
     robots: np.ndarray,
     text: str = "",
     height: float = TEXT_CELLS_MIN,
-    taken: list[tuple[float, float, float, float]] | None = None,
+    taken: list[Bounds] | None = None,
 ) -> tuple[float, float, float]:
     """Where a frame's label goes: under its origin (on the side away from its +y arm), else beyond the
     end of its x arm, else past the tip of its y arm; not over a robot or its number where one of these
