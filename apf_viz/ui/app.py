@@ -18,6 +18,7 @@ import numpy as np
 import viser
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
+from apf_viz.core.engine import Engine
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
     InputError,
@@ -284,7 +285,9 @@ class App:
     def _render(self) -> None:
         with self._screens_lock:
             screens = list(self.screens.values())
-        run_view, views = self.session.views([x.client.client_id for x in screens])
+        with self.session.lock:  # the run drawn and the run framed are one (a load may come in between)
+            engine = self.session.engine
+            run_view, views = self.session.views([x.client.client_id for x in screens])
         with self.server.atomic():
             self.renderer.render(run_view, f"A: {run_view.algorithm}" if run_view.compare else None)
             self._render_compare(run_view)
@@ -297,16 +300,15 @@ class App:
             except RuntimeError:  # the browser left while its frame was drawn
                 continue
         self.frames += 1
-        self._keep_framed(screens)
+        self._keep_framed(screens, engine)
 
-    def _keep_framed(self, screens: list[BrowserScreen]) -> None:
+    def _keep_framed(self, screens: list[BrowserScreen], engine: Engine) -> None:
         """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;
         a run growing out of a framed box (robots, targets, the leader's frame) re-frames the browsers
         whose camera is framed — one moved by hand is left alone — and the initial camera of browsers
         yet to join, with room to grow; and a run that ends re-frames them on its end, which a camera
         framed for the run's widest moment (the line) shows small."""
-        engine = self.session.engine
-        b = self.renderer.bounds
+        b = self.renderer.bounds  # ``engine``'s, just drawn
         ended = engine.outcome is not None
         new = engine is not self._framed_engine
         if new or (ended and not self._framed_end):  # the run's last picture fills the framed cameras
