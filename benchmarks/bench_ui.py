@@ -11,7 +11,10 @@
   end of a 5-second window, is printed too, as the start of pattern formation;
 - with ``--stage pattern``: pattern formation: the run is first stepped (no browser yet) until the
   leader is elected and ``--line`` robots have travelled to the line, so the scene holds the leader's
-  frame, the line and all k targets; then 5 seconds of play;
+  frame, the line and all k targets; then three 5-second windows of play after a first second. Each
+  prints the canvas's pixel ratio: viser's page lowers it (to 0.75 of the screen's) when it draws
+  fewer than 38 frames/s for 2.5 s, twice, so a software-rendered page settles at 0.75 after about 5 s
+  of play; the last window is that steady state, the first the page still at full resolution;
 - click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event;
 - with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
   watching (wall time, and the page's update rate meanwhile).
@@ -57,6 +60,15 @@ START_WAIT_CHANGE = """
     while (el.value === before && performance.now() - t0 < 5000) await new Promise(r => setTimeout(r, 1));
     return performance.now() - t0;
   })();
+}
+"""
+
+# The WebGL canvas's drawing-buffer pixels per CSS pixel (viser's adaptive resolution); the other canvas
+# on the page, a selection overlay, is 0×0 while unused.
+PIXEL_RATIO = """
+() => {
+  const c = [...document.querySelectorAll('canvas')].sort((a, b) => b.width - a.width)[0];
+  return c.width / c.clientWidth;
 }
 """
 
@@ -111,25 +123,28 @@ def main() -> None:
             return
         session.set_speed(args.speed)  # 2,000: the speed of every earlier measurement (the top is 5,000)
         where = f"{args.robots} robots, {args.stage}, {args.speed:g} steps/s"
-        if elected_at is None:  # pattern formation: a second of play first, then a 5-second window
+        stage_before = session.view().stage
+        if elected_at is None:  # pattern formation: a second of play first, then the windows
             session.toggle_play()
             time.sleep(1)
-        stage_before = session.view().stage
-        frames_before = app.frames
-        page.evaluate(START_RECORD, [5000])
         if elected_at is not None:  # leader election: the window starts with the run
+            ratio = page.evaluate(PIXEL_RATIO)
+            frames_before = app.frames
+            page.evaluate(START_RECORD, [5000])
             session.toggle_play()
-        frames, changes = page.evaluate("window.__probe")
-        sent = (app.frames - frames_before) / 5.0
+            frames, changes = page.evaluate("window.__probe")
+            sent = (app.frames - frames_before) / 5.0
+            election_window(frames, changes, elected_at, where)
+            print(f"| frames/s the server sent in the 5-second window (one update each) | {sent:.1f} |")
+            end_ratio = page.evaluate(PIXEL_RATIO)
+            print(f"(the canvas's pixel ratio: {ratio:.2f} at the start, {end_ratio:.2f} at the end)")
+        else:
+            print(f"(from '{stage_before}')")
+            for window in range(3):
+                pattern_window(app, page, f"{where}, {1 + 5 * window}–{6 + 5 * window} s of play")
+            print(f"(to '{session.view().stage}')")
         session.pause()
         server_fps = app.frames
-        if elected_at is not None:
-            election_window(frames, changes, elected_at, where)
-        else:
-            print(f"(the window ran from '{stage_before}' to '{session.view().stage}')")
-            print(f"| scene updates/s in the browser while playing, {where} | {len(changes) / 5.0:.1f} |")
-            print(f"| frames/s the page drew meanwhile (some show no new update) | {len(frames) / 5.0:.1f} |")
-        print(f"| frames/s the server sent in the 5-second window (one atomic update each) | {sent:.1f} |")
         session.set_scheduler("manual")
         time.sleep(0.5)
         latencies = []
@@ -145,6 +160,19 @@ def main() -> None:
         print(f"(server rendered {server_fps} frames in all)")
         browser.close()
     app.stop()
+
+
+def pattern_window(app: App, page, where: str) -> None:
+    """Five seconds of play: the page's update and frame rates, the server's, and the pixel ratio."""
+    ratio = page.evaluate(PIXEL_RATIO)
+    frames_before = app.frames
+    page.evaluate(START_RECORD, [5000])
+    frames, changes = page.evaluate("window.__probe")
+    sent = (app.frames - frames_before) / 5.0
+    print(
+        f"| scene updates/s in the browser, {where} (pixel ratio {ratio:.2f}) | {len(changes) / 5.0:.1f} "
+        f"| page frames/s {len(frames) / 5.0:.1f} | server frames/s {sent:.1f} |"
+    )
 
 
 def election_end(session: Session) -> int:

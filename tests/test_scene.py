@@ -19,6 +19,7 @@ from apf_viz.ui.scene import (
     cells_label_at,
     frame_label_at,
     grid_steps,
+    noses_legible,
 )
 from apf_viz.ui.session import Session
 
@@ -74,6 +75,20 @@ def test_many_robots_are_one_point_cloud_per_light(renderer):
     assert set(clouds) == {"/robots/off"}
     assert len(clouds["/robots/off"].points) == DENSE + 50
     assert len(renderer._handles["/robots/y_axes"].points) == DENSE + 50
+
+
+def test_y_axis_diamonds_are_drawn_only_where_a_browser_is_zoomed_in_enough_to_see_them(renderer):
+    s = session_of(1000)  # framed whole, a cell is about a pixel: a diamond would be a speck
+    renderer.render(s.view())
+    renderer.frame_initial_camera(renderer.server.initial_camera)
+    renderer.render(s.view())
+    assert not noses_legible(renderer._visible_height())
+    assert renderer._handles["/robots/y_axes"].visible is False
+    renderer.view_cells = 20.0  # a browser zoomed in on a corner of the run
+    renderer.render(s.view())
+    noses = renderer._handles["/robots/y_axes"]
+    assert noses.visible and len(noses.points) == 1000
+    assert noses_legible(20.0) and not noses_legible(200.0)
 
 
 def test_line_sets_and_halos_are_updated_in_place_and_hidden_when_empty(renderer):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import html
 import json
+import random
 import time
 from collections.abc import Iterator
 from io import BytesIO
@@ -18,9 +19,11 @@ import numpy as np
 import pytest
 from PIL import Image, ImageSequence
 
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import shapes
 from apf_viz.core.formats import load_trace
 from apf_viz.ui.app import App, _inside, demo_session, free_port
+from apf_viz.ui.session import Session
 
 playwright = pytest.importorskip("playwright.sync_api")
 CHROMIUM = "/usr/bin/chromium"
@@ -628,6 +631,28 @@ def test_frame_run_after_reset_points_the_camera_at_the_run(browser, app):
     x0, y0, x1, y1 = app.renderer.bounds
     assert abs(fitted[0] - (x0 + x1) / 2) < 1e-6  # centred on the run
     page.close()
+
+
+def test_a_crowd_framed_whole_hides_the_y_axis_diamonds_and_zooming_in_brings_them_back(browser):
+    rng = random.Random(3)
+    crowd = App(Session(random_solvable_start(1000, rng), random_pattern(1000, rng)), port=free_port())
+    try:
+        page = open_page(browser, crowd)
+        noses = lambda: crowd.renderer._handles["/robots/y_axes"]  # noqa: E731
+        wait_for(lambda: noses().visible is False)  # framed whole: a diamond would be a pixel
+        box = page.locator("canvas").first.bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        for _ in range(12):
+            page.mouse.wheel(0, -400)  # zoom far in
+            time.sleep(0.1)
+        wait_for(lambda: noses().visible and len(noses().points) == 1000)
+        for _ in range(12):
+            page.mouse.wheel(0, 400)
+            time.sleep(0.1)
+        wait_for(lambda: noses().visible is False)
+        page.close()
+    finally:
+        crowd.stop()
 
 
 def test_a_hint_goes_only_to_the_page_that_caused_it(browser, app):

@@ -32,7 +32,16 @@ from apf_viz.lecture import load_lecture
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
-from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, grown_box, ray_through
+from apf_viz.ui.scene import (
+    NARROW_ASPECT,
+    Bounds,
+    SceneRenderer,
+    camera_aspect,
+    camera_cells,
+    grown_box,
+    noses_legible,
+    ray_through,
+)
 from apf_viz.ui.session import Session
 
 FPS = 30
@@ -86,6 +95,8 @@ class BrowserScreen:
         self._renderer = app.renderer
         self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
         self._acknowledged = False  # it has reported the last pose sent
+        self.cells: float | None = None  # how many cells tall its camera shows (scene.camera_cells)
+        self._request_render = app.request_render
         client.camera.on_update(self._camera_moved)
 
     def _camera_moved(self, camera) -> None:
@@ -98,6 +109,9 @@ class BrowserScreen:
             position = np.asarray(camera.position, dtype=float)
         except (AssertionError, TypeError, ValueError):
             return
+        cells, self.cells = self.cells, camera_cells(camera)
+        if self.cells is not None and (cells is None or noses_legible(cells) != noses_legible(self.cells)):
+            self._request_render()  # zoomed in or out past where the y-axis diamonds are drawn
         if any(_same_pose(position, p) for p in self._sent):
             self._acknowledged = self._acknowledged or _same_pose(position, self._sent[-1])
         elif self._acknowledged:
@@ -288,6 +302,8 @@ class App:
         with self.session.lock:  # the run drawn and the run framed are one (a load may come in between)
             engine = self.session.engine
             run_view, views = self.session.views([x.client.client_id for x in screens])
+        cells = [x.cells for x in screens if x.cells is not None]
+        self.renderer.view_cells = min(cells) if cells else None
         with self.server.atomic():
             self.renderer.render(run_view, f"A: {run_view.algorithm}" if run_view.compare else None)
             self._render_compare(run_view)

@@ -57,6 +57,11 @@ _LAYER = {
     "fog": 0.13,  # over a robot the selected one cannot see, and on the robot that hides it
     "nose": 0.14,
 }
+NOSE_CELLS = 0.16  # the y-axis diamond's width in cells
+NOSE_MIN_PX = 2.5
+"""Below this width on screen the y-axis diamonds are not drawn: a pixel-wide speck says nothing, and over
+a 1,000-robot run framed whole they are a thousand points the page draws every frame (a tenth of a
+software-rendered frame, docs/PERFORMANCE.md). Zoomed in, they are drawn again."""
 GHOST_BADGE_OFFSET = (-0.34, 0.34)  # a light-only ghost, beside the robot it is the ghost of
 STALE_MARK = "stale"  # beside every robot holding a snapshot that others' moves or lights have made stale
 _SIZE = {  # disc diameters in cells: each ring shows as the band between its disc and the next
@@ -139,6 +144,9 @@ class SceneRenderer:
         self._grid_key: tuple[int, int, int, int] | None = None
         self._slots: dict[str, int] = {}  # nodes made so far per kind of mark (reused, hidden when idle)
         self.framed_pose = self.camera_pose()  # the pose browsers were last sent (tests project with it)
+        # How many cells tall the view of the browser zoomed in furthest is (the app sets it from the
+        # cameras); None: the framed pose's.
+        self.view_cells: float | None = None
 
     # ------------------------------------------------------------------ batched helpers
     def _in_place(self, name: str, data: np.ndarray, create: Callable[[], object], field: str) -> None:
@@ -333,10 +341,12 @@ class SceneRenderer:
             self._sprite_lights.add(light)
             color = palette.get(light, (0, 0, 0))
             self._points(f"/robots/{light}", _xyz(pts[lights == light], Z), color, _SIZE["robot"], "circle")
-        sign = np.array([1.0 if r.y_up else -1.0 for r in robots], dtype=np.float32)
-        nose = _xyz(pts, _LAYER["nose"])
+        legible = noses_legible(self.view_cells if self.view_cells is not None else self._visible_height())
+        shown = pts if legible else pts[:0]
+        sign = np.array([1.0 if r.y_up else -1.0 for r in robots[: len(shown)]], dtype=np.float32)
+        nose = _xyz(shown, _LAYER["nose"])
         nose[:, 1] += 0.2 * sign
-        self._points("/robots/y_axes", nose, (40, 40, 40), 0.16, "diamond")
+        self._points("/robots/y_axes", nose, (40, 40, 40), NOSE_CELLS, "diamond")
 
     def _rings(self, view: SessionView, pts: np.ndarray) -> None:
         """Rings under the robots, widest at the bottom: will never act (a grey square, a deadlock),
@@ -757,6 +767,23 @@ TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for (1400×90
 TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)
 
 Spot = tuple[float, float, float]  # (x, y, x where the text ends), in scene units
+
+
+def noses_legible(visible_height: float) -> bool:
+    """Whether the y-axis diamonds are wide enough on screen to be drawn, when the canvas shows
+    ``visible_height`` cells."""
+    return NOSE_CELLS * TYPICAL_CANVAS_PX / max(visible_height, 1e-9) >= NOSE_MIN_PX
+
+
+def camera_cells(camera) -> float | None:
+    """How many cells tall a browser's camera shows at the grid (None before it has reported)."""
+    try:
+        position = np.asarray(camera.position, dtype=float)
+        look_at = np.asarray(camera.look_at, dtype=float)
+        fov = float(camera.fov)
+    except (AssertionError, TypeError, ValueError):
+        return None
+    return 2.0 * float(np.linalg.norm(position - look_at)) * float(np.tan(fov / 2))
 
 
 def text_cells(visible_height: float) -> float:

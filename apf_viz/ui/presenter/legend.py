@@ -71,7 +71,12 @@ def _engine_marks() -> list[tuple[str, str, str]]:
         (_swatch(PHASE_COLORS["computed"], "ring"), "has computed", "its light is set, its move pending"),
         (_swatch(c["last"], "ring"), "acted last", "the robot of the last event"),
         (_swatch(c["selected"], "ring"), "selected", "click a robot to select it"),
-        ("<b>◆</b>", "its own +y", "the diamond: the robot's +y, down if the adversary flipped it"),
+        (
+            "<b>◆</b>",
+            "its own +y",
+            "the diamond: the robot's +y, down if the adversary flipped it (many robots: drawn once zoomed "
+            "in enough to see it)",
+        ),
         (_swatch(c["pending"], "line"), "pending move", "many robots: a dot where it goes"),
         (_swatch(c["ray"], "line"), "rays: what it saw", "to its snapshot; idle: what it would see now"),
         (
