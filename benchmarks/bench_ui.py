@@ -9,6 +9,9 @@
   for an update says more than a rate over so short a window). The event that ends it is
   found first by stepping a copy of the run without a browser. The update rate counted after it, to the
   end of a 5-second window, is printed too, as the start of pattern formation;
+- with ``--stage targets``: the last stage, the line complete and its robots leaving it one by one for
+  their targets (stepped to without a browser first: about four minutes at 1,000 robots), then the same
+  three windows;
 - with ``--stage pattern``: pattern formation: the run is first stepped (no browser yet) until the
   leader is elected and ``--line`` robots have travelled to the line, so the scene holds the leader's
   frame, the line and all k targets; then three 5-second windows of play after a first second. Each
@@ -19,7 +22,7 @@
 - with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
   watching (wall time, and the page's update rate meanwhile).
 
-Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern];
+Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
 python benchmarks/bench_ui.py --robots 100 --to-formed
 """
 
@@ -96,9 +99,10 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--robots", type=int, default=1000)
     ap.add_argument("--to-formed", action="store_true", help="play at top speed until the run ends")
-    ap.add_argument("--stage", choices=("election", "pattern"), default="election")
+    ap.add_argument("--stage", choices=("election", "pattern", "targets"), default="election")
     ap.add_argument("--line", type=int, default=20, help="with --stage pattern: robots on the line first")
     ap.add_argument("--speed", type=float, default=2000.0, help="steps/s requested while playing")
+    ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
     args = ap.parse_args()
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
@@ -107,12 +111,15 @@ def main() -> None:
     elected_at = None
     if args.stage == "pattern":
         reach_pattern_formation(session, args.line)
+    elif args.stage == "targets":
+        reach_targets(session)
     elif not args.to_formed:
         elected_at = election_end(Session(start, pattern, seed=1))
     app = App(session, port=free_port(), verbose=False)
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
-        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        width, height = (int(v) for v in args.window.split("x"))
+        page = browser.new_page(viewport={"width": width, "height": height})
         page.goto(f"http://127.0.0.1:{app.port}")
         page.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(2)
@@ -122,11 +129,8 @@ def main() -> None:
             app.stop()
             return
         session.set_speed(args.speed)  # 2,000: the speed of every earlier measurement (the top is 5,000)
-        where = f"{args.robots} robots, {args.stage}, {args.speed:g} steps/s"
+        where = f"{args.robots} robots, {args.stage}, {args.speed:g} steps/s, {args.window}"
         stage_before = session.view().stage
-        if elected_at is None:  # pattern formation: a second of play first, then the windows
-            session.toggle_play()
-            time.sleep(1)
         if elected_at is not None:  # leader election: the window starts with the run
             ratio = page.evaluate(PIXEL_RATIO)
             frames_before = app.frames
@@ -138,7 +142,9 @@ def main() -> None:
             print(f"| frames/s the server sent in the 5-second window (one update each) | {sent:.1f} |")
             end_ratio = page.evaluate(PIXEL_RATIO)
             print(f"(the canvas's pixel ratio: {ratio:.2f} at the start, {end_ratio:.2f} at the end)")
-        else:
+        else:  # a later stage: a second of play first, then the windows
+            session.toggle_play()
+            time.sleep(1)
             print(f"(from '{stage_before}')")
             for window in range(3):
                 pattern_window(app, page, f"{where}, {1 + 5 * window}–{6 + 5 * window} s of play")
@@ -223,6 +229,24 @@ def reach_pattern_formation(session: Session, line: int) -> None:
         f"{moved_in} robots sent into the line)",
         file=sys.stderr,
     )
+
+
+def reach_targets(session: Session) -> None:
+    """Step the run without a browser until the line is complete and its first robot leaves it for its
+    target (TargetMove, the paper's last stage; at 1,000 robots about four minutes, half a million moves;
+    progress on stderr)."""
+    engine = session.engine
+    t0 = last = time.perf_counter()
+    while engine.outcome is None:
+        session.run.step()
+        events = engine.history.steps[engine.step_index - 1].events
+        if any("TargetMove" in (e.rule_id or "") for e in events):
+            break
+        if time.perf_counter() - last > 15:
+            last = time.perf_counter()
+            print(f"(stepping: {engine.state.moves:,} moves, {last - t0:.0f} s)", file=sys.stderr)
+    took = time.perf_counter() - t0
+    print(f"(stepped to the first TargetMove in {took:.0f} s, {engine.state.moves:,} moves)", file=sys.stderr)
 
 
 def to_formed(app: App, session: Session, page) -> None:

@@ -168,6 +168,12 @@ def test_the_history_of_a_walked_run_reads_as_the_step_by_step_one():
         a.steps.record(i) for i in range(0, a.length, 97)
     ]
     assert b.events(a.length // 2) == a.events(a.length // 2)
+    assert list(b.steps.between(10, 500)) == a.steps[10:500] == list(a.steps.between(10, 500))
+    assert list(b.steps.between(a.length - 3, a.length + 5)) == a.steps[a.length - 3 :]
+    effects = [(e.robot, e.phase, e.light, e.to, e.collision) for s in a.steps for e in s.events]
+    for h in (a, b):  # what each step changed, read without unpacking what its Looks saw
+        assert [tuple(e) for step in h.effects(0, h.length) for e in step] == effects
+        assert [len(step) for step in h.effects(5, 300)] == [len(s.events) for s in a.steps[5:300]]
     with pytest.raises(IndexError):
         b.steps[a.length]
     header = trace_header(slow, "async", 1)

@@ -91,7 +91,11 @@ def test_with_many_robots_only_light_changes_are_read():
             self.steps = steps
             self.length = len(steps)
 
-    from apf_viz.core.history import Event
+        def effects(self, start, stop):
+            for s in self.steps[start:stop]:
+                yield tuple(Effect(e.robot, e.phase, e.light, e.to, e.collision) for e in s.events)
+
+    from apf_viz.core.history import Effect, Event
 
     move = Step([Event(0, "move", to=(5, 5))])
     light = Step([Event(1, "compute", light="on")])

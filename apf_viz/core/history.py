@@ -36,6 +36,18 @@ class Event(NamedTuple):
     rule_id: str | None = None  # compute: the stable id of the rule that fired (the algorithm's)
 
 
+class Effect(NamedTuple):
+    """What one event changed, without the robots a Look saw: replaying positions and lights over a long
+    history (a timeline, a chart) needs nothing else, and a Look's robots, unpacked, are most of what a
+    step costs to read (800 ints a Look at k = 1,000)."""
+
+    robot: int
+    phase: EventPhase
+    light: str | None  # compute: the new light
+    to: Point | None  # move: where the robot goes
+    collision: bool
+
+
 class StepRecord(NamedTuple):
     """A scheduler's choice: which robots act together, and the synchronous round if any."""
 
@@ -192,6 +204,13 @@ class Steps(Sequence[RecordedStep]):
             raise IndexError(f"step {i} is outside the recorded history")
         return _unpack(history.packed(i))
 
+    def between(self, start: int, stop: int) -> Iterator[RecordedStep]:
+        """Steps ``start`` to ``stop`` − 1, unpacked one at a time: a long run's steps as one list would
+        be gigabytes (half a million Looks of a 1,000-robot run, each seeing 800 robots)."""
+        history = self._history
+        for i in range(max(0, start), min(stop, history.length)):
+            yield _unpack(history.packed(i))
+
     def __iter__(self) -> Iterator[RecordedStep]:
         for entry in self._history._packed:
             if type(entry) is Walk:
@@ -248,6 +267,12 @@ class History:
         e = bisect.bisect_right(starts, i) - 1
         entry = self._packed[e]
         return entry.step(i - starts[e]) if type(entry) is Walk else entry
+
+    def effects(self, start: int, stop: int) -> Iterator[tuple[Effect, ...]]:
+        """What each of steps ``start`` to ``stop`` − 1 changed, one step at a time (:class:`Effect`)."""
+        for i in range(max(0, start), min(stop, self._length)):
+            # A packed event: robot, phase, the Look's robots, light, move, rule, to, round, collision, ...
+            yield tuple(Effect(e[0], e[1], e[3], e[6], e[8]) for e in self.packed(i)[2])
 
     def record(self, position: int, record: StepRecord, events: list[Event]) -> None:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the

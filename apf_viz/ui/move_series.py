@@ -61,13 +61,13 @@ class MoveSeries:
         if step <= done:
             return
         events, moves, pos = self._events[-1], self._moves[-1], self._positions
-        for s in history.steps[done:step]:
+        for effects in history.effects(done, step):
             before = moves
-            for ev in s.events:
+            for ev in effects:
                 if ev.phase == "move" and not ev.collision and ev.to is not None and ev.to != pos[ev.robot]:
                     pos[ev.robot] = ev.to
                     moves += 1
-            events += len(s.events)
+            events += len(effects)
             self._events.append(events)
             self._moves.append(moves)
             if moves != before:

@@ -315,8 +315,9 @@ class Session:
         """Go to the step that ends with event number ``event`` (Compare's Go to divergence)."""
         with self.lock:
             done = 0
-            for i, step in enumerate(self.engine.history.steps[: self.engine.history.length]):
-                done += len(step.events)
+            history = self.engine.history
+            for i, effects in enumerate(history.effects(0, history.length)):
+                done += len(effects)
                 if done >= event:
                     self.run.seek(i + 1)
                     return
@@ -628,7 +629,7 @@ class Session:
         adversary, which drives any algorithm."""
         with self.lock:
             e = self.engine
-            lines = schedule_of_steps(e.history.steps[: e.step_index])
+            lines = schedule_of_steps(e.history.steps.between(0, e.step_index))
             return schedule_text(e.k, lines, e.y_up, e.light_semantics)
 
     def robots_file(self) -> str:

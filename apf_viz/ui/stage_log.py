@@ -82,9 +82,9 @@ class StageLog:
             return
         pos, lights = self._positions, self._lights
         read_moves = len(pos) <= MOVES_READ_UP_TO_K
-        for i, s in enumerate(history.steps[self._done : step], start=self._done + 1):
+        for i, effects in enumerate(history.effects(self._done, step), start=self._done + 1):
             changed = False
-            for ev in s.events:
+            for ev in effects:
                 if ev.light is not None and ev.light != lights[ev.robot]:
                     lights[ev.robot] = ev.light
                     changed = True
