@@ -174,6 +174,14 @@ def test_the_history_of_a_walked_run_reads_as_the_step_by_step_one():
     for h in (a, b):  # what each step changed, read without unpacking what its Looks saw
         assert [tuple(e) for step in h.effects(0, h.length) for e in step] == effects
         assert [len(step) for step in h.effects(5, 300)] == [len(s.events) for s in a.steps[5:300]]
+    start = a.checkpoint_before(0)[1].positions
+    for n in [0, 1, 2, a.length // 3, a.length // 2 + 1, a.length - 1, a.length]:
+        at = start.copy()  # where everyone stood after n steps, replayed from the start
+        for step in a.steps[:n]:
+            for e in step.events:
+                if e.phase == "move" and not e.collision:
+                    at[e.robot] = e.to
+        assert (b.positions_after(n) == at).all() and (a.positions_after(n) == at).all()
     with pytest.raises(IndexError):
         b.steps[a.length]
     header = trace_header(slow, "async", 1)
@@ -194,10 +202,25 @@ def test_seeking_into_a_walk_and_branching_there_keeps_the_walk_before():
     other = next(r for r in range(fast.k) if r != fast.history.steps.record(inside).robots[0])
     assert fast.step([other]) == slow.step([other])  # a branch: the rest of the walk is dropped
     assert fast.history.length == slow.history.length == inside + 1
+    after = fast.history.positions_after(inside + 1)  # the branch's step, not the dropped walk's
+    assert (after == slow.history.positions_after(inside + 1)).all() and (after == fast.state.positions).all()
     assert list(fast.history.steps) == list(slow.history.steps)
     advance(slow, make_scheduler("async"), 2)
     advance(fast, make_scheduler("async"), 2)
     assert fast.history.events() == slow.history.events()
+
+
+def test_the_positions_after_a_step_are_asked_again_once_a_branch_rewrites_it():
+    e = Engine([(0, 0), (5, 3), (9, 1)], [(0, 0), (1, 0), (2, 0)], get_algorithm("compact-left"))
+    for r in (1, 1, 1, 2, 2, 2):  # robot 1 slides left, then robot 2
+        e.step([r])
+    remembered = e.history.positions_after(3).copy()
+    assert remembered.tolist() == [[0, 0], [4, 3], [9, 1]]
+    e.seek(0)
+    for r in (2, 2, 2, 1, 1, 1):  # a branch: robot 2 first
+        e.step([r])
+    assert e.history.positions_after(3).tolist() == [[0, 0], [5, 3], [8, 1]]
+    assert (e.history.positions_after(6) == e.state.positions).all()
 
 
 @pytest.mark.parametrize("scheduler", ["fsync", "ssync"])

@@ -77,8 +77,8 @@ def test_why_and_the_caption_use_one_notion_of_staleness():
     assert v.why is not None and v.why.changed_robots == v.stale == (1,)
     for sentence in v.why.changed:
         assert sentence in v.caption  # the same words in both panels
-    assert [c.robot for c in changes(s.engine, 2, list(s.config.robots), "held")] == [1]
-    assert [c.robot for c in changes(s.engine, 2, list(s.config.robots), "decided")] == [1]
+    assert [c.robot for c in changes(s.engine, 2, "held")] == [1]
+    assert [c.robot for c in changes(s.engine, 2, "decided")] == [1]
     assert "robot 1" in v.why_text and "(3, 0)" in v.why_text
 
 

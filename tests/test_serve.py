@@ -96,6 +96,22 @@ def test_play_keeps_the_speed_asked_when_frames_run_a_little_short():
     assert play_budget(0.0, 5.0, 2.0) == 2.0  # slow play: at most two steps at once
 
 
+def test_a_call_of_play_takes_the_steps_that_fit_in_the_time_left_of_the_frame():
+    """Dear steps (forced cycles in a crowd) shrink the next call at once; cheap ones let it grow back
+    slowly; a call always takes a step, and never more than the budget."""
+    from apf_viz.ui.app import StepPacer
+
+    pacer = StepPacer()
+    pacer.took(10, 0.010)  # a millisecond a step
+    assert pacer.allowance(67, 0.020) == 20
+    pacer.took(20, 0.0002)  # then cheap steps: the cost is forgotten a fifth at a time
+    assert pacer.allowance(67, 0.020) == 25
+    assert pacer.allowance(67, 0.0) == 1 and pacer.allowance(3.5, 1.0) == 3
+    for _ in range(60):
+        pacer.took(67, 0.00067)
+    assert pacer.allowance(67, 0.020) == 67
+
+
 def test_settling_memory_collects_garbage_and_exempts_what_survives():
     import gc
     import weakref

@@ -141,6 +141,7 @@ def _unpack(packed: _Packed) -> RecordedStep:
     )
 
 
+_POSITIONS_KEPT = 64  # steps whose positions History.positions_after remembers (a robot's Looks, shown)
 _ONE = StepRecord((0,))  # a placeholder choice: packing an event needs one
 
 
@@ -254,6 +255,7 @@ class History:
         self.dropped: tuple[int, list[StepRecord]] | None = None  # the last branch's dropped steps
         self._checkpoint_steps: list[int] = [0]
         self._checkpoints: dict[int, EngineState] = {0: initial}
+        self._positions_after: dict[tuple[int, int], np.ndarray] = {}  # (generation, n) → positions
 
     @property
     def length(self) -> int:
@@ -273,6 +275,27 @@ class History:
         for i in range(max(0, start), min(stop, self._length)):
             # A packed event: robot, phase, the Look's robots, light, move, rule, to, round, collision, ...
             yield tuple(Effect(e[0], e[1], e[3], e[6], e[8]) for e in self.packed(i)[2])
+
+    def positions_after(self, n: int) -> np.ndarray:
+        """Where every robot stood after the first ``n`` recorded steps, shape (k, 2), read-only: the
+        latest checkpoint at or before ``n`` and the moves since (each step's effects, not its Looks).
+        A snapshot's Look long ago is asked about at every frame its robot stays selected, so the
+        answer is kept, per step, until a branch rewrites the history."""
+        key = (self.generation, n)
+        cached = self._positions_after.get(key)
+        if cached is not None:
+            return cached
+        base, state = self.checkpoint_before(n)
+        points = state.positions.copy()
+        for effects in self.effects(base, n):
+            for e in effects:
+                if e.phase == "move" and not e.collision and e.to is not None:
+                    points[e.robot] = e.to
+        points.setflags(write=False)
+        if len(self._positions_after) >= _POSITIONS_KEPT:
+            del self._positions_after[next(iter(self._positions_after))]  # the oldest asked
+        self._positions_after[key] = points
+        return points
 
     def record(self, position: int, record: StepRecord, events: list[Event]) -> None:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the

@@ -56,6 +56,24 @@ def play_budget(budget: float, elapsed: float, speed: float) -> float:
     return min(budget + elapsed * speed, max(1.0, speed / FPS) + 1.0)
 
 
+class StepPacer:
+    """How many steps a call of Play may take in the time left of a frame's stepping share: a call is
+    one step or a walk of many (core/fast_forward.py), and a walk of forced cycles in a crowd costs a
+    Look and a decision per cycle (a millisecond each among 1,000 robots, where a same-sight walk costs
+    microseconds a step). The cost per step is the dearest of the recent calls', forgotten slowly, so a
+    call stops near the frame's deadline instead of running a whole frame's allowance past it."""
+
+    def __init__(self) -> None:
+        self.cost = 1e-4  # seconds a step, as last measured
+
+    def allowance(self, budget: float, seconds_left: float) -> int:
+        return max(1, min(int(budget), int(seconds_left / self.cost)))
+
+    def took(self, steps: int, seconds: float) -> None:
+        if steps:
+            self.cost = max(seconds / steps, 0.8 * self.cost, 1e-7)
+
+
 def settle_memory() -> None:
     """Collect garbage once, then exempt what survives from later collections (``gc.freeze``), as play
     starts: a full collection scans every object a large run holds (its history, the decisions'
@@ -265,6 +283,7 @@ class App:
         budget = 0.0
         last = tick = time.perf_counter()
         was_playing = False
+        pacer = StepPacer()
         while not self._stop.is_set():
             if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
                 self._dirty.wait(timeout=1.0 / FPS)
@@ -277,10 +296,11 @@ class App:
                     budget = 1.0
                 budget = play_budget(budget, now - last, s.speed)
                 deadline = now + STEP_SHARE / FPS
-                while budget >= 1 and time.perf_counter() < deadline:
-                    taken = s.play_steps(int(budget))
+                while budget >= 1 and (t := time.perf_counter()) < deadline:
+                    taken = s.play_steps(pacer.allowance(budget, deadline - t))
                     if not taken:  # the run ended, or Manual: play stops by itself
                         break
+                    pacer.took(taken, time.perf_counter() - t)
                     budget -= taken
                 self._dirty.set()
             else:

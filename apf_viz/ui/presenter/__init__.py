@@ -71,7 +71,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         numbers=screen.numbers if screen.numbers is not None else len(robots) <= NUMBERS_UP_TO,
         collision=crash[:2] if crash else None,
         collided=crash[2] if crash else (),
-        fatal=story.fatal_decisions(e, crash[2], list(run.config.robots), pts) if crash else ("", None),
+        fatal=story.fatal_decisions(e, crash[2], pts) if crash else ("", None),
         waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
         scenario_note=screen.scenario_note,
@@ -113,7 +113,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
 def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> dict:
     """What the run's history adds to its picture: trails, the stale marks, the timeline's marks."""
     e = run.engine
-    stale = stale_holders(e, list(run.config.robots), pts) if e.k <= SIGHT_MARKS_UP_TO else []
+    stale = stale_holders(e, pts) if e.k <= SIGHT_MARKS_UP_TO else []
     length = e.history.length
     marks = run.stages.marks(e.history, length) + story.loop_marks(
         run.trace_options, length, run.config.scheduler
@@ -174,8 +174,7 @@ def for_browser(
         return replace(view, follows_presenter=source is presenter and browser is not presenter)
     st = e.state
     pts = [r.position for r in view.robots]  # the run's robots as they are now (Run mode)
-    start = list(run.config.robots)
-    seen = seen_robots(e, sel, start, "held", pts) if st.snapshot[sel] is not None else []
+    seen = seen_robots(e, sel, "held", pts) if st.snapshot[sel] is not None else []
     if st.snapshot[sel] is not None:  # what it saw, not what is there now
         rays = tuple((pts[sel], s.seen_at) for s in seen)
         ghosts = tuple(
@@ -183,8 +182,8 @@ def for_browser(
         )
     else:
         rays, ghosts = tuple((pts[sel], pts[j]) for j in e.visible(sel).tolist()), ()
-    hidden = hidden_from(e, sel, start, pts) if e.k <= SIGHT_MARKS_UP_TO else {}
-    why = why_view(e, sel, pts, start)
+    hidden = hidden_from(e, sel, pts) if e.k <= SIGHT_MARKS_UP_TO else {}
+    why = why_view(e, sel, pts)
     decided = why.explanation.decision.rule_id if why.explanation is not None else ""
     paper = (
         {

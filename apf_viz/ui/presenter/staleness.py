@@ -49,12 +49,11 @@ def _p(p: Point) -> str:
 
 
 def seen_robots(
-    engine: Engine, robot: int, start: list[Point], which: Which = "held", now: list[Point] | None = None
+    engine: Engine, robot: int, which: Which = "held", now: list[Point] | None = None
 ) -> list[SeenRobot]:
     """The robots of ``robot``'s snapshot, in the snapshot's order: the one it holds (``held``; empty if
     it holds none) or the one its latest decision was computed on (``decided``; empty before it).
 
-    ``start``: the run's start positions (a robot that has not moved since the start stands there);
     ``now``: the current positions, when the caller has them already."""
     st = engine.state
     if which == "held":
@@ -64,7 +63,7 @@ def seen_robots(
     if snap is None or ids is None or look < 1 or look > engine.step_index:
         return []
     pts = now if now is not None else engine.current_points()
-    at_look = _positions_at(engine, set(ids) | {robot}, look, start, pts)
+    at_look = _positions_at(engine, set(ids) | {robot}, look)
     places = in_frame(snap.offsets(), at_look[robot], engine.y_up[robot])
     light_at = {p: s.light for p, s in zip(places, snap.robots, strict=True)}
     by_place = {at_look[j]: j for j in ids}
@@ -76,54 +75,31 @@ def seen_robots(
 
 
 def changes(
-    engine: Engine, robot: int, start: list[Point], which: Which = "held", now: list[Point] | None = None
+    engine: Engine, robot: int, which: Which = "held", now: list[Point] | None = None
 ) -> list[SeenRobot]:
     """The robots of that snapshot that have moved or changed light since its Look: what makes it stale."""
-    return [s for s in seen_robots(engine, robot, start, which, now) if s.changed]
+    return [s for s in seen_robots(engine, robot, which, now) if s.changed]
 
 
-def hidden_from(engine: Engine, robot: int, start: list[Point], now: list[Point]) -> dict[int, int]:
+def hidden_from(engine: Engine, robot: int, now: list[Point]) -> dict[int, int]:
     """The robots ``robot`` does not see, each with the robot that hides it: at the Look of the
     snapshot it holds (positions as they stood then), or, holding none, now."""
     st = engine.state
     look = int(st.look_step[robot])
     if st.snapshot[robot] is None or look < 1 or look > engine.step_index:
         return hiders(now, robot)
-    at_look = _positions_at(engine, set(range(engine.k)), look, start, now)
+    at_look = _positions_at(engine, set(range(engine.k)), look)
     return hiders([at_look[j] for j in range(engine.k)], robot)
 
 
-def stale_holders(engine: Engine, start: list[Point], now: list[Point]) -> list[int]:
+def stale_holders(engine: Engine, now: list[Point]) -> list[int]:
     """Every robot holding a snapshot in which another robot has since moved or changed light."""
     holding = [r for r in range(engine.k) if engine.state.snapshot[r] is not None]
-    return [r for r in holding if changes(engine, r, start, "held", now)]
+    return [r for r in holding if changes(engine, r, "held", now)]
 
 
-def _positions_at(
-    engine: Engine, robots: set[int], look: int, start: list[Point], pts: list[Point]
-) -> dict[int, Point]:
+def _positions_at(engine: Engine, robots: set[int], look: int) -> dict[int, Point]:
     """Where each of ``robots`` stood at the Look of step ``look`` (1-based: the Look is in step
-    ``look - 1``): now, unless it moved since; then at its last move before the Look, or its start."""
-    steps = engine.history.steps
-    moved = {
-        ev.robot
-        for s in steps[look : engine.step_index]
-        for ev in s.events
-        if _moved(ev) and ev.robot in robots
-    }
-    at = {j: pts[j] for j in robots if j not in moved}
-    missing = set(moved)
-    for i in range(look - 1, -1, -1):  # back from the Look: each mover's last move before it
-        if not missing:
-            break
-        for ev in reversed(steps[i].events):
-            if ev.robot in missing and _moved(ev):
-                at[ev.robot] = tuple(ev.to)  # type: ignore[assignment]
-                missing.discard(ev.robot)
-    for j in missing:
-        at[j] = tuple(start[j])  # type: ignore[assignment]
-    return at
-
-
-def _moved(ev) -> bool:
-    return ev.phase == "move" and not ev.collision
+    ``look - 1``, and a step's events are of one phase, so no robot moves in it)."""
+    points = engine.history.positions_after(look)
+    return {j: (int(points[j, 0]), int(points[j, 1])) for j in robots}

@@ -153,9 +153,7 @@ def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tupl
     return "; ".join(words), tuple(dict.fromkeys(cells)), tuple(dict.fromkeys(robots))
 
 
-def fatal_decisions(
-    e: Engine, robots: tuple[int, ...], start: list[Point], now: list[Point]
-) -> tuple[str, int | None]:
+def fatal_decisions(e: Engine, robots: tuple[int, ...], now: list[Point]) -> tuple[str, int | None]:
     """Why a collision happened, robot by robot: the step at which each mover decided its move (its
     Compute), the step of the Look it decided on, and what has changed since in what it saw (the
     staleness of that snapshot); and the step of the earliest such Compute (to jump to), if any."""
@@ -174,7 +172,7 @@ def fatal_decisions(
             ),
             None,
         )
-        since = changes(e, r, start, "held", now)
+        since = changes(e, r, "held", now)
         what = "; ".join(c.describe() for c in since) or "nothing it saw has changed"
         lines.append(
             f"robot {r} decided this move at step {computed} on what it saw at step {int(st.look_step[r])}; "

@@ -17,7 +17,7 @@ from apf_viz.ui.presenter.staleness import changes
 from apf_viz.ui.presenter.views import WhyView
 
 
-def why_view(e: Engine, r: int, pts: list[Point], start: list[Point]) -> WhyView:
+def why_view(e: Engine, r: int, pts: list[Point]) -> WhyView:
     """Robot r's last decision and its evidence, in the global frame."""
     st = e.state
     view = st.decided[r]
@@ -32,7 +32,7 @@ def why_view(e: Engine, r: int, pts: list[Point], start: list[Point]) -> WhyView
         x, y = x - dx, y - dy
     regions = tuple(_to_global(m, (x, y), up) for m in explained.regions)
     now = e.decide(e.look(r))  # what it would decide on the present view
-    changed = changes(e, r, start, "decided", pts)
+    changed = changes(e, r, "decided", pts)
     return WhyView(
         r,
         explained,
