@@ -210,6 +210,28 @@ def test_seeking_into_a_walk_and_branching_there_keeps_the_walk_before():
     assert fast.history.events() == slow.history.events()
 
 
+def test_line_ups_found_point_by_point_are_those_found_pair_by_pair():
+    """A walker's first point where two robots it sees line up, found both ways (the engine takes the
+    cheaper): many small random views, robots off the walk's line, some lined up on purpose."""
+    rng = np.random.default_rng(7)
+    found = 0
+    for _ in range(400):
+        m = int(rng.integers(2, 40))
+        u = rng.integers(-12, 13, m)
+        v = rng.choice([-1, 1], m) * rng.integers(1, 6, m)
+        if rng.random() < 0.5:  # a robot placed behind another as seen from a point t ahead
+            t, a = int(rng.integers(1, 8)), int(rng.integers(m))
+            u = np.append(u, t + 2 * (u[a] - t))
+            v = np.append(v, 2 * v[a])
+        points = np.unique(np.stack([u, v], axis=1), axis=0)  # robots stand at distinct points
+        u, v = points[:, 0], points[:, 1]
+        n = int(rng.integers(2, 12))
+        pairs = fast_forward._first_line_up_by_pairs(u, v, n)
+        assert fast_forward._first_line_up_by_steps(u, v, n) == pairs
+        found += pairs < n
+    assert found > 100  # line-ups were there to find
+
+
 def test_the_positions_after_a_step_are_asked_again_once_a_branch_rewrites_it():
     e = Engine([(0, 0), (5, 3), (9, 1)], [(0, 0), (1, 0), (2, 0)], get_algorithm("compact-left"))
     for r in (1, 1, 1, 2, 2, 2):  # robot 1 slides left, then robot 2
