@@ -58,10 +58,10 @@ def play_budget(budget: float, elapsed: float, speed: float) -> float:
 
 class StepPacer:
     """How many steps a call of Play may take in the time left of a frame's stepping share: a call is
-    one step or a walk of many (core/fast_forward.py), and a walk of forced cycles in a crowd costs a
-    Look and a decision per cycle (a millisecond each among 1,000 robots, where a same-sight walk costs
-    microseconds a step). The cost per step is the dearest of the recent calls', forgotten slowly, so a
-    call stops near the frame's deadline instead of running a whole frame's allowance past it."""
+    one step or a walk of many (core/fast_forward.py), whose cost per step ranges from microseconds (a
+    same-sight walk) to a Look and a decision each (forced cycles in a crowd). The cost per step is the
+    dearest of the recent calls', forgotten a fifth a call, so a call stops near the frame's deadline
+    instead of running a whole frame's allowance past it."""
 
     def __init__(self) -> None:
         self.cost = 1e-4  # seconds a step, as last measured
