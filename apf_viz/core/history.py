@@ -47,6 +47,11 @@ class Effect(NamedTuple):
     to: Point | None  # move: where the robot goes
     collision: bool
 
+    @property
+    def moved(self) -> bool:
+        """A Move that happened (a collision stops the run instead): the robot now stands at ``to``."""
+        return self.phase == "move" and not self.collision and self.to is not None
+
 
 class StepRecord(NamedTuple):
     """A scheduler's choice: which robots act together, and the synchronous round if any."""
@@ -289,7 +294,7 @@ class History:
         points = state.positions.copy()
         for effects in self.effects(base, n):
             for e in effects:
-                if e.phase == "move" and not e.collision and e.to is not None:
+                if e.moved:
                     points[e.robot] = e.to
         points.setflags(write=False)
         if len(self._positions_after) >= _POSITIONS_KEPT:
