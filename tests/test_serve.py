@@ -134,3 +134,32 @@ def test_settling_memory_collects_garbage_and_exempts_what_survives():
         assert survivor() is kept[0]  # what survives is kept, frozen or not
     finally:
         gc.unfreeze()
+
+
+def test_play_starts_without_a_full_collection_and_the_collection_comes_when_it_stops(monkeypatch):
+    """A full collection at 1,000 robots is a frame's wait: the loop does it as it starts and when play
+    stops, never between the Play click and the first step (only a freeze there)."""
+    import apf_viz.ui.app as app_module
+    from apf_viz.ui.app import App, demo_session
+
+    calls: list[str] = []
+    monkeypatch.setattr(app_module, "settle_memory", lambda: calls.append("settle"))
+    monkeypatch.setattr(app_module, "freeze_for_play", lambda: calls.append("freeze"))
+    app = App(demo_session(), port=free_port(), verbose=False)
+    try:
+        deadline = time.time() + 30
+        while calls != ["settle"]:
+            assert time.time() < deadline, calls
+            time.sleep(0.05)
+        events = app.session.engine.state.events
+        app.session.toggle_play()
+        while app.session.engine.state.events == events:
+            assert time.time() < deadline, "play took no step"
+            time.sleep(0.05)
+        assert calls == ["settle", "freeze"]
+        app.session.pause()
+        while calls != ["settle", "freeze", "settle"]:
+            assert time.time() < deadline, calls
+            time.sleep(0.05)
+    finally:
+        app.stop()

@@ -21,7 +21,7 @@ from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
-from apf_viz.core.watches import Watches, _Path
+from apf_viz.core.watches import Watches, _global_box, _Path
 
 
 def case(k: int, seed: int):
@@ -356,6 +356,39 @@ def test_occupied_counts_kept_move_by_move_equal_counts_from_scratch():
             else:
                 assert w._occupied[r][1] == fresh and any(fresh)
     assert woken >= 3
+
+
+def test_an_occupied_box_counts_the_robots_in_it_whichever_bounds_are_open():
+    # Only a box's finite bounds are compared: rows, strips, half-planes and the plane itself.
+    rng = random.Random(5)
+    points = rng.sample([(x, y) for x in range(-6, 7) for y in range(-6, 7)], 40)
+    y_up = [rng.random() < 0.5 for _ in points]
+    P, _, w = watches_on(points, y_up=y_up)
+    for _ in range(400):
+        r = rng.randrange(len(points))
+        x0, y0 = rng.randint(-8, 8), rng.randint(-8, 8)
+        local = (x0, x0 + rng.randint(0, 4), y0, y0 + rng.randint(0, 4))
+        local = tuple(None if rng.random() < 0.3 else v for v in local)
+        gx0, gx1, gy0, gy1 = _global_box(*points[r], 1 if y_up[r] else -1, local)
+        inside = [j for j, (x, y) in enumerate(points) if j != r and gx0 <= x <= gx1 and gy0 <= y <= gy1]
+        assert w._robots_in((gx0, gx1, gy0, gy1), r) == len(inside)
+
+
+def test_the_watched_lights_are_those_of_some_registered_watch():
+    rng = random.Random(6)
+    points = [(x, 0) for x in range(12)]
+    _, _, w = watches_on(points)
+    held: dict[int, frozenset[str]] = {}
+    for _ in range(300):
+        r = rng.randrange(len(points))
+        w.clear(r)
+        held.pop(r, None)
+        if rng.random() < 0.6:
+            lights = frozenset(rng.sample(LIGHTS, rng.randint(0, 3)))
+            assert w.register(r, Watch(segments=((1, 0),), lights=lights))
+            held[r] = lights
+        watched = set().union(*held.values()) if held else set()
+        assert w._watched == sum(1 << LIGHTS.index(light) for light in watched)
 
 
 @pytest.mark.parametrize("scale", [5, 10**11])

@@ -247,7 +247,7 @@ class Engine:
 
     def look(self, robot: int) -> Snapshot:
         """The snapshot this robot would take now (no event is recorded)."""
-        return self._observe(robot)[0]
+        return self._snapshot(robot)
 
     def decide(self, view: Snapshot) -> Decision:
         """The algorithm's decision on a view, memoised: the algorithm is pure, so a view seen before
@@ -566,16 +566,21 @@ class Engine:
         return _new(Event, (r, "look", ids, None, None, None, None, round, False, None))
 
     def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
+        """Robot r's snapshot and the sorted indices of the robots in it, read off the patched views."""
+        snap = self._snapshot(r)
+        return snap, self._views.view(r)[1]
+
+    def _snapshot(self, r: int) -> Snapshot:
         """Robot r's snapshot (entries sorted by offset in r's own frame: a canonical, identity-free
-        order) and the sorted indices of the robots in it, read off the patched views."""
-        robots, ids = self._views.view(r)
+        order); the same object while its view and light are unchanged."""
+        robots = self._views.robots(r)
         light = self.state.lights[r]
         held = self._snaps[r]
         if held is not None and held[0] is robots and held[1].light == light:
-            return held[1], ids
+            return held[1]
         snap = Snapshot(light, robots) if isinstance(robots, tuple) else Snapshot(light, columns=robots)
         self._snaps[r] = (robots, snap)
-        return snap, ids
+        return snap
 
     def _compute(self, r: int, round: int | None) -> Event:
         st = self.state

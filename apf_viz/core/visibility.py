@@ -77,7 +77,8 @@ class Views:
         self._entries: list[list[Seen] | None] = [[] for _ in range(k)]
         # Sorted robot indices; None while the build's array (in ``_raw``) still says them.
         self._ids: list[list[int] | None] = [[] for _ in range(k)]
-        self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...]] | None] = [None] * k
+        # The view as read, and its indices once asked for (None until then).
+        self._cached: list[tuple[Columns | tuple[Seen, ...], tuple[int, ...] | None] | None] = [None] * k
         self._built: set[int] = set()
         self._scratch: np.ndarray | None = None  # visible_in_crowd's work array, made on first use
         self._flat: np.ndarray | None = None  # x·TABLE_WIDTH + y per robot, with the scratch
@@ -96,15 +97,23 @@ class Views:
         """What robot r sees now: its robots sorted by offset in its own frame (as arrays if the view is
         fresh, else as entries), and their robots' indices (sorted). Unchanged views return the same
         objects."""
+        robots = self.robots(r)
+        cached = self._cached[r]
+        if cached[1] is None:
+            ids = self._ids[r]
+            cached = self._cached[r] = (robots, tuple(ids if ids is not None else self._raw[r][2].tolist()))
+        return cached
+
+    def robots(self, r: int) -> Columns | tuple[Seen, ...]:
+        """:meth:`view` without the indices: what a decision reads (the indices of 800 robots as a tuple
+        cost a quarter of a crowd's view, and only a Look records them)."""
         cached = self._cached[r]
         if cached is None:
             if r not in self._built:
                 self._build(r)
             entries = self._entries[r]
-            robots = self._columns[r] if entries is None else tuple(entries)
-            ids = self._ids[r]
-            cached = self._cached[r] = (robots, tuple(ids if ids is not None else self._raw[r][2].tolist()))
-        return cached
+            cached = self._cached[r] = (self._columns[r] if entries is None else tuple(entries), None)
+        return cached[0]
 
     def prime_seen_bits(self, r: int, ids: tuple[int, ...]) -> None:
         """Robot r Looked and saw ``ids`` (from :meth:`view`): while its view is as built, the history's

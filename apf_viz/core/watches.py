@@ -180,19 +180,38 @@ class Watches:
 
     def _count_watchers(self, mask: int, change: int) -> None:
         """Keep ``_watched``, the lights some watch has, from a count of watchers per light."""
-        if not mask:
-            return
         counts = self._watchers_of_light
-        for i in range(len(counts)):
-            if mask >> i & 1:
-                counts[i] += change
-        self._watched = sum(1 << i for i, n in enumerate(counts) if n)
+        while mask:
+            bit = mask & -mask  # the lowest light of the mask
+            i = bit.bit_length() - 1
+            counts[i] += change
+            if counts[i]:
+                self._watched |= bit
+            else:
+                self._watched &= ~bit
+            mask ^= bit
 
     def _robots_in(self, box: tuple[int, int, int, int], r: int) -> int:
         """How many robots other than r stand in this box (global bounds)."""
         P = self._P
         x0, x1, y0, y1 = box
-        inside = (x0 <= P[:, 0]) & (P[:, 0] <= x1) & (y0 <= P[:, 1]) & (P[:, 1] <= y1)
+        # Only the finite bounds are compared: a watch's boxes are mostly rows, strips and half-planes.
+        tests = [(P[:, 0], x0, x1), (P[:, 1], y0, y1)]
+        inside = None
+        for column, lo, hi in tests:
+            if lo == hi:
+                part = column == lo
+            elif lo != -_BIG and hi != _BIG:
+                part = (lo <= column) & (column <= hi)
+            elif lo != -_BIG:
+                part = column >= lo
+            elif hi != _BIG:
+                part = column <= hi
+            else:
+                continue
+            inside = part if inside is None else inside & part
+        if inside is None:  # the whole plane
+            return P.shape[0] - 1
         return int(np.count_nonzero(inside)) - bool(inside[r])
 
     def clear(self, r: int) -> None:

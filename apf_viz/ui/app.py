@@ -75,13 +75,20 @@ class StepPacer:
 
 
 def settle_memory() -> None:
-    """Collect garbage once, then exempt what survives from later collections (``gc.freeze``), as play
-    starts: a full collection scans every object a large run holds (its history, the decisions'
-    memo), about 60 ms at 1,000 robots, and came about once a second of play, each one a frame the
-    page waited for. Objects made while playing are still collected; the next play start re-collects
-    everything (``unfreeze`` first), so nothing unreachable stays frozen for long."""
+    """Collect garbage once, then exempt what survives from later collections (``gc.freeze``): a full
+    collection scans every object a large run holds (its history, the decisions' memo), about 60 ms at
+    1,000 robots, and came about once a second of play, each one a frame the page waited for. Done
+    while nobody watches frames go by: as the loop starts and whenever play stops (``unfreeze`` first,
+    so nothing unreachable stays frozen for long). As play starts, :func:`freeze_for_play`."""
     gc.unfreeze()
     gc.collect()
+    gc.freeze()
+
+
+def freeze_for_play() -> None:
+    """Exempt every object made since the last settle from the collections play will trigger, without
+    collecting (a full collection there was the first frame's 45–60 ms wait at 1,000 robots). What play
+    then makes is collected as usual; garbage frozen here waits for the settle when play stops."""
     gc.freeze()
 
 
@@ -284,14 +291,15 @@ class App:
         last = tick = time.perf_counter()
         was_playing = False
         pacer = StepPacer()
+        settle_memory()
         while not self._stop.is_set():
             if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
                 self._dirty.wait(timeout=1.0 / FPS)
             now = time.perf_counter()
             s = self.session
             if s.playing:
-                if not was_playing:  # the first step at once, after the collection it waited for
-                    settle_memory()
+                if not was_playing:  # the first step at once
+                    freeze_for_play()
                     now = last = time.perf_counter()
                     budget = 1.0
                 budget = play_budget(budget, now - last, s.speed)
@@ -305,6 +313,8 @@ class App:
                 self._dirty.set()
             else:
                 budget = 0.0
+                if was_playing:
+                    settle_memory()
             was_playing = s.playing
             last = now
             if self._dirty.is_set():
