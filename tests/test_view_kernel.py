@@ -47,7 +47,8 @@ def kernel_view(kernel, positions, lights, y_up, r):
 
 @st.composite
 def configurations(draw):
-    scale = draw(st.sampled_from([3, 8, 40, 200, 5000, view_kernel.KERNEL_SPAN_LIMIT // 2 - 1]))
+    # Offsets within DIRECT_SPAN (the direction table), across it (127, 128) and beyond (the hash table).
+    scale = draw(st.sampled_from([3, 8, 40, 127, 128, 200, 5000, view_kernel.KERNEL_SPAN_LIMIT // 2 - 1]))
     pts = draw(
         st.lists(
             st.tuples(st.integers(-scale, scale), st.integers(-scale, scale)),
@@ -81,6 +82,24 @@ def test_the_kernel_builds_the_numpy_view(compiled, configuration):
     assert got == expected
     if np.abs(positions).max() <= 40:
         assert got[0] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], r))
+
+
+def test_work_tables_used_again_by_every_observer_give_each_the_view_of_fresh_ones():
+    """The direction table is never cleared (an entry counts for the call its stamp names): one set of
+    tables used for every observer of crowds of several sizes, in turn, builds the views fresh ones do."""
+    kernel = view_kernel.compiled()
+    rng = random.Random(8)
+    tables = view_kernel.new_tables(120)
+    for side in (6, 12, 40, 90, 200, 12):
+        pts = rng.sample([(x, y) for x in range(side) for y in range(side)], min(120, side * side // 2))
+        positions = np.array(pts, dtype=np.int64)
+        codes = np.array([rng.randrange(len(LIGHTS)) for _ in pts], dtype=np.uint8)
+        for r in range(len(pts)):
+            flip = rng.choice((1, -1))
+            reused = kernel(positions, r, flip, codes, *tables)
+            fresh = kernel(positions, r, flip, codes, *view_kernel.new_tables(len(pts)))
+            assert all(np.array_equal(a, b) for a, b in zip(reused[:6], fresh[:6], strict=True))
+            assert reused[6] == fresh[6]
 
 
 def test_lines_of_sight_in_a_crowd():

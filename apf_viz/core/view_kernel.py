@@ -37,6 +37,10 @@ _COUNTING_SPAN = 1 << 14  # the view is ordered by counting sorts below this spa
 REDUCED_SPAN = 1024
 """Offsets with |dx|, |dy| below this have g, |dx|/g and |dy|/g in one table (:func:`reduced_table`):
 a look-up instead of a Euclid loop and two divisions, a tenth of the cost of a crowd's view."""
+DIRECT_SPAN = 255
+"""Where every offset of the observer is at most this in both coordinates (a crowd), the nearest robot
+per direction is kept in a table indexed by the direction itself, (2·255 + 1)² entries: no hashing,
+no probing, no pass over a hash table; beyond it, the hash table."""
 _BITS = 10  # REDUCED_SPAN = 2^10: g, |dx|/g and |dy|/g each fit in 10 bits of a table entry
 _KEY_OFFSET = 1 << 21  # a primitive direction (ux, uy), |ux|, |uy| < 2^20, packed as one key
 _KEY_WIDTH = 1 << 22
@@ -66,11 +70,22 @@ def table_size(k: int) -> int:
     return size
 
 
-def new_tables(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """A caller's own arguments for the kernel after its first four: the reduced table (shared) and
-    work arrays (overwritten by every call)."""
+def new_tables(k: int) -> tuple[np.ndarray, ...]:
+    """A caller's own arguments for the kernel after its first four: the reduced table (shared), the
+    hash table's work arrays (overwritten by every call), and the direction table's: its entries, each
+    valid only for the call its stamp names (so it is never cleared), each robot's entry, and the count
+    of calls."""
     n = table_size(k)
-    return (reduced_table(), *(np.empty(n, dtype=np.int64) for _ in range(3)))  # type: ignore[return-value]
+    hashed = tuple(np.empty(n, dtype=np.int64) for _ in range(3))
+    side = 2 * DIRECT_SPAN + 1
+    direct = (
+        np.zeros(side * side, dtype=np.int64),  # stamp: untouched pages cost nothing until used
+        np.empty(side * side, dtype=np.int32),  # g of the nearest robot seen so far
+        np.empty(side * side, dtype=np.int32),  # that robot
+        np.empty(k, dtype=np.int64),  # each robot's direction entry (−1: the observer)
+        np.zeros(1, dtype=np.int64),  # calls so far
+    )
+    return (reduced_table(), *hashed, *direct)
 
 
 def compiled() -> Kernel | None:
@@ -87,8 +102,11 @@ def compiled() -> Kernel | None:
 @functools.cache
 def _compile(numba) -> Kernel:
     # build_view calls its helpers as globals: compiled code must find the compiled ones there.
-    global _counting_pass, _order_by_offset
-    counting, order = (getattr(f, "py_func", f) for f in (_counting_pass, _order_by_offset))
+    global _counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash
+    counting, order, by_table, by_hash = (
+        getattr(f, "py_func", f)
+        for f in (_counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash)
+    )
     try:
         jit = numba.njit(cache=True, nogil=True)
         compiled_counting = jit(counting)
@@ -97,6 +115,8 @@ def _compile(numba) -> Kernel:
         compiled_counting = jit(counting)
     _counting_pass = compiled_counting
     _order_by_offset = jit(order)
+    _nearest_by_table = jit(by_table)
+    _nearest_by_hash = jit(by_hash)
     return jit(build_view)
 
 
@@ -109,6 +129,11 @@ def build_view(
     hk: np.ndarray,
     hv: np.ndarray,
     hg: np.ndarray,
+    stamp: np.ndarray,
+    best_g: np.ndarray,
+    best_j: np.ndarray,
+    entry: np.ndarray,
+    calls: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
     """Robot r's view (numba compiles this; plain Python runs it too, slowly: the tests do).
 
@@ -116,13 +141,111 @@ def build_view(
         P: shape (k, 2) int64, distinct points, every offset below :data:`KERNEL_SPAN_LIMIT`.
         r: the observer. flip: 1 if its local +y is the global +y, else −1.
         code_of: each robot's light code (uint8).
-        reduced: :func:`reduced_table`. hk, hv, hg: work arrays of one power-of-two size ≥ 2k.
+        reduced, hk, hv, hg, stamp, best_g, best_j, entry, calls: :func:`new_tables`.
 
     Returns:
         ids (visible robots, increasing), sx, sy (their global offsets, in ids' order), the view
         sorted by (dx, dy) in r's frame: dx, ly (its local y) and code, and the codes present as a bit
         each (−1 if some code is too large for the bits: then unknown).
     """
+    k = P.shape[0]
+    x0 = P[r, 0]
+    y0 = P[r, 1]
+    reach = 0
+    for j in range(k):
+        reach = max(reach, abs(P[j, 0] - x0), abs(P[j, 1] - y0))
+    if reach <= DIRECT_SPAN:
+        calls[0] += 1
+        visible = _nearest_by_table(P, r, reduced, stamp, best_g, best_j, entry, calls[0], reach)
+    else:
+        visible = _nearest_by_hash(P, r, reduced, hk, hv, hg)
+    n = 0
+    for j in range(k):
+        if visible[j]:
+            n += 1
+    ids = np.empty(n, dtype=np.int64)
+    sx = np.empty(n, dtype=np.int64)
+    sy = np.empty(n, dtype=np.int64)
+    span = 1
+    i = 0
+    for j in range(k):
+        if visible[j]:
+            ids[i] = j
+            sx[i] = P[j, 0] - x0
+            sy[i] = P[j, 1] - y0
+            span = max(span, abs(sx[i]) + 1, abs(sy[i]) + 1)
+            i += 1
+    ly = sy * flip
+    if span <= _COUNTING_SPAN:
+        by_offset = _order_by_offset(sx, ly, span)
+    else:
+        by_offset = np.argsort(sx * (2 * span + 1) + ly)  # distinct points: distinct keys
+    dx_sorted = np.empty(n, dtype=np.int64)
+    ly_sorted = np.empty(n, dtype=np.int64)
+    code = np.empty(n, dtype=np.uint8)
+    present = 0
+    for i in range(n):
+        o = by_offset[i]
+        dx_sorted[i] = sx[o]
+        ly_sorted[i] = ly[o]
+        c = code_of[ids[o]]
+        code[i] = c
+        present = present | (np.int64(1) << np.int64(c)) if c < 62 and present >= 0 else -1
+    return ids, sx, sy, dx_sorted, ly_sorted, code, present
+
+
+def _nearest_by_table(
+    P: np.ndarray,
+    r: int,
+    reduced: np.ndarray,
+    stamp: np.ndarray,
+    best_g: np.ndarray,
+    best_j: np.ndarray,
+    entry: np.ndarray,
+    call: int,
+    reach: int,
+) -> np.ndarray:
+    """Which robots r sees, every offset at most ``reach`` ≤ :data:`DIRECT_SPAN` (< REDUCED_SPAN): the
+    nearest robot of each primitive direction kept in the entry (ux + reach, uy + reach) of a table
+    (2·reach + 1) wide; an entry counts only if its stamp is this call's."""
+    k = P.shape[0]
+    low = (1 << _BITS) - 1
+    width = 2 * reach + 1
+    x0 = P[r, 0]
+    y0 = P[r, 1]
+    for j in range(k):
+        if j == r:
+            entry[j] = -1
+            continue
+        dx = P[j, 0] - x0
+        dy = P[j, 1] - y0
+        e = np.int64(reduced[abs(dx), abs(dy)])
+        g = e & low
+        ux = (e >> _BITS) & low
+        uy = e >> (2 * _BITS)
+        if dx < 0:
+            ux = -ux
+        if dy < 0:
+            uy = -uy
+        s = (ux + reach) * width + uy + reach
+        entry[j] = s
+        if stamp[s] != call or g < best_g[s]:  # the first along this line of sight, or nearer
+            stamp[s] = call
+            best_g[s] = g
+            best_j[s] = j
+    visible = np.zeros(k, dtype=np.bool_)
+    for j in range(k):
+        s = entry[j]
+        if s >= 0 and best_j[s] == j:
+            visible[j] = True
+    return visible
+
+
+def _nearest_by_hash(
+    P: np.ndarray, r: int, reduced: np.ndarray, hk: np.ndarray, hv: np.ndarray, hg: np.ndarray
+) -> np.ndarray:
+    """Which robots r sees, for any offsets: the nearest robot of each primitive direction kept in an
+    open-addressing table keyed by the direction."""
     k = P.shape[0]
     mask = hk.shape[0] - 1
     span_r = reduced.shape[0]
@@ -168,40 +291,10 @@ def build_view(
                 break
             h = (h + 1) & mask
     visible = np.zeros(k, dtype=np.bool_)
-    n = 0
     for s in range(hk.shape[0]):
         if hk[s] != _EMPTY:
             visible[hv[s]] = True
-            n += 1
-    ids = np.empty(n, dtype=np.int64)
-    sx = np.empty(n, dtype=np.int64)
-    sy = np.empty(n, dtype=np.int64)
-    span = 1
-    i = 0
-    for j in range(k):
-        if visible[j]:
-            ids[i] = j
-            sx[i] = P[j, 0] - x0
-            sy[i] = P[j, 1] - y0
-            span = max(span, abs(sx[i]) + 1, abs(sy[i]) + 1)
-            i += 1
-    ly = sy * flip
-    if span <= _COUNTING_SPAN:
-        by_offset = _order_by_offset(sx, ly, span)
-    else:
-        by_offset = np.argsort(sx * (2 * span + 1) + ly)  # distinct points: distinct keys
-    dx_sorted = np.empty(n, dtype=np.int64)
-    ly_sorted = np.empty(n, dtype=np.int64)
-    code = np.empty(n, dtype=np.uint8)
-    present = 0
-    for i in range(n):
-        o = by_offset[i]
-        dx_sorted[i] = sx[o]
-        ly_sorted[i] = ly[o]
-        c = code_of[ids[o]]
-        code[i] = c
-        present = present | (np.int64(1) << np.int64(c)) if c < 62 and present >= 0 else -1
-    return ids, sx, sy, dx_sorted, ly_sorted, code, present
+    return visible
 
 
 def _order_by_offset(sx: np.ndarray, ly: np.ndarray, span: int) -> np.ndarray:

@@ -122,7 +122,7 @@ class Watches:
         x, y = (int(v) for v in self._P[r])
         s = self._flip[r]
         segments = watch.segments
-        short = [(i, d) for i, d in enumerate(watch.any_of) if gcd(*d) <= SHORT]
+        short = [(i, dx, dy, g) for i, (dx, dy) in enumerate(watch.any_of) if (g := gcd(dx, dy)) <= SHORT]
         if watch.any_of and not short:  # every one long: the first must stay, as a plain segment
             segments = (*segments, watch.any_of[0])
         if len(watch.boxes) > BOXES or len(segments) > SEGMENTS or len(watch.occupied) > OCCUPIED:
@@ -133,14 +133,17 @@ class Watches:
             if not any(counts):
                 return False  # the watch is broken already
         if short:
-            self._intact[r] = {i for i, _ in short}
+            self._intact[r] = {i for i, *_ in short}
             witnesses = self._witness_of[r]
-            for i, (dx, dy) in short:
-                self._link(r, i, _lattice_points(x, y, dx, s * dy))
-                j = self._robot_at.get((x + dx, y + s * dy))
+            robot_at, followed = self._robot_at, self._followed
+            for i, dx, dy, g in short:
+                at = (x + dx, y + s * dy)
+                # Most witnesses are chosen to be a single point away (their segment is that point).
+                self._link(r, i, [at] if g == 1 else _lattice_points(x, y, dx, s * dy))
+                j = robot_at.get(at)
                 if j is not None:
                     witnesses[i] = j
-                    self._followed.setdefault(j, set()).add((r, i))
+                    followed.setdefault(j, set()).add((r, i))
             if watch.within is not None:
                 self._within[r] = _global_box(x, y, s, watch.within)
         boxes = [_global_box(x, y, s, box) for box in watch.boxes]
