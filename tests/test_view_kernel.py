@@ -34,10 +34,15 @@ def numpy_view(positions, lights, y_up, r, monkeypatch):
     return ids, robots.dx.tolist(), robots.dy.tolist(), robots.code.tolist()
 
 
+def extent(positions) -> int:
+    """The bound on every offset that Views passes the kernel: the robots' extent, the tightest."""
+    return int(np.ptp(positions, axis=0).max())
+
+
 def kernel_view(kernel, positions, lights, y_up, r):
     codes = np.array([LIGHTS.index(x) for x in lights], dtype=np.uint8)
     ids, sx, sy, dx, ly, code, present = kernel(
-        positions, r, 1 if y_up[r] else -1, codes, *view_kernel.new_tables(len(lights))
+        positions, r, 1 if y_up[r] else -1, codes, extent(positions), *view_kernel.new_tables(len(lights))
     )
     assert present == sum(1 << c for c in set(code.tolist()))
     assert (sx == positions[ids, 0] - positions[r, 0]).all()
@@ -86,7 +91,8 @@ def test_the_kernel_builds_the_numpy_view(compiled, configuration):
 
 def test_work_tables_used_again_by_every_observer_give_each_the_view_of_fresh_ones():
     """The direction table is never cleared (an entry counts for the call its stamp names): one set of
-    tables used for every observer of crowds of several sizes, in turn, builds the views fresh ones do."""
+    tables used for every observer of crowds of several sizes (tables of several widths), in turn, builds
+    the views fresh ones do."""
     kernel = view_kernel.compiled()
     rng = random.Random(8)
     tables = view_kernel.new_tables(120)
@@ -96,8 +102,9 @@ def test_work_tables_used_again_by_every_observer_give_each_the_view_of_fresh_on
         codes = np.array([rng.randrange(len(LIGHTS)) for _ in pts], dtype=np.uint8)
         for r in range(len(pts)):
             flip = rng.choice((1, -1))
-            reused = kernel(positions, r, flip, codes, *tables)
-            fresh = kernel(positions, r, flip, codes, *view_kernel.new_tables(len(pts)))
+            reach = extent(positions)
+            reused = kernel(positions, r, flip, codes, reach, *tables)
+            fresh = kernel(positions, r, flip, codes, reach, *view_kernel.new_tables(len(pts)))
             assert all(np.array_equal(a, b) for a, b in zip(reused[:6], fresh[:6], strict=True))
             assert reused[6] == fresh[6]
 

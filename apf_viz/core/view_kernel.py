@@ -45,7 +45,7 @@ _BITS = 10  # REDUCED_SPAN = 2^10: g, |dx|/g and |dy|/g each fit in 10 bits of a
 _KEY_OFFSET = 1 << 21  # a primitive direction (ux, uy), |ux|, |uy| < 2^20, packed as one key
 _KEY_WIDTH = 1 << 22
 
-# (positions, observer, flip, light codes, reduced table, keys, robots, distances)
+# (positions, observer, flip, light codes, reach, *new_tables(k))
 #   → (ids, sx, sy, dx, ly, code, lights present)
 Kernel = Callable[..., tuple[np.ndarray, ...]]
 
@@ -125,6 +125,7 @@ def build_view(
     r: int,
     flip: int,
     code_of: np.ndarray,
+    reach: int,
     reduced: np.ndarray,
     hk: np.ndarray,
     hv: np.ndarray,
@@ -141,6 +142,7 @@ def build_view(
         P: shape (k, 2) int64, distinct points, every offset below :data:`KERNEL_SPAN_LIMIT`.
         r: the observer. flip: 1 if its local +y is the global +y, else −1.
         code_of: each robot's light code (uint8).
+        reach: a bound on |dx| and |dy| of every offset (the caller keeps one: the robots' extent).
         reduced, hk, hv, hg, stamp, best_g, best_j, entry, calls: :func:`new_tables`.
 
     Returns:
@@ -151,9 +153,6 @@ def build_view(
     k = P.shape[0]
     x0 = P[r, 0]
     y0 = P[r, 1]
-    reach = 0
-    for j in range(k):
-        reach = max(reach, abs(P[j, 0] - x0), abs(P[j, 1] - y0))
     if reach <= DIRECT_SPAN:
         calls[0] += 1
         visible = _nearest_by_table(P, r, reduced, stamp, best_g, best_j, entry, calls[0], reach)

@@ -138,9 +138,10 @@ class Views:
     def _build(self, r: int) -> None:
         P = self._P
         x0, y0, x1, y1 = self._reach
-        if self._kernel is not None and max(x1 - x0, y1 - y0) < KERNEL_SPAN_LIMIT:
+        reach = max(x1 - x0, y1 - y0)  # no offset is larger
+        if self._kernel is not None and reach < KERNEL_SPAN_LIMIT:
             order, sx, sy, dx, ly, codes, present = self._kernel(
-                P, r, self._flip[r], self._code_of, *self._tables
+                P, r, self._flip[r], self._code_of, reach, *self._tables
             )
             columns = Columns(dx, ly, codes, self._palette, present if present >= 0 else None)
             self._set_built(r, order, sx, sy, columns)
