@@ -3,9 +3,11 @@
 The same "nearest robot per primitive direction" as :func:`apf_viz.core.grid.nearest_per_direction`
 (paper §2, *Visibility*), but as one loop over the k robots instead of a dozen numpy calls: each offset's
 lattice distance g = gcd(|dx|, |dy|) and primitive direction (dx/g, dy/g), the nearest robot of each
-direction kept in an open-addressing table, then the visible robots in index order and in the view's
-order (dx, then dy in the observer's frame). In a run of 1,000 robots a build costs about 40 µs instead
-of numpy's 95, and the crowd's traveller builds one at each of its steps (docs/PERFORMANCE.md).
+direction kept in a table indexed by the direction (a crowd, every offset at most :data:`DIRECT_SPAN`)
+or in an open-addressing hash table (robots spread wider), then the visible robots in index order and in
+the view's order (dx, then dy in the observer's frame). In a crowd of 1,000 robots a build costs about
+21 µs (28 with the hash table, numpy's 95), and the crowd's traveller builds one at each of its steps
+(docs/PERFORMANCE.md).
 
 numba is optional (``pip install apf-viz[fast]``): without it, or with ``APF_VIZ_KERNELS=0`` in the
 environment, :func:`compiled` returns None and :class:`~apf_viz.core.visibility.Views` builds with numpy,

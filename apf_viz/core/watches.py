@@ -199,9 +199,9 @@ class Watches:
         P = self._P
         x0, x1, y0, y1 = box
         # Only the finite bounds are compared: a watch's boxes are mostly rows, strips and half-planes.
-        tests = [(P[:, 0], x0, x1), (P[:, 1], y0, y1)]
+        axes = [(P[:, 0], x0, x1), (P[:, 1], y0, y1)]
         inside = None
-        for column, lo, hi in tests:
+        for column, lo, hi in axes:
             if lo == hi:
                 part = column == lo
             elif lo != -_BIG and hi != _BIG:
