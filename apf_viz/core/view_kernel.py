@@ -40,9 +40,9 @@ REDUCED_SPAN = 1024
 """Offsets with |dx|, |dy| below this have g, |dx|/g and |dy|/g in one table (:func:`reduced_table`):
 a look-up instead of a Euclid loop and two divisions, a tenth of the cost of a crowd's view."""
 DIRECT_SPAN = 255
-"""Where every offset of the observer is at most this in both coordinates (a crowd), the nearest robot
-per direction is kept in a table indexed by the direction itself, (2·255 + 1)² entries: no hashing,
-no probing, no pass over a hash table; beyond it, the hash table."""
+"""Where the caller's bound on every offset (the robots' extent) is at most this (a crowd), the nearest
+robot per direction is kept in a table indexed by the direction itself, at most (2·255 + 1)² entries: no
+hashing, no probing, no pass over a hash table; beyond it, the hash table."""
 _BITS = 10  # REDUCED_SPAN = 2^10: g, |dx|/g and |dy|/g each fit in 10 bits of a table entry
 _KEY_OFFSET = 1 << 21  # a primitive direction (ux, uy), |ux|, |uy| < 2^20, packed as one key
 _KEY_WIDTH = 1 << 22
@@ -73,7 +73,7 @@ def table_size(k: int) -> int:
 
 
 def new_tables(k: int) -> tuple[np.ndarray, ...]:
-    """A caller's own arguments for the kernel after its first four: the reduced table (shared), the
+    """A caller's own arguments for the kernel after its first five: the reduced table (shared), the
     hash table's work arrays (overwritten by every call), and the direction table's: its entries, each
     valid only for the call its stamp names (so it is never cleared), each robot's entry, and the count
     of calls."""
