@@ -100,9 +100,9 @@ def test_work_tables_used_again_by_every_observer_give_each_the_view_of_fresh_on
         pts = rng.sample([(x, y) for x in range(side) for y in range(side)], min(120, side * side // 2))
         positions = np.array(pts, dtype=np.int64)
         codes = np.array([rng.randrange(len(LIGHTS)) for _ in pts], dtype=np.uint8)
+        reach = extent(positions)
         for r in range(len(pts)):
             flip = rng.choice((1, -1))
-            reach = extent(positions)
             reused = kernel(positions, r, flip, codes, reach, *tables)
             fresh = kernel(positions, r, flip, codes, reach, *view_kernel.new_tables(len(pts)))
             assert all(np.array_equal(a, b) for a, b in zip(reused[:6], fresh[:6], strict=True))

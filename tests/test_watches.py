@@ -387,7 +387,7 @@ def test_the_watched_lights_are_those_of_some_registered_watch():
             lights = frozenset(rng.sample(LIGHTS, rng.randint(0, 3)))
             assert w.register(r, Watch(segments=((1, 0),), lights=lights))
             held[r] = lights
-        watched = set().union(*held.values()) if held else set()
+        watched = set().union(*held.values())
         assert w._watched == sum(1 << LIGHTS.index(light) for light in watched)
 
 
