@@ -28,6 +28,7 @@ from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
+from apf_viz.progress import show_progress
 
 COLUMNS = (
     "algorithm", "merge", "shown", "hidden", "ks", "verdict", "stage", "violation", "k", "start", "y_up",
@@ -327,7 +328,7 @@ def _progress_line(new: list[dict], total: int, seconds: float) -> str:
 
 
 def report_progress(line: str) -> None:
-    print(f"\r{line}\x1b[K", end="\n" if line.endswith("ETA done") else "", file=sys.stderr, flush=True)
+    show_progress(line, last=line.endswith("ETA done"))
 
 
 # ---------------------------------------------------------------------------------------------- results

@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
+from apf_viz.progress import show_progress
 
 COLUMNS = (
     "k", "D", "seed", "scheduler", "algorithm", "light_semantics", "start", "outcome", "moves", "events",
@@ -508,12 +509,7 @@ def report_progress(p: Progress) -> None:
     eta = "ETA …" if p.eta is None else f"ETA {_duration(p.eta)}"
     slowest = f"; slowest: {p.slowest}" if p.slowest else ""
     line = f"apf-viz sweep: {p.finished}/{p.total} runs, {p.failed} not formed, {_duration(p.seconds)}, {eta}"
-    print(
-        f"\r{line}{slowest}\x1b[K",
-        end="" if p.finished < p.total else "\n",
-        file=sys.stderr,
-        flush=True,
-    )
+    show_progress(f"{line}{slowest}", last=p.finished >= p.total)
 
 
 def _duration(seconds: float) -> str:

@@ -181,3 +181,16 @@ def test_a_grid_of_no_robots_or_negative_seeds_is_bad_input(tmp_path):
             "sweep", "--ks", "3", "--seeds", "1", *args, "--out", str(tmp_path / "r.csv"), cwd=tmp_path
         )
         assert out.returncode == 2 and message in out.stderr, out.stderr
+
+
+def test_a_sweep_whose_progress_reader_goes_away_still_runs_to_the_end_and_keeps_its_rows(tmp_path):
+    """`apf-viz sweep … 2>&1 | head -0`: the pipe its progress goes into closes at once. The sweep went
+    down with the first progress line and wrote nothing; now the line is dropped and the runs kept."""
+    out = tmp_path / "r.parquet"
+    args = ["sweep", "--ks", "3", "--seeds", "1-2", "--workers", "2", "--out", str(out)]
+    p = subprocess.Popen(
+        [sys.executable, "-m", "apf_viz.cli", *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+    )
+    p.stderr.close()  # nobody reads the progress
+    assert p.wait(timeout=300) == 0
+    assert sorted((r["k"], r["seed"]) for r in read_results(out)) == [(3, 1), (3, 2)]
