@@ -3,6 +3,7 @@ nodes are updated in place rather than re-created (a re-created node costs the b
 
 from __future__ import annotations
 
+import dataclasses
 import random
 
 import numpy as np
@@ -19,7 +20,7 @@ from apf_viz.ui.scene import (
     cells_label_at,
     frame_label_at,
     grid_steps,
-    noses_legible,
+    scene_detail,
 )
 from apf_viz.ui.session import Session
 
@@ -82,13 +83,35 @@ def test_y_axis_diamonds_are_drawn_only_where_a_browser_is_zoomed_in_enough_to_s
     renderer.render(s.view())
     renderer.frame_initial_camera(renderer.server.initial_camera)
     renderer.render(s.view())
-    assert not noses_legible(renderer._visible_height())
+    assert not scene_detail(renderer._visible_height())[0]
     assert renderer._handles["/robots/y_axes"].visible is False
     renderer.view_cells = 20.0  # a browser zoomed in on a corner of the run
     renderer.render(s.view())
     noses = renderer._handles["/robots/y_axes"]
     assert noses.visible and len(noses.points) == 1000
-    assert noses_legible(20.0) and not noses_legible(200.0)
+    assert scene_detail(20.0)[0] and not scene_detail(200.0)[0]
+
+
+def test_a_crowd_framed_whole_plays_without_outlines_and_gets_them_back_when_paused_or_zoomed_in(renderer):
+    s = session_of(1000)
+    renderer.render(s.view())
+    renderer.frame_initial_camera(renderer.server.initial_camera)
+    outline = renderer._handles["/robots/outline"]
+    playing = dataclasses.replace(s.view(), playing=True)
+    renderer.render(playing)
+    assert outline.visible is False  # a cell a few pixels wide: the discs alone, while it plays
+    renderer.render(s.view())  # paused: every robot on its outline
+    assert outline.visible and len(outline.points) == 1000
+    renderer.view_cells = 20.0  # a browser zoomed in on a corner of the run
+    renderer.render(playing)
+    assert outline.visible and len(outline.points) == 1000
+    assert scene_detail(30.0)[1] and not scene_detail(60.0)[1]
+    small = session_of(100)  # a hundred robots framed whole: outlined while playing too
+    renderer.view_cells = None
+    renderer.render(small.view())
+    renderer.frame_initial_camera(renderer.server.initial_camera)
+    renderer.render(dataclasses.replace(small.view(), playing=True))
+    assert outline.visible and len(outline.points) == 100
 
 
 def test_line_sets_and_halos_are_updated_in_place_and_hidden_when_empty(renderer):

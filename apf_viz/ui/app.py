@@ -39,8 +39,8 @@ from apf_viz.ui.scene import (
     camera_aspect,
     camera_cells,
     grown_box,
-    noses_legible,
     ray_through,
+    scene_detail,
 )
 from apf_viz.ui.session import Session
 
@@ -135,8 +135,8 @@ class BrowserScreen:
         except (AssertionError, TypeError, ValueError):
             return
         cells, self.cells = self.cells, camera_cells(camera)
-        if self.cells is not None and (cells is None or noses_legible(cells) != noses_legible(self.cells)):
-            self._request_render()  # zoomed in or out past where the y-axis diamonds are drawn
+        if self.cells is not None and (cells is None or scene_detail(cells) != scene_detail(self.cells)):
+            self._request_render()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
         if any(_same_pose(position, p) for p in self._sent):
             self._acknowledged = self._acknowledged or _same_pose(position, self._sent[-1])
         elif self._acknowledged:

@@ -2,7 +2,8 @@
 the run in the scene every browser shares, each browser's selection in that browser's own scene.
 
 Robots are flat, unlit discs in their light's legend colour (one point cloud per light) on a dark
-outline, with a small diamond on each robot's +y side for its y-axis (the adversary's flip); its phase,
+outline (left out while a crowd framed whole plays: ``RIM_CROWD``), with a small diamond on each robot's +y
+side for its y-axis (the adversary's flip); its phase,
 the last actor and the selection are rings: wider discs under it. One vertex per robot and ring, because
 in a browser without a GPU every instance of a batched mesh or line set costs about as much as a draw
 call of its own. Up to ``DENSE`` robots a pending move is a line segment, above it a red dot on the cell
@@ -62,6 +63,13 @@ NOSE_MIN_PX = 2.5
 """Below this width on screen the y-axis diamonds are not drawn: a pixel-wide speck says nothing, and over
 a 1,000-robot run framed whole they are a thousand points the page draws every frame (a tenth of a
 software-rendered frame, docs/PERFORMANCE.md). Zoomed in, they are drawn again."""
+RIM_CROWD = 500
+RIM_PLAYING_PX = GRID_CELL_PX
+"""While a run of at least ``RIM_CROWD`` robots plays, their dark outlines are drawn only where a cell is
+at least this wide on screen (the width under which the grid has no line per cell either): over a
+crowd framed whole they are a thousand more discs in every frame, a tenth of a software-rendered
+page's frame at full resolution (docs/PERFORMANCE.md, session 19), and a pixel-wide ring. Paused, or
+zoomed in, they are drawn; a smaller run keeps them (its outlines cost the page little)."""
 GHOST_BADGE_OFFSET = (-0.34, 0.34)  # a light-only ghost, beside the robot it is the ghost of
 STALE_MARK = "stale"  # beside every robot holding a snapshot that others' moves or lights have made stale
 _SIZE = {  # disc diameters in cells: each ring shows as the band between its disc and the next
@@ -326,13 +334,16 @@ class SceneRenderer:
         """Each robot a flat disc in its light's colour on a dark outline (so a pale light shows on the
         white grid), one point cloud per light: a light change moves a point between clouds instead of
         recolouring one (viser rebuilds a point cloud's material, and the browser its shader, when its
-        colours change). The y-axis is a small dark diamond on the robot's +y side."""
+        colours change); a crowd playing, framed whole, without the outlines (``RIM_CROWD``). The
+        y-axis is a small dark diamond on the robot's +y side."""
         robots = view.robots[: len(pts)]
         lights = np.array([r.light for r in robots], dtype=object)
         palette = light_colors(view)
+        noses, rims = scene_detail(self.view_cells if self.view_cells is not None else self._visible_height())
+        rimmed = pts if rims or not view.playing or len(pts) < RIM_CROWD else pts[:0]
         self._points(
             "/robots/outline",
-            _xyz(pts, _LAYER["outline"]),
+            _xyz(rimmed, _LAYER["outline"]),
             MARK_COLORS["outline"],
             _SIZE["outline"],
             "circle",
@@ -341,8 +352,7 @@ class SceneRenderer:
             self._sprite_lights.add(light)
             color = palette.get(light, (0, 0, 0))
             self._points(f"/robots/{light}", _xyz(pts[lights == light], Z), color, _SIZE["robot"], "circle")
-        legible = noses_legible(self.view_cells if self.view_cells is not None else self._visible_height())
-        shown = pts if legible else pts[:0]
+        shown = pts if noses else pts[:0]
         sign = np.array([1.0 if r.y_up else -1.0 for r in robots[: len(shown)]], dtype=np.float32)
         nose = _xyz(shown, _LAYER["nose"])
         nose[:, 1] += 0.2 * sign
@@ -769,10 +779,12 @@ TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's 
 Spot = tuple[float, float, float]  # (x, y, x where the text ends), in scene units
 
 
-def noses_legible(visible_height: float) -> bool:
-    """Whether the y-axis diamonds are wide enough on screen to be drawn, when the canvas shows
-    ``visible_height`` cells."""
-    return NOSE_CELLS * TYPICAL_CANVAS_PX / max(visible_height, 1e-9) >= NOSE_MIN_PX
+def scene_detail(visible_height: float) -> tuple[bool, bool]:
+    """What is drawn of the robots when the canvas shows ``visible_height`` cells: (the y-axis
+    diamonds, wide enough on screen to be seen; the outlines even while playing, a cell at least
+    ``RIM_PLAYING_PX`` wide)."""
+    cell_px = TYPICAL_CANVAS_PX / max(visible_height, 1e-9)
+    return NOSE_CELLS * cell_px >= NOSE_MIN_PX, cell_px >= RIM_PLAYING_PX
 
 
 def camera_cells(camera) -> float | None:
