@@ -18,7 +18,7 @@ from apf_viz.core.budget import MOVES_PER_KD, paper_D, run_budget
 from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance
-from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 
 SCHEDULERS = ["async", "stale-first", "round-robin", "ssync", "fsync"]
@@ -183,3 +183,45 @@ def test_stale_first_never_runs_a_cycle_the_skipping_passed_over(seed):
             assert e.state.phase[r] != int(Phase.IDLE) or eligible[r], (e.step_index, r)
         e.apply(record)
     assert e.outcome == "formed" and e.state.events <= 4 * e.state.moves + 4 * e.k
+
+
+class MoveOnce:
+    """A toy: a robot still off moves one cell right and shows it has; then it stays."""
+
+    name = "move-once"
+    lights = ("off", "moved")
+
+    def decide(self, view, pattern) -> Decision:
+        if view.light == "off":
+            return Decision("moved", Direction.RIGHT, "move once", "once.right")
+        return Decision("moved", None, "moved already", "once.stay")
+
+
+@pytest.mark.parametrize("scheduler", ["async", "stale-first"])
+def test_deciding_the_stale_robots_in_two_parts_changes_no_run(scheduler, monkeypatch):
+    """After a step, the run's end is checked deciding as few of the robots whose views changed as it
+    takes to find one that can act; the rest are decided when the scheduler next asks (so the UI shows
+    the step first). Each run step for step against an engine that decides them all at once; the last
+    case (nobody can act: every robot stale at the start, and none eligible) ends before any step."""
+    apf = get_algorithm("apf-opaque-grid")
+    cases = [(*small_case(30, seed), apf, "formed") for seed in range(3)]
+    cases.append((*small_case(30, 0), Stay(), "stuck"))
+    column = [(0, 0), (0, 2), (0, 4), (0, 6)]  # each moves right once: the last move leaves the others stale
+    cases.append((column, [(0, 0), (0, 2), (0, 4), (1, 6)], [True, False, True, False], MoveOnce(), "stuck"))
+    left_for_later = 0
+    for seed, (start, pattern, y_up, algorithm, outcome) in enumerate(cases):
+        runs, pending = [], []
+        for in_parts in (True, False):
+            e = Engine(start, pattern, algorithm, y_up=y_up)
+            if not in_parts:
+                monkeypatch.setattr(e, "_active_before_deciding", lambda: False)
+            sched, events, left = make_scheduler(scheduler), [], []
+            while not e.finished and e.step_index < 20_000:
+                events.extend(e.apply(sched.choose(e, step_rng(seed, e.step_index))))
+                left.append(e.pending_decisions)
+            runs.append((events, e.outcome, e.state.moves))
+            pending.append(left)
+        assert runs[0] == runs[1]
+        assert runs[0][1] == outcome
+        left_for_later += sum(1 for parts, at_once in zip(*pending, strict=True) if parts > at_once)
+    assert left_for_later > 0

@@ -291,33 +291,41 @@ class Engine:
         ``skip_noops`` is off."""
         if not self.skip_noops:
             return self._all
-        views = self._views
-        dirty = self._dirty
-        if views.changed:
-            dirty |= views.changed
-            views.changed = set()
+        dirty = self._stale()
         if dirty:
-            st = self.state
-            phase, lights, eligible = st.phase, st.lights, self._eligible
-            watches = self._watches
-            watch = self.use_watches
             gained = False
             for r in dirty:
-                watches.clear(r)
-                if phase[r] != _IDLE:
-                    gained = gained or not eligible[r]
-                    eligible[r] = True
-                    continue
-                decision = self._decide(r, self.look(r))
-                noop = decision.is_noop(lights[r])
-                gained = gained or not (noop or eligible[r])
-                eligible[r] = not noop
-                if noop and watch and decision.watch is not None and watches.register(r, decision.watch):
-                    views.release(r)  # no need to keep its view: the watch says when to look again
+                gained = self._settle(r) or gained
             self._dirty = set()
             if gained:
                 self.eligible_gained += 1
         return self._eligible
+
+    def _stale(self) -> set[int]:
+        """The robots to decide anew before their eligibility is current (acted, or their view changed)."""
+        views = self._views
+        if views.changed:
+            self._dirty |= views.changed
+            views.changed = set()
+        return self._dirty
+
+    def _settle(self, r: int) -> bool:
+        """Make robot r's eligibility current (its watch, if its decision is one, registered); True if
+        it became eligible. The caller removes it from the stale set."""
+        st = self.state
+        eligible = self._eligible
+        self._watches.clear(r)
+        was = bool(eligible[r])
+        if st.phase[r] != _IDLE:
+            eligible[r] = True
+            return not was
+        decision = self._decide(r, self.look(r))
+        noop = decision.is_noop(st.lights[r])
+        eligible[r] = not noop
+        watch = decision.watch if noop and self.use_watches else None
+        if watch is not None and self._watches.register(r, watch):
+            self._views.release(r)  # no need to keep its view: the watch says when to look again
+        return not (noop or was)
 
     def _new_views(self) -> Views:
         return Views(self.state.positions, self.state.lights, self.y_up, self.algorithm.lights)
@@ -719,6 +727,8 @@ class Engine:
         time is probed first, so a busy run pays at most one Look per configuration change. When skipping,
         :meth:`eligible` already knows every idle robot's answer: only the robots mid-cycle are probed."""
         if self.skip_noops:
+            if self._active_before_deciding():
+                return False
             eligible = self.eligible()
             phase = self.state.phase
             return not any(phase[r] == _IDLE or not self._robot_quiescent(r) for r in eligible.nonzero()[0])
@@ -733,6 +743,34 @@ class Engine:
                 self._probe_hint = r
                 return False
         return True
+
+    def _active_before_deciding(self) -> bool:
+        """Whether some robot can act, found while deciding as few of the stale robots (:meth:`_stale`)
+        as it can: one whose eligibility is current and which is idle or has something left to do, one
+        of them in mid-cycle (eligible whatever it sees) with something left to do, or the first of them
+        decided eligible. After a light a crowd sees, the rest are decided when the scheduler next asks
+        (:meth:`eligible`), after the frame that shows the light. Deciding them in two parts changes no
+        answer: each robot's depends only on the configuration, the same until the next step."""
+        stale = self._stale()
+        phase = self.state.phase
+        for r in self._eligible.nonzero()[0].tolist():
+            if r not in stale and (phase[r] == _IDLE or not self._robot_quiescent(r)):
+                return True
+        if any(phase[r] != _IDLE and not self._robot_quiescent(r) for r in stale):
+            return True
+        for r in [r for r in stale if phase[r] == _IDLE]:
+            stale.discard(r)
+            if self._settle(r):
+                self.eligible_gained += 1  # counted per part: the schedulers ask only whether it changed
+            if self._eligible[r]:
+                return True
+        return False
+
+    @property
+    def pending_decisions(self) -> int:
+        """How many robots (at most) must be decided anew before the next scheduler's choice: the cost
+        the next step carries before its own event."""
+        return len(self._dirty) + len(self._views.changed) if self.skip_noops else 0
 
     def _robot_quiescent(self, r: int) -> bool:
         st = self.state

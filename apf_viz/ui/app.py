@@ -46,6 +46,9 @@ from apf_viz.ui.session import Session
 
 FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
+# A step that leaves this many robots to decide anew (a light a crowd sees: about 0.1 ms each) is shown
+# before the next step pays for them: the page sees the light a frame's worth of decisions sooner.
+DEAR_DECISIONS = 200
 
 
 def play_budget(budget: float, elapsed: float, speed: float) -> float:
@@ -310,6 +313,8 @@ class App:
                         break
                     pacer.took(taken, time.perf_counter() - t)
                     budget -= taken
+                    if s.engine.pending_decisions >= DEAR_DECISIONS:
+                        break
                 self._dirty.set()
             else:
                 budget = 0.0
