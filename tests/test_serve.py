@@ -9,6 +9,7 @@ import urllib.request
 
 import pytest
 
+import apf_viz.ui.run_controller as run_controller
 from apf_viz.ui.app import free_port
 
 
@@ -163,3 +164,42 @@ def test_play_starts_without_a_full_collection_and_the_collection_comes_when_it_
             time.sleep(0.05)
     finally:
         app.stop()
+
+
+@pytest.mark.parametrize("dear", [0, 10**9])
+def test_a_step_leaving_many_robots_to_decide_is_drawn_before_the_next_step(monkeypatch, dear):
+    """With ``DEAR_DECISIONS`` robots left to decide anew after a step, the loop draws a frame before the
+    next step pays for them: at 0, every call of Play's stepping is followed by a frame; out of reach,
+    a frame follows several (the demo at top speed)."""
+    import apf_viz.ui.app as app_module
+    from apf_viz.ui.app import App, demo_session
+
+    monkeypatch.setattr(app_module, "DEAR_DECISIONS", dear)
+    app = App(demo_session(), port=free_port(), verbose=False)
+    calls, per_frame = [0], []
+    play_steps, render = app.session.play_steps, app._render
+
+    def counted_steps(allowance: int = 1) -> int:
+        calls[0] += 1
+        return play_steps(allowance)
+
+    def counted_render() -> None:
+        per_frame.append(calls[0])
+        calls[0] = 0
+        render()
+
+    app.session.play_steps = counted_steps
+    app._render = counted_render
+    try:
+        app.session.set_speed(run_controller.MAX_SPEED)
+        app.session.toggle_play()
+        deadline = time.time() + 30
+        while len(per_frame) < 40 and app.session.playing:
+            assert time.time() < deadline, per_frame
+            time.sleep(0.05)
+        app.session.pause()
+    finally:
+        app.stop()
+    played = [n for n in per_frame if n]
+    assert played
+    assert (max(played) == 1) == (dear == 0), played
