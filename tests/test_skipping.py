@@ -213,8 +213,14 @@ def test_deciding_the_stale_robots_in_two_parts_changes_no_run(scheduler, monkey
         runs, pending = [], []
         for in_parts in (True, False):
             e = Engine(start, pattern, algorithm, y_up=y_up)
-            if not in_parts:
-                monkeypatch.setattr(e, "_active_before_deciding", lambda: False)
+            if not in_parts:  # every stale robot decided first: the check then finds nothing stale
+                check = e._active_before_deciding
+
+                def at_once(e=e, check=check) -> bool:
+                    e.eligible()
+                    return check()
+
+                monkeypatch.setattr(e, "_active_before_deciding", at_once)
             sched, events, left = make_scheduler(scheduler), [], []
             while not e.finished and e.step_index < 20_000:
                 events.extend(e.apply(sched.choose(e, step_rng(seed, e.step_index))))

@@ -725,13 +725,9 @@ class Engine:
 
         Probes of the current view are cached per configuration version, and the robot found active last
         time is probed first, so a busy run pays at most one Look per configuration change. When skipping,
-        :meth:`eligible` already knows every idle robot's answer: only the robots mid-cycle are probed."""
+        every idle robot's answer is its eligibility: :meth:`_active_before_deciding` decides."""
         if self.skip_noops:
-            if self._active_before_deciding():
-                return False
-            eligible = self.eligible()
-            phase = self.state.phase
-            return not any(phase[r] == _IDLE or not self._robot_quiescent(r) for r in eligible.nonzero()[0])
+            return not self._active_before_deciding()
         hint = self._probe_hint
         if self._busy == (hint, self.state.version, self.state.last_act[hint]):
             return False  # found active, and neither it nor the configuration has changed since
@@ -750,7 +746,9 @@ class Engine:
         of them in mid-cycle (eligible whatever it sees) with something left to do, or the first of them
         decided eligible. After a light a crowd sees, the rest are decided when the scheduler next asks
         (:meth:`eligible`), after the frame that shows the light. Deciding them in two parts changes no
-        answer: each robot's depends only on the configuration, the same until the next step."""
+        answer: each robot's depends only on the configuration, the same until the next step. False
+        only once every eligible robot has been looked at: the run is quiescent (the mid-cycle robots
+        left stale are eligible, and were found to have nothing to do)."""
         stale = self._stale()
         phase = self.state.phase
         for r in self._eligible.nonzero()[0].tolist():

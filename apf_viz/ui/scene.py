@@ -2,9 +2,9 @@
 the run in the scene every browser shares, each browser's selection in that browser's own scene.
 
 Robots are flat, unlit discs in their light's legend colour (one point cloud per light) on a dark
-outline (left out while a crowd framed whole plays: ``RIM_CROWD``), with a small diamond on each robot's +y
-side for its y-axis (the adversary's flip); its phase,
-the last actor and the selection are rings: wider discs under it. One vertex per robot and ring, because
+outline (left out while a crowd framed whole plays: ``RIM_CROWD``), with a small diamond on each robot's
++y side for its y-axis (the adversary's flip); its phase, the last actor and the selection are rings:
+wider discs under it. One vertex per robot and ring, because
 in a browser without a GPU every instance of a batched mesh or line set costs about as much as a draw
 call of its own. Up to ``DENSE`` robots a pending move is a line segment, above it a red dot on the cell
 it goes to. Target cells are flat squares; rays, K, the leader's frame and the grid are line-segment
