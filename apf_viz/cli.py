@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import re
 import sys
 import time
 from collections.abc import Sequence
@@ -19,6 +21,7 @@ from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_com
 from apf_viz.core import shapes
 from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
 from apf_viz.core.engine import Engine
+from apf_viz.core.fast_forward import WalkMismatch
 from apf_viz.core.formats import (
     MAX_INPUT_BYTES,
     InputError,
@@ -52,6 +55,7 @@ from apf_viz.core.schedulers import SCHEDULERS, make_scheduler
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
+EXIT_WALK_MISMATCH = 5  # --check-walks found a walk that is not the step-by-step run
 
 
 class _Parser(argparse.ArgumentParser):
@@ -86,6 +90,35 @@ def _int_within(low: int, high: float, what: str):
 
 
 _positive = _int_within(1, float("inf"), "a positive integer")
+
+
+# A local worker is a process of its own (about 100 MB with its imports): more than this per core only
+# queue behind each other, and 100,000 of them would never start.
+WORKERS_PER_CORE = 4
+_CLUSTER = re.compile(r"((tcp|tls|ws|wss|ucx)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.-]+):[0-9]{1,5}")
+
+
+def _workers(text: str) -> int:
+    """An argparse type: local worker processes, at most ``WORKERS_PER_CORE`` per core of this machine."""
+    n = _positive(text)
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    most = WORKERS_PER_CORE * cores
+    if n > most:
+        raise argparse.ArgumentTypeError(
+            f"{n:,} local worker processes: this machine can run at most {most} ({WORKERS_PER_CORE} per "
+            "core); for more, start a Dask cluster and give --cluster"
+        )
+    return n
+
+
+def _cluster(text: str) -> str:
+    """An argparse type: a Dask scheduler's network address (``tcp://HOST:PORT``; an in-process
+    address names nothing another process can reach)."""
+    if not _CLUSTER.fullmatch(text):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a Dask scheduler's address: give tcp://HOST:PORT (or tls://, ws://, wss://)"
+        )
+    return text
 
 
 def _positive_seconds(text: str) -> float:
@@ -163,6 +196,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         max_moves=args.max_moves or budget.max_moves,
         skip_noops=skip,
         fast_forward=not args.no_fast_forward,
+        check_walks=args.check_walks or None,
     )
     outcome = None
     if schedule is not None:
@@ -259,8 +293,8 @@ def _cmd_lights(args: argparse.Namespace) -> int:
 
     if args.out.suffix != ".parquet":
         _fail(f"--out {args.out}: the lab writes a .parquet table")
-    if args.random < 0:
-        _fail(f"--random {args.random}: a number of runs, 0 or more")
+    if not 0 <= args.random <= lights.MAX_RANDOM_RUNS:
+        _fail(f"--random {args.random:,}: a number of runs per merge, from 0 to {lights.MAX_RANDOM_RUNS:,}")
     chosen = lights.merges(args.algorithm, args.merges)
     ks = lights.parse_ks(args.ks)
     t0 = time.perf_counter()
@@ -385,6 +419,9 @@ SHAPES = {
     "column": lambda n: shapes.column((0, 0), n),
     "staircase": lambda n: shapes.staircase((0, 0), n),
 }
+# The least --size of each shape: a ring or a disc of radius 0 is one cell; a box of side 0 is nothing
+# (and a side below 0 would be read as a box the other way round).
+_LEAST_SIZE = {"ring": 0, "disc": 0}
 
 
 def _cmd_pattern(args: argparse.Namespace) -> int:
@@ -395,11 +432,20 @@ def _cmd_pattern(args: argparse.Namespace) -> int:
         cells = shapes.text(args.text, (0, 0))
     elif args.ascii is not None:
         lines = read_text(args.ascii, MAX_INPUT_BYTES).splitlines()
-        cells = shapes.ascii_art(lines)
+        try:
+            cells = shapes.ascii_art(lines)
+        except shapes.ShapeError as e:
+            raise InputError(f"{args.ascii}: {e}") from None
         if not cells:
             raise InputError(f"{args.ascii}: no '#' cell in it")
     else:
+        least = _LEAST_SIZE.get(args.shape, 1)
+        if not least <= args.size <= shapes.MAX_SIZE:
+            _fail(f"--shape {args.shape} --size {args.size}: choose a whole number from {least} to "
+                  f"{shapes.MAX_SIZE:,}")  # fmt: skip
         cells = SHAPES[args.shape](args.size)
+    if not cells:
+        _fail(f"--text {args.text!r}: no cells to draw (only spaces)")
     for axis in args.mirror:
         cells = shapes.mirrored(cells, axis)
     for _ in range(args.rotate):
@@ -636,6 +682,12 @@ def build_parser() -> argparse.ArgumentParser:
         "are far apart; never with --all-activations or a --schedule)",
     )
     run.add_argument(
+        "--check-walks",
+        action="store_true",
+        help="re-decide every step a walk skips, on views built from scratch, and stop with exit code 5 "
+        "on a difference (slow: a check of fast-forward; also APF_VIZ_CHECK_WALKS=1)",
+    )
+    run.add_argument(
         "--json",
         action="store_true",
         help="print one JSON object: outcome, final, k, D, moves, events, cycles, skipped, "
@@ -683,8 +735,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--out", type=Path, required=True, help="results.parquet or results.csv (resumed if present)"
     )
     swp.add_argument("--traces", type=Path, help="write a trace of every run that did not form here")
-    swp.add_argument("--workers", type=_positive, help="local worker processes (default: one per core)")
-    swp.add_argument("--cluster", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    swp.add_argument("--workers", type=_workers, help="local worker processes (default: one per core)")
+    swp.add_argument(
+        "--cluster", type=_cluster, help="address of a running Dask scheduler, e.g. tcp://host:8786"
+    )
     swp.add_argument(
         "--run-timeout",
         type=_positive_seconds,
@@ -712,8 +766,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--out", required=True, type=Path, help="the verdicts table (.parquet), resumed if there"
     )
     lab.add_argument("--traces", type=Path, help="counterexample traces here (default: OUT's name + -traces)")
-    lab.add_argument("--workers", type=_positive, help="local worker processes (default: one per core)")
-    lab.add_argument("--cluster", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    lab.add_argument("--workers", type=_workers, help="local worker processes (default: one per core)")
+    lab.add_argument(
+        "--cluster", type=_cluster, help="address of a running Dask scheduler, e.g. tcp://host:8786"
+    )
     lab.set_defaults(func=_cmd_lights)
 
     plt = command(
@@ -829,6 +885,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except WalkMismatch as e:
+        _fail(str(e), EXIT_WALK_MISMATCH)
     except InputError as e:
         _fail(str(e))
     except ValueError as e:

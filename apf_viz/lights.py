@@ -175,6 +175,11 @@ def _row(merge: Merge, ks, verdict, stage, violation, *, t0: float, **values) ->
 
 
 # ---------------------------------------------------------------------------------------------- stage 2
+MAX_RANDOM_RUNS = 10_000
+"""Random runs per merge at most: every run is a task held in memory until the lab ends (10^12 of them
+would never be made)."""
+
+
 def random_cells(survivors: Sequence[Merge], runs: int) -> list:
     """``runs`` random runs per surviving merge, half on generated starts (k cycles through 6–12) and half
     on the Demo scenarios' starts (they reach what random starts rarely do: a symmetric start that needs

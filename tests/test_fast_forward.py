@@ -10,6 +10,7 @@ import json
 import random
 import subprocess
 import sys
+from collections.abc import Iterator
 
 import numpy as np
 import pytest
@@ -481,3 +482,125 @@ def test_a_run_that_ends_with_a_walk_keeps_its_outcome_in_the_checkpoint_there(e
         e.seek(end)
     assert fast.finished and state_of(fast) == state_of(slow)
     assert advance(fast, make_scheduler("async"), 0) == 0
+
+
+# ------------------------------------------------------------------------------- generated adversaries
+# Starts of the adversarial families (core/adversarial_starts.py), each run with walks and step by step
+# under every scheduler (explore/fast_forward_campaign.py); scripts/fast_forward_campaign.py runs
+# thousands (docs/VERIFICATION.md). A stride that overshoots its branch must show, here, as a mismatch.
+
+GENERATED = 400
+
+
+@functools.cache
+def generated_results() -> tuple:
+    from apf_viz.explore.fast_forward_campaign import compare, trials
+
+    return tuple(compare(trial) for trial in trials(GENERATED, far=300))
+
+
+def test_generated_adversarial_starts_run_the_same_with_walks_under_every_scheduler():
+    from apf_viz.core.adversarial_starts import FAMILIES
+    from apf_viz.explore.fast_forward_campaign import SCHEDULERS
+
+    results = generated_results()
+    assert [r.trial.describe() + ": " + r.mismatch for r in results if r.mismatch] == []
+    assert {(r.trial.case.family, r.trial.scheduler) for r in results} == {
+        (f, s) for f in FAMILIES for s in SCHEDULERS
+    }
+    assert {r.trial.semantics for r in results} == {"compute", "lc-atomic"}
+    assert any(r.trial.max_moves for r in results) and any(r.trial.max_events for r in results)
+    assert sum(bool(r.walks) for r in results) > GENERATED // 3  # a test that never walked could not fail
+
+
+def _mutated_results(monkeypatch, mutate) -> Iterator:
+    from apf_viz.explore.fast_forward_campaign import compare, trials
+
+    mutate(monkeypatch)
+    for trial in trials(GENERATED, far=300):
+        result = compare(trial)
+        if result.mismatch:
+            yield result
+
+
+def test_the_stride_that_carried_a_robot_past_its_target_fails_the_generated_runs(monkeypatch):
+    """The stride before the fix: a robot coming down its own target's column walked to the row below
+    it (one cell past, then back up), a move the algorithm never makes from the target."""
+    from apf_viz.algorithms.apf_opaque_grid import pattern_formation
+
+    def mutate(mp):
+        mp.setattr(pattern_formation, "_vertical_stride", lambda x, y, t: abs(t[1] - 1 - y))
+
+    found = next(_mutated_results(monkeypatch, mutate), None)
+    assert found is not None and "stride" in found.mismatch
+
+
+def test_a_stride_one_longer_than_promised_fails_the_generated_runs(monkeypatch):
+    from apf_viz.algorithms.apf_opaque_grid import strides
+
+    cut = strides._cut
+
+    def mutate(mp):
+        mp.setattr(strides, "_cut", lambda decision, stride: cut(decision, stride + 1))
+
+    assert next(_mutated_results(monkeypatch, mutate), None) is not None
+
+
+def test_a_robot_coming_down_its_targets_column_stops_on_its_target():
+    """The start that showed the overshoot: robot 1 comes down column 2 onto t_0 and is done there."""
+    case = ([(1, 1), (2, -60)], [(2, 2), (0, 2)], [True, True])
+    slow, fast = both(case, "round-robin", 712)
+    assert fast.history.events() == slow.history.events()
+    assert (slow.state.moves, slow.state.events) == (fast.state.moves, fast.state.events) == (62, 197)
+    assert fast.walks and fast.broken_strides == 0
+
+
+class Parity:
+    """A plug-in whose stride lies in the middle of its walk: it walks right for ever, its rule named by
+    the parity of its distance to the other robot, with a stride of 11 (the same parity at both ends)."""
+
+    name = "parity"
+    lights = ("off",)
+
+    def decide(self, view: Snapshot, pattern) -> Decision:
+        (other,) = view.robots
+        if other.dx < 0 and other.dy == 0:
+            rule = "even" if other.dx % 2 == 0 else "odd"
+            return Decision("off", Direction.RIGHT, rule, rule, stride=11)
+        return Decision("off", None, "stay", "stay", watch=Watch(boxes=((-1, 0, -1, 0),)))
+
+
+def test_check_walks_re_decides_every_skipped_step_and_fails_loudly():
+    """The engine's own check of a stride (its last cycle) passes this lie; ``check_walks`` re-decides
+    every step of the walk on views built from scratch and stops the run."""
+    runs = {}
+    for fast in (False, True):
+        e = Engine([(0, 0), (1, 0)], [(0, 0), (50, 0)], Parity(), fast_forward=fast, max_moves=30)
+        advance(e, make_scheduler("async"), 0)
+        runs[fast] = e
+    assert runs[True].walks and runs[True].history.events() != runs[False].history.events()
+    checked = Engine([(0, 0), (1, 0)], [(0, 0), (50, 0)], Parity(), fast_forward=True, check_walks=True)
+    with pytest.raises(fast_forward.WalkMismatch, match="on 'odd', but at its cycle 2 decides 'even'"):
+        advance(checked, make_scheduler("async"), 0)
+
+
+def test_check_walks_passes_an_honest_run_and_the_environment_turns_it_on(monkeypatch):
+    case = spread_case(3, k=5, scale=40)
+    monkeypatch.setenv("APF_VIZ_CHECK_WALKS", "1")
+    checked = engine(case, True)
+    assert checked.check_walks
+    advance(checked, make_scheduler("async"), 1)
+    slow = engine(case, False)
+    advance(slow, make_scheduler("async"), 1)
+    assert checked.walks and checked.history.events() == slow.history.events()
+
+
+def test_the_command_line_checks_walks_with_check_walks(tmp_path):
+    (tmp_path / "r.json").write_text(json.dumps({"robots": [[1, 1], [2, -60]], "y_up": [True, True]}))
+    (tmp_path / "p.json").write_text(json.dumps({"points": [[2, 2], [0, 2]]}))
+    common = ["run", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json"), "--json"]
+    common += ["--scheduler", "round-robin", "--seed", "712"]
+    checked, stepped = run_cli(*common, "--check-walks"), run_cli(*common, "--no-fast-forward")
+    assert checked.returncode == stepped.returncode == 0, checked.stderr
+    assert json.loads(checked.stdout) == json.loads(stepped.stdout)
+    assert json.loads(checked.stdout)["moves"] == 62

@@ -256,3 +256,161 @@ def test_the_eta_weighs_runs_by_their_size():
 
     small, large = Cell(10, 1, "async", "apf-opaque-grid", "compute"), Cell(100, 1, "async", "x", "compute")
     assert cost(large) > 20 * cost(small)
+
+
+# ------------------------------------------------- output paths that are not regular files, and limits
+# Issue "Claims that survive an adversary", item 3: each refused in one line with exit 2 (each fails on
+# the code before it). Device nodes are made privately in tmp_path, never the system's.
+def special_files(tmp_path: Path) -> list[tuple[Path, str]]:
+    import socket
+    import stat
+
+    made = []
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    made.append((fifo, "a FIFO"))
+    sock_path = tmp_path / "sock"
+    sock = socket.socket(socket.AF_UNIX)
+    sock.bind(str(sock_path))
+    sock.close()
+    made.append((sock_path, "a socket"))
+    device = tmp_path / "null"
+    try:  # a private copy of /dev/null's node (root, as CI runs; elsewhere the FIFO and socket remain)
+        os.mknod(device, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        made.append((device, "a character device"))
+    except PermissionError:
+        pass
+    return made
+
+
+def output_commands(out: Path) -> list[list[str]]:
+    robots, pattern = str(ROOT / "demo_patterns" / "starts" / "sym-call-7.json"), str(CUP)
+    run = ["run", "--robots", robots, "--pattern", pattern, "--max-events", "50"]
+    return [
+        [*run, "--trace", str(out)],
+        [*run, "--schedule-out", str(out)],
+        ["pattern", "--shape", "box", "--size", "2", "--out", str(out)],
+        ["random-robots", "--count", "3", "--width", "4", "--height", "4", "--out", str(out)],
+    ]
+
+
+def test_an_output_path_that_is_a_device_fifo_or_socket_is_refused_and_left_as_it_is(tmp_path):
+    for path, kind in special_files(tmp_path):
+        before = os.lstat(path)
+        for command in output_commands(path):
+            out = run_cli(*command)
+            one_line_exit_2(out, str(path), f"is {kind}, not a regular file")
+            after = os.lstat(path)
+            assert (after.st_mode, after.st_ino, after.st_rdev) == (
+                before.st_mode,
+                before.st_ino,
+                before.st_rdev,
+            )
+        assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary file left
+
+
+def test_the_atomic_rename_itself_refuses_a_special_file(tmp_path):
+    """Every writer (tables, images, counterexamples) goes through replace_atomically."""
+    for path, kind in special_files(tmp_path):
+        with pytest.raises(InputError, match=f"is {kind}"):
+            formats.write_atomic(path, "text")
+        with pytest.raises(InputError, match=f"is {kind}"):
+            formats.replace_atomically(path, lambda tmp: Path(tmp).write_text("x"))
+    regular = tmp_path / "regular.txt"
+    regular.write_text("old")
+    link = tmp_path / "link.txt"
+    link.symlink_to(regular)
+    formats.write_atomic(link, "new")  # a link to a regular file: the link is replaced, as before
+    assert link.read_text() == "new" and not link.is_symlink() and regular.read_text() == "old"
+
+
+def test_a_schedule_line_naming_a_robot_beyond_any_index_keeps_the_run_up_to_it(tmp_path):
+    sched = tmp_path / "s.jsonl"
+    header = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
+    body = [{"robot": 0, "phase": "look"}, {"robot": 10**23, "phase": "look"}]
+    sched.write_text("\n".join(json.dumps(x) for x in [header, *body]) + "\n")
+    trace = tmp_path / "t.jsonl"
+    out = run_cli(
+        "run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(sched),
+        "--trace", str(trace),
+    )  # fmt: skip
+    one_line_exit_2(out, f"{sched}:3: robot {10**23} does not exist (10 robots)")
+    assert [(e.robot, e.phase) for e in load_trace(trace)[1]] == [(0, "look")]
+    round_line = [header, {"round": [0, 10**23]}]
+    sched.write_text("\n".join(json.dumps(x) for x in round_line) + "\n")
+    one_line_exit_2(run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN),
+                            "--schedule", str(sched)), "does not exist")  # fmt: skip
+
+
+def test_lights_random_beyond_its_maximum_is_refused(tmp_path):
+    from apf_viz.lights import MAX_RANDOM_RUNS
+
+    out = run_cli("lights", "--out", str(tmp_path / "l.parquet"), "--random", str(10**12))
+    one_line_exit_2(out, f"--random {10**12:,}", f"from 0 to {MAX_RANDOM_RUNS:,}")
+    assert not (tmp_path / "l.parquet").exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--text", "   "], "no cells to draw"),
+        (["--shape", "box", "--size", "0"], "--shape box --size 0"),
+        (["--shape", "outline", "--size", "-2"], "--shape outline --size -2"),
+        (["--shape", "row", "--size", "0"], "--shape row --size 0"),
+    ],
+)
+def test_a_pattern_with_no_cells_or_a_size_below_one_is_refused(tmp_path, args, needle):
+    out = run_cli("pattern", *args, "--out", str(tmp_path / "p.json"))
+    one_line_exit_2(out, needle)
+    assert not (tmp_path / "p.json").exists()
+
+
+def test_ascii_art_of_millions_of_cells_is_refused_before_they_are_made(tmp_path):
+    art = tmp_path / "big.txt"
+    art.write_text(("#" * 999 + "\n") * 4900)  # 4.9 MB, under the file limit
+    tracemalloc.start()
+    try:
+        with pytest.raises(Exception, match="4,895,100 '#' cells, more than 10,000"):
+            from apf_viz.core import shapes
+
+            shapes.ascii_art(art.read_text().splitlines())
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 60_000_000, peak  # the text and its lines; 4.9 million cells would be hundreds of MB
+    one_line_exit_2(run_cli("pattern", "--ascii", str(art)), f"{art}: 4,895,100 '#' cells")
+
+
+def test_serve_library_naming_a_file_is_refused(tmp_path):
+    from apf_viz.ui.library import PatternLibrary
+
+    afile = tmp_path / "patterns.json"
+    afile.write_text("{}")
+    with pytest.raises(InputError, match="is a file, not a folder"):
+        PatternLibrary(afile)
+    out = run_cli("serve", "--library", str(afile), "--port", "0")
+    one_line_exit_2(out, f"--library {afile}: is a file, not a folder")
+    assert afile.read_text() == "{}"
+
+
+@pytest.mark.parametrize("command", ["sweep", "lights"])
+def test_workers_beyond_the_machine_and_an_in_process_cluster_are_refused(tmp_path, command):
+    out = tmp_path / "x.parquet"
+    one_line_exit_2(run_cli(command, "--out", str(out), "--workers", "100000"), "100,000 local worker")
+    one_line_exit_2(run_cli(command, "--out", str(out), "--cluster", "inproc://x"),
+                    "'inproc://x' is not a Dask scheduler's address")  # fmt: skip
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("cap", range(3, 40))
+def test_max_events_under_lc_atomic_is_never_passed(cap):
+    from apf_viz.algorithms import get_algorithm
+    from apf_viz.core.engine import Engine
+    from apf_viz.core.run import advance
+    from apf_viz.core.schedulers import make_scheduler
+
+    for fast in (False, True):
+        e = Engine([(1, 1), (2, -60)], [(2, 2), (0, 2)], get_algorithm("apf-opaque-grid"),
+                   light_semantics="lc-atomic", max_events=cap, fast_forward=fast)  # fmt: skip
+        advance(e, make_scheduler("async"), 1)
+        assert e.outcome == "limit" and cap - 1 <= e.state.events <= cap, (cap, e.state.events)

@@ -25,7 +25,14 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
-from apf_viz.core.fast_forward import hidden_only_on_line, shifted, steps_in_same_sight
+from apf_viz.core.fast_forward import (
+    WalkMismatch,
+    check_walks_requested,
+    hidden_only_on_line,
+    shifted,
+    steps_in_same_sight,
+    walk_mismatch,
+)
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import COORD_LIMIT, Direction, Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord, Walk
@@ -141,7 +148,8 @@ class Engine:
         y_up: per robot, whether its local +y is the global +y (the adversary's flips); all True if None.
         light_semantics: ``"compute"`` (a new light is visible from the end of Compute) or
             ``"lc-atomic"`` (Look and Compute are one atomic event).
-        max_events: the run ends with outcome ``limit`` after this many events (None: no limit).
+        max_events: the run ends with outcome ``limit`` before its events could pass this many (None: no
+            limit); under lc-atomic, where a Look step is two events, it may end one event short.
         max_moves: the same for moves (None: no limit).
         checkpoint_every: steps between state checkpoints used by :meth:`seek`.
         skip_noops: schedulers choose only among robots whose next event can change something
@@ -151,6 +159,9 @@ class Engine:
             run, slower; for tests).
         fast_forward: when skipping, let :meth:`walk` apply a lone robot's repeating cycles as one
             macro-step (:mod:`apf_viz.core.fast_forward`); the same run, event for event.
+        check_walks: re-decide every step a walk or forced cycles skip, on views built from scratch,
+            and raise :class:`~apf_viz.core.fast_forward.WalkMismatch` on a difference (None: as
+            ``APF_VIZ_CHECK_WALKS`` says; slow, for tests and ``--check-walks``).
     """
 
     def __init__(
@@ -167,6 +178,7 @@ class Engine:
         skip_noops: bool = True,
         use_watches: bool = True,
         fast_forward: bool = False,
+        check_walks: bool | None = None,
     ) -> None:
         k = len(robots)
         if k == 0:
@@ -185,12 +197,17 @@ class Engine:
             raise EngineError(f"y_up has {len(self.y_up)} entries for {k} robots")
         self.light_semantics: LightSemantics = light_semantics
         self.max_events = max_events
+        # A robot's step makes one event, or two under lc-atomic (its Look and Compute): the run ends where
+        # the next step could pass max_events, so it never holds more (one short of it, at worst).
+        self._most_events_a_step = 2 if light_semantics == "lc-atomic" else 1
         self.max_moves = max_moves
         self.checkpoint_every = checkpoint_every
         self.skip_noops = skip_noops
         self.use_watches = use_watches
         self.fast_forward = fast_forward and skip_noops
+        self.check_walks = check_walks_requested() if check_walks is None else check_walks
         self.walks = 0  # macro-steps applied by walk(), for benchmarks and tests
+        self.broken_strides = 0  # strides whose last cycle decided otherwise (not walked), for tests
         self.forced_walks = 0  # runs of forced cycles applied by walk() (each cycle its own steps)
         # Per robot, cycles to let pass before trying a walk again, and the last such wait: in a crowd its
         # sight changes every few steps, and trying at every cycle would cost more than the walks save.
@@ -440,6 +457,17 @@ class Engine:
         same = 0  # cycles that repeat this very decision on the same robots in sight
         if decision.stride >= 2 and hidden_only_on_line(st.positions, r, delta, snap.columns):
             same = steps_in_same_sight(snap.columns, decision.move, min(n, decision.stride))
+            # The stride is the algorithm's promise; its last cycle is decided for real (one decision
+            # on the view the walker will hold there), and a promise that fails there is not walked:
+            # the cycles are then forced ones, each decided for real.
+            if same >= 2 and self.decide(shifted(snap, decision.move, same - 1)) != decision:
+                self.broken_strides += 1
+                if self.check_walks:
+                    raise WalkMismatch(
+                        f"fast-forward: robot {r}'s stride of {decision.stride} on {decision.rule_id!r} is "
+                        f"broken: its cycle {same} decides otherwise"
+                    )
+                same = 0
         # Else, in a crowd, cycles the scheduler cannot interleave, each Looked and decided anew.
         reach = same if same >= 2 else (min(n, _FORCED_HORIZON) if per == 3 else 0)
         if reach >= 2:
@@ -482,12 +510,29 @@ class Engine:
             cycles += 1
         if not cycles:
             return 0
+        if self.check_walks:
+            self._check_walk(r, here, gmove, cycles, None)
         self.forced_walks += 1
         self._dirty.update(self._watches.moved((here,), (at,), (r,), occupied))
         self._dirty.add(r)
         self._update_outcome()
         self._checkpoint_after(start)
         return 3 * cycles
+
+    def _check_walk(self, r: int, here: Point, gmove: Direction, n: int, decision: Decision | None) -> None:
+        """``check_walks``: the n cycles of robot r from ``here`` are those the step-by-step run makes
+        (:func:`~apf_viz.core.fast_forward.walk_mismatch`), or the run stops with the difference."""
+        positions = self.state.positions.copy()
+        positions[r] = here
+        problem = walk_mismatch(
+            positions, self.state.lights, self.y_up, r, gmove.delta, n, decision, self.algorithm_decide
+        )
+        if problem:
+            raise WalkMismatch(f"fast-forward is not the step-by-step run: {problem}")
+
+    def algorithm_decide(self, view: Snapshot) -> Decision:
+        """The algorithm's decision, asked directly (no memo): the walk check's independent witness."""
+        return self.algorithm.decide(view, self.pattern)
 
     def _forced_step(self, record: StepRecord, event: Event) -> None:
         """The bookkeeping :meth:`apply` does around a step, for one of :meth:`_forced_cycles`' events
@@ -532,6 +577,8 @@ class Engine:
         """Apply n cycles of robot r, from ``here`` by ``gmove`` (global), on this decision (:meth:`walk`
         checked that they repeat)."""
         st = self.state
+        if self.check_walks:
+            self._check_walk(r, here, gmove, n, decision)
         dx, dy = gmove.delta
         to = (here[0] + n * dx, here[1] + n * dy)
         position = st.steps
@@ -712,7 +759,7 @@ class Engine:
             return
         if changed and self._quiescent():
             st.outcome = "formed" if matches_pattern(self.current_points(), self.pattern) else "stuck"
-        elif (self.max_events is not None and st.events >= self.max_events) or (
+        elif (self.max_events is not None and st.events + self._most_events_a_step > self.max_events) or (
             self.max_moves is not None and st.moves >= self.max_moves
         ):
             st.outcome = "limit"

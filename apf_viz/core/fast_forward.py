@@ -28,12 +28,16 @@ watches told of every move.
 
 from __future__ import annotations
 
+import os
+from collections.abc import Callable, Sequence
 from itertools import combinations
 
 import numpy as np
 
-from apf_viz.core.grid import Direction, Point
-from apf_viz.core.view import Columns, Snapshot
+from apf_viz.core.algorithm import Decision
+from apf_viz.core.frames import to_local
+from apf_viz.core.grid import Direction, Point, visible_from
+from apf_viz.core.view import Columns, Seen, Snapshot
 
 # Products of two offsets fit in int64 below this; larger coordinates are lined up in Python integers.
 _SMALL = 1 << 31
@@ -136,3 +140,62 @@ def shifted(view: Snapshot, move: Direction, j: int) -> Snapshot:
     c = view.columns
     mx, my = move.delta
     return Snapshot(view.light, columns=Columns(c.dx - j * mx, c.dy - j * my, c.code, c.palette))
+
+
+def check_walks_requested() -> bool:
+    """Whether ``APF_VIZ_CHECK_WALKS=1`` asks every engine to re-decide the steps it walks."""
+    return os.environ.get("APF_VIZ_CHECK_WALKS", "0") not in ("", "0")
+
+
+class WalkMismatch(AssertionError):
+    """A walk (or forced cycles) applied a step the step-by-step run would not have made."""
+
+
+def snapshot_from_scratch(positions: np.ndarray, lights: Sequence[str], r: int, y_up: bool) -> Snapshot:
+    """Robot r's snapshot computed afresh from the positions (no patched view, no cache): the check's
+    independent witness of what r would see."""
+    here = positions[r]
+    robots = []
+    for j in visible_from(positions, r).tolist():
+        dx, dy = to_local((int(positions[j, 0] - here[0]), int(positions[j, 1] - here[1])), y_up)
+        robots.append(Seen(dx, dy, lights[j]))
+    return Snapshot(lights[r], tuple(sorted(robots)))
+
+
+def walk_mismatch(
+    positions: np.ndarray,
+    lights: Sequence[str],
+    y_up: Sequence[bool],
+    r: int,
+    delta: Point,
+    n: int,
+    decision: Decision | None,
+    decide: Callable[[Snapshot], Decision],
+) -> str | None:
+    """What the step-by-step run would do differently from n cycles of robot r walking by ``delta``
+    (global) from where ``positions`` has it, or None if nothing: at each of its points 1 … n − 1 the
+    walker decides ``decision`` again on its real view (skipped when None: forced cycles decide each
+    cycle for real), and at each of those points every other robot's real view is still answered with "same
+    light, stay" (else the scheduler would have had a choice). Costs n·k decisions on views built from
+    scratch: for ``APF_VIZ_CHECK_WALKS=1`` and ``--check-walks``, not for ordinary runs."""
+    at = positions.copy()
+    x, y = int(at[r, 0]), int(at[r, 1])
+    for j in range(1, n):  # after its last move the walk is over: others may then act
+        at[r] = (x + j * delta[0], y + j * delta[1])
+        if decision is not None:
+            again = decide(snapshot_from_scratch(at, lights, r, y_up[r]))
+            if again != decision:
+                return (
+                    f"robot {r} walked from ({x}, {y}) by {delta} for {n} cycles on {decision.rule_id!r}, "
+                    f"but at its cycle {j + 1} decides {again.rule_id!r} ({again.light}, {again.move})"
+                )
+        for o in range(at.shape[0]):
+            if o == r:
+                continue
+            other = decide(snapshot_from_scratch(at, lights, o, y_up[o]))
+            if not other.is_noop(lights[o]):
+                return (
+                    f"robot {r}'s walk from ({x}, {y}) by {delta}: after its move {j} of {n}, robot {o} "
+                    f"would act ({other.rule_id!r}), so the scheduler had a choice"
+                )
+    return None

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import stat
 import tempfile
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -327,13 +328,39 @@ def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "p
 
 
 # ---------------------------------------------------------------------------------------------- writing
+_SPECIAL_FILES = (
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISFIFO, "a FIFO"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def not_regular(path: Path | str) -> str | None:
+    """Why an output could not replace what ``path`` names (a device, a FIFO, a socket: a rename over it
+    would replace the node itself, e.g. the machine's /dev/null), or None: nothing there, or a regular
+    file (through a symbolic link, the link is what is replaced)."""
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    for test, kind in _SPECIAL_FILES:
+        if test(mode):
+            return f"{path}: is {kind}, not a regular file; refusing to replace it (give a file's path)"
+    return None
+
+
 def check_writable(path: Path | str) -> None:
     """Refuse, before any work is done, an output path that :func:`write_atomic` could not write: its
-    folder missing or read-only, or the path a folder. The message names the path as given."""
+    folder missing or read-only, the path a folder, or anything but a regular file (:func:`not_regular`).
+    The message names the path as given."""
     p = Path(path)
     folder = p.parent
     if p.is_dir():
         raise InputError(f"{path}: is a directory, not a file")
+    problem = not_regular(p)
+    if problem:
+        raise InputError(problem)
     if not folder.is_dir():
         raise InputError(f"{path}: cannot write: folder {str(folder)!r} does not exist")
     if not os.access(folder, os.W_OK | os.X_OK):
@@ -344,6 +371,9 @@ def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: s
     """The whole file or nothing: ``write(temporary path)`` in the same folder, then rename over ``path``
     (a table or an image written by another library goes through here too)."""
     p = Path(path)
+    problem = not_regular(p)  # before a temporary file is made beside it (in /dev, for /dev/null)
+    if problem:
+        raise InputError(problem)
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=suffix, dir=p.parent or ".")
     os.close(fd)
     try:
@@ -351,6 +381,9 @@ def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: s
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a saved file gets the usual permissions
         write(tmp)
+        problem = not_regular(p)  # checked again at the rename: the path may have changed meanwhile
+        if problem:
+            raise InputError(problem)
         os.replace(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

@@ -80,8 +80,9 @@ class Schedule:
     """A parsed schedule: ``k`` robots, the flips and light semantics it was recorded with (None in a
     version-1 file), and its lines, each with its line number in the file.
 
-    An activation of robot r ≥ 0 is stored as the integer ``3·r + phase``; any other line (a round, or
-    an activation of a negative robot, refused when followed) as ``-1 - i``, the i-th of ``_others``."""
+    An activation of robot 0 ≤ r < k is stored as the integer ``3·r + phase``; any other line (a round,
+    or an activation of a robot that does not exist, refused when followed: the run up to it is kept)
+    as ``-1 - i``, the i-th of ``_others`` (an index as large as 10^23 would not fit the array)."""
 
     __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "y_up")
 
@@ -96,7 +97,7 @@ class Schedule:
         self._others: list[Line] = []
 
     def add(self, number: int, line: Line) -> None:
-        if isinstance(line, Activation) and line.robot >= 0:
+        if isinstance(line, Activation) and 0 <= line.robot < self.k:
             self._add_activation(number, line.robot, _PHASE_CODE[line.phase])
             return
         self._numbers.append(number)
@@ -128,7 +129,12 @@ class Schedule:
 def _parse_line(raw: str, where: str, schedule: Schedule, n: int) -> None:
     data = _parse_json(raw, where)
     # The common line, checked by hand: a million lines through pydantic cost 47 s.
-    if type(data) is dict and len(data) == 2 and type(data.get("robot")) is int and data["robot"] >= 0:
+    if (
+        type(data) is dict
+        and len(data) == 2
+        and type(data.get("robot")) is int
+        and 0 <= data["robot"] < schedule.k
+    ):
         phase = _PHASE_CODE.get(data.get("phase"))  # type: ignore[arg-type]
         if phase is not None:
             schedule._add_activation(n, data["robot"], phase)

@@ -163,7 +163,11 @@ def text(word: str, at: Point) -> Cells:
 
 
 def ascii_art(lines: Sequence[str], cell: str = "#") -> Cells:
-    """Cells from text: ``cell`` marks a cell; the first line is the top row, (0, 0) its bottom-left."""
+    """Cells from text: ``cell`` marks a cell; the first line is the top row, (0, 0) its bottom-left.
+    More than ``MAX_SIZE`` cells are refused before any is made (a 5 MB file of '#' is 5 million)."""
+    count = sum(text_.count(cell) for text_ in lines)
+    if count > MAX_SIZE:
+        raise ShapeError(f"{count:,} {cell!r} cells, more than {MAX_SIZE:,}")
     height = len(lines)
     return [(x, height - 1 - y) for y, text_ in enumerate(lines) for x, c in enumerate(text_) if c == cell]
 

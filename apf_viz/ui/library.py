@@ -38,6 +38,10 @@ class PatternLibrary:
 
     def __init__(self, folder: Path | None = None) -> None:
         self.folder = folder or default_folder()
+        if self.folder.exists() and not self.folder.is_dir():
+            raise InputError(
+                f"--library {self.folder}: is a file, not a folder (give one to keep patterns in)"
+            )
 
     def names(self) -> list[str]:
         """The saved patterns' names (their files' names, ``_`` read as a space), sorted."""
@@ -49,7 +53,10 @@ class PatternLibrary:
         if not cells:
             raise InputError("an empty pattern is not saved: draw at least one cell")
         path = self.folder / _file_name(name)
-        self.folder.mkdir(parents=True, exist_ok=True)
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+        except (FileExistsError, NotADirectoryError):
+            raise InputError(f"{self.folder}: is not a folder; the pattern is not saved") from None
         write_atomic(path, pattern_json(cells, name.strip()))
         return path
 

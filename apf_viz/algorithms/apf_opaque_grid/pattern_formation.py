@@ -150,10 +150,20 @@ def target_move(frame: LeaderFrame, j: int, target: Point, light: str, frame_fix
             light, step, f"{name}: on L_(t_j−1) → move horizontally", "TargetMove.along", stride=stride
         )
     step = frame.local_move(0, 1 if ty - 1 > y else -1)
-    stride = abs(ty - 1 - y) if frame_fixed else FOREVER
+    stride = _vertical_stride(x, y, target) if frame_fixed else FOREVER
     return Decision(
         light, step, f"{name}: move vertically towards L_(t_j−1)", "TargetMove.vertical", stride=stride
     )
+
+
+def _vertical_stride(x: int, y: int, target: Point) -> int:
+    """Moves of TargetMove's vertical branch until its next branch: the row below t_j (L_(t_j−1)), or
+    t_j itself first for a robot coming down its own target's column (there it is done, not one row
+    below)."""
+    tx, ty = target
+    if x == tx and y > ty:
+        return y - ty
+    return abs(ty - 1 - y)
 
 
 _dy = itemgetter(1)
