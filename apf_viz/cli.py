@@ -640,7 +640,8 @@ def build_parser() -> argparse.ArgumentParser:
         ),
         epilog=(
             "Exit codes: 0 formed (check: verified), 1 not formed (check: a violation), 2 bad input, "
-            "3 unsolvable start (Theorem 1), 4 check: state budget exhausted."
+            "3 unsolvable start (Theorem 1), 4 check: state budget exhausted, 5 run --check-walks: a walk "
+            "that is not the step-by-step run."
         ),
     )
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)

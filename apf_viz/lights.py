@@ -3,15 +3,25 @@
 Every ordered pair (a, b) of the algorithm's lights names a variant ``ALG+merge(a=b)``: b is shown as a,
 to every robot including itself (docs/ALGORITHM.md, "Variants"). Each merge is put to two tests:
 
-1. **the explorer** (ASYNC, partial-order reduction): every solvable start of k ≤ 3 robots in a 4×4 box
-   up to translation and mirror, then the stated k = 4–5 starts (:data:`STATED_STARTS`), each under every
-   assignment of y-axis flips, towards a row of k points. The first violation ends the merge's search;
-   its shortest schedule is kept as a trace.
-2. **random adversarial runs** for the merges that survive: N runs, half of k = 6–12 random robots and
-   half on the Demo scenarios' starts, under the async and stale-first schedulers, through the sweep
-   machinery (``apf-viz sweep``'s Dask cluster, results file, resume and progress).
+0. **the base algorithm** is explored first on every start stage 1 uses: a start on which it fails
+   itself cannot tell a merge's failure from its own, and is left out (and said).
+1. **the explorer** (ASYNC, partial-order reduction): for each k, every start of k ≤ 5 robots in a 5×5
+   box that is symmetric with robots on its axis (the hardest for leader election), then every solvable
+   start of k ≤ 3 in a 4×4 box up to translation and mirror, then the stated k = 4–5 starts
+   (:data:`STATED_STARTS`), each under every assignment of y-axis flips, towards a row of k points. The
+   first violation ends the merge's search; its shortest schedule is kept as a trace.
+2. **random adversarial runs** for the merges the explorer could not break: N runs under every scheduler
+   (fsync, ssync, async, stale-first, round-robin), a third on random starts of k = 6–12, a third on
+   random symmetric starts of 8–20 robots with robots on the axis, a third on the Demo scenarios' starts
+   scaled ×1, ×2 and ×3, through the sweep machinery (``apf-viz sweep``'s Dask cluster, results file,
+   resume and progress).
 
-A merge that survives both has *evidence*, not a proof: small starts and random schedules.
+**Coverage before verdict.** A merge can only change a run where the base algorithm sets the hidden
+light (it then shows the merged colour): the lab counts those decisions (``merged_lights.AtWork``) in
+the explorer and in the random runs, each distinct view once per start and flips (or per run), probes
+included: a merge can turn a decision into "same light, stay", and then no Compute ever shows it. A
+merge that breaks nowhere *and was never at work* is ``untested``, never ``survives``; one that was at
+work and broke nowhere ``survives`` with its counts: evidence, not a proof.
 
 One Dask task per merge. Rows are written atomically as merges finish; the same command resumes, skipping
 the merges already in the file; Ctrl+C keeps what finished.
@@ -26,17 +36,22 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
+from apf_viz.algorithms.merged_lights import MARKER, AtWork, MergedLights, split_name
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
 from apf_viz.progress import show_progress
 
 COLUMNS = (
     "algorithm", "merge", "shown", "hidden", "ks", "verdict", "stage", "violation", "k", "start", "y_up",
     "events", "starts", "states", "random_runs", "random_failed", "seconds", "trace", "error",
+    "exercised", "random_exercised",
 )  # fmt: skip
+# exercised: explorer views (per start and flips) in which the base algorithm set the hidden light;
+# random_exercised: the same in the random runs (decisions asked, each distinct view once per run).
 KEY = ("algorithm", "merge", "ks")
 RANDOM_KS = (6, 7, 8, 9, 10, 11, 12)
-RANDOM_SCHEDULERS = ("async", "stale-first")
+RANDOM_SCHEDULERS = ("fsync", "ssync", "async", "stale-first", "round-robin")
+RANDOM_SYMMETRIC_KS = tuple(range(8, 21))
+DEMO_SCALES = (1, 2, 3)
 MAX_STATES = 2_000_000  # per start: a k = 5 start with every flip takes about 200,000 with the reduction
 
 
@@ -109,36 +124,78 @@ def parse_ks(text: str) -> tuple[int, ...]:
 
 def starts_for(ks: Sequence[int]) -> list[tuple[str, list]]:
     """(name, start) in the order the explorer takes them: fewest robots first, so the first
-    counterexample found is a small one."""
-    from apf_viz.explore.small_starts import STATED_STARTS, solvable_box_starts
+    counterexample found is a small one; for each k the symmetric starts with robots on the axis first
+    (where leader election is hardest), each start once."""
+    from apf_viz.core.pattern_match import normalise
+    from apf_viz.explore.small_starts import STATED_STARTS, axis_symmetric_box_starts, solvable_box_starts
 
     out: list[tuple[str, list]] = []
+    seen: set[tuple] = set()
+
+    def add(name: str, start: list) -> None:
+        key = tuple(normalise(start))
+        if key not in seen:
+            seen.add(key)
+            out.append((name, start))
+
     for k in ks:
+        for start in axis_symmetric_box_starts(k, 5) if k >= 2 else []:
+            add(json.dumps(start), start)
         if k <= 3:
-            out += [(json.dumps(s), s) for s in solvable_box_starts(k, 4, mirrored=True)]
+            for start in solvable_box_starts(k, 4, mirrored=True):
+                add(json.dumps(start), start)
         else:
-            out += [(name, s) for name, s in STATED_STARTS.items() if len(s) == k]
+            for name, start in STATED_STARTS.items():
+                if len(start) == k:
+                    add(name, start)
     return out
 
 
+# ---------------------------------------------------------------------------------------------- stage 0
+def verify_start(algorithm: str, name: str, start: list) -> dict:
+    """On a worker: the base algorithm explored on one start under every flip assignment."""
+    from apf_viz.algorithms import get_algorithm
+    from apf_viz.explore.check import all_flips, check
+    from apf_viz.explore.small_starts import line_pattern
+
+    t0 = time.perf_counter()
+    k = len(start)
+    result, y_up = check(
+        get_algorithm(algorithm), start, line_pattern(k), all_flips(k), "async", MAX_STATES, False
+    )
+    return {
+        "start": name,
+        "verdict": result.verdict,
+        "detail": result.detail if result.verdict != "verified" else "",
+        "y_up": list(y_up) if result.verdict != "verified" else [],
+        "states": result.states,
+        "seconds": round(time.perf_counter() - t0, 3),
+    }
+
+
 # ---------------------------------------------------------------------------------------------- stage 1
-def explore_merge(merge: Merge, ks: Sequence[int], traces: str) -> dict:
-    """On a worker: the explorer on every start until the first violation; the merge's row."""
+def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence[tuple[str, list]]) -> dict:
+    """On a worker: the explorer on every start (those the base algorithm verifies on) until the first
+    violation; the merge's row."""
     from apf_viz.algorithms import get_algorithm
     from apf_viz.explore.check import all_flips, check, counterexample_text
     from apf_viz.explore.small_starts import line_pattern
 
     algorithm = get_algorithm(merge.variant)
+    assert isinstance(algorithm, MergedLights)
+    counted = AtWork(algorithm)
     t0 = time.perf_counter()
     states = 0
-    starts = starts_for(ks)
     for n, (name, start) in enumerate(starts, 1):
         k = len(start)
-        result, y_up = check(algorithm, start, line_pattern(k), all_flips(k), "async", MAX_STATES, False)
+        result, y_up = check(counted, start, line_pattern(k), all_flips(k), "async", MAX_STATES, False)
         states += result.states
         if result.verdict == "verified":
             continue
-        base = {"k": k, "start": name, "y_up": json.dumps(list(y_up)), "starts": n, "states": states}
+        base = {
+            "k": k, "start": name, "y_up": json.dumps(list(y_up)), "starts": n, "states": states,
+            "exercised": counted.count,
+        }  # fmt: skip
         if result.verdict == "budget":
             return _row(merge, ks, "inconclusive", "explorer", result.detail, t0=t0, **base)
         text = counterexample_text(algorithm, start, line_pattern(k), y_up, "async", result)
@@ -160,7 +217,10 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str) -> dict:
             t0=t0,
             **base,
         )
-    return _row(merge, ks, "survives", "explorer", "", starts=len(starts), states=states, t0=t0)
+    verdict = "survives" if counted.count else "untested"
+    return _row(
+        merge, ks, verdict, "explorer", "", starts=len(starts), states=states, exercised=counted.count, t0=t0
+    )
 
 
 def _row(merge: Merge, ks, verdict, stage, violation, *, t0: float, **values) -> dict:
@@ -169,6 +229,7 @@ def _row(merge: Merge, ks, verdict, stage, violation, *, t0: float, **values) ->
         "ks": ks_label(ks), "verdict": verdict, "stage": stage, "violation": violation, "k": 0,
         "start": "", "y_up": "", "events": 0, "starts": 0, "states": 0, "random_runs": 0,
         "random_failed": 0, "seconds": round(time.perf_counter() - t0, 3), "trace": "", "error": "",
+        "exercised": 0, "random_exercised": 0,
     }  # fmt: skip
     row.update(values)
     return row
@@ -180,27 +241,37 @@ MAX_RANDOM_RUNS = 10_000
 would never be made)."""
 
 
-def random_cells(survivors: Sequence[Merge], runs: int) -> list:
-    """``runs`` random runs per surviving merge, half on generated starts (k cycles through 6–12) and half
-    on the Demo scenarios' starts (they reach what random starts rarely do: a symmetric start that needs
-    call, deciders, robots on K); the scheduler alternates between async and stale-first, the seed is the
-    run's number, and it draws the flips where the start file has none."""
+def random_cells(variants: Sequence[str], runs: int) -> list:
+    """``runs`` random runs per variant (each merge the explorer could not break, and the base algorithm
+    on the very same runs), the scheduler cycling through
+    :data:`RANDOM_SCHEDULERS` and the start through three kinds in turn: a generated start (k = 6–12), a
+    random symmetric start of 8–20 robots with robots on its axis (call, deciders and K at work, which
+    random starts rarely reach), a Demo scenario's start scaled ×1, ×2 or ×3. The seed is the run's
+    number; it draws the flips where the start gives none."""
+    from apf_viz.core.adversarial_starts import symmetric_start
     from apf_viz.core.frames import random_y_up
     from apf_viz.sweep import Cell
 
     demos = demo_starts()
     cells = []
-    for m in survivors:
+    for variant in variants:
         for i in range(runs):
-            seed, scheduler, n = i + 1, RANDOM_SCHEDULERS[(i // 2) % 2], i // 2
-            if i % 2 == 0 or not demos:
-                cells.append(Cell(RANDOM_KS[n % len(RANDOM_KS)], seed, scheduler, m.variant, "compute"))
+            seed, scheduler, n, kind = i + 1, RANDOM_SCHEDULERS[i % len(RANDOM_SCHEDULERS)], i // 3, i % 3
+            if kind == 0 or not demos:
+                cells.append(Cell(RANDOM_KS[n % len(RANDOM_KS)], seed, scheduler, variant, "compute"))
                 continue
-            name, robots, pattern, y_up = demos[n % len(demos)]
-            scheduler = RANDOM_SCHEDULERS[(n // len(demos)) % 2]  # each start under both, in turn
-            flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
-            shape = (robots, pattern, flips)
-            cells.append(Cell(len(robots), seed, scheduler, m.variant, "compute", name, *shape))
+            if kind == 1:
+                k = RANDOM_SYMMETRIC_KS[n % len(RANDOM_SYMMETRIC_KS)]
+                robots, pattern, flips = symmetric_start(k, seed)
+                name = f"symmetric k={k}"
+            else:
+                name, robots, pattern, y_up = demos[n % len(demos)]
+                scale = DEMO_SCALES[(n // len(demos)) % len(DEMO_SCALES)]
+                robots = tuple((x * scale, y * scale) for x, y in robots)
+                name = f"{name} ×{scale}" if scale > 1 else name
+                flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
+            shape = (tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(flips))
+            cells.append(Cell(len(robots), seed, scheduler, variant, "compute", name, *shape))
     return cells
 
 
@@ -224,12 +295,24 @@ def demo_starts() -> list[tuple[str, tuple, tuple, list[bool] | None]]:
 
 
 def fold_random(row: dict, runs: Sequence[dict]) -> dict:
-    """A survivor's row with its random runs counted; the first run that did not form breaks it."""
+    """A row the explorer could not break, with its random runs counted: the first run that did not form
+    breaks it; else it survives if its merge was ever at work, and is untested if never."""
     variant = Merge.of(row).variant
     mine = sorted((r for r in runs if r["algorithm"] == variant), key=lambda r: r["seed"])
-    failed = [r for r in mine if r["outcome"] != "formed"]
-    row = dict(row, random_runs=len(mine), random_failed=len(failed))
-    if failed and row["verdict"] == "survives":
+    # A run fails the merge only where the base algorithm, on the same start, flips and schedule, forms:
+    # elsewhere the failure is the base algorithm's own (and a run in which the merge never worked is
+    # the base's run, event for event).
+    base_formed = {
+        _same_run(r) for r in runs if r["algorithm"] == row["algorithm"] and r["outcome"] == "formed"
+    }
+    failed = [
+        r for r in mine if r["outcome"] != "formed" and r.get("hidden", 0) and _same_run(r) in base_formed
+    ]
+    at_work = sum(r.get("hidden", 0) for r in mine)
+    row = dict(row, random_runs=len(mine), random_failed=len(failed), random_exercised=at_work)
+    if row["verdict"] in ("survives", "untested") and not failed:
+        row["verdict"] = "survives" if row["exercised"] or at_work else "untested"
+    if failed and row["verdict"] in ("survives", "untested"):
         f = min(failed, key=lambda r: (r["events"], r["seed"]))  # the shortest to step through
         row.update(
             verdict="breaks",
@@ -241,6 +324,10 @@ def fold_random(row: dict, runs: Sequence[dict]) -> dict:
             events=f["events"],
         )
     return row
+
+
+def _same_run(r: dict) -> tuple:
+    return (r["k"], r["seed"], r["scheduler"], r["light_semantics"], r["start"])
 
 
 # ---------------------------------------------------------------------------------------------- driving
@@ -255,7 +342,7 @@ def run_lab(
     cluster: str | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> list[dict]:
-    """Both stages for every merge not already in ``out``; returns every row of the file."""
+    """Every stage for every merge not already in ``out``; returns every row of the file."""
     from apf_viz import sweep
 
     check_writable(out)
@@ -266,33 +353,85 @@ def run_lab(
     done = {tuple(r[c] for c in KEY) for r in rows}
     todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]
     if todo:
-        rows += _explore_all(todo, ks, traces, out, rows, workers, cluster, progress)
+        starts = base_verified_starts(todo[0].algorithm, ks, base_path(out), workers, cluster, progress)
+        rows += _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress)
     if random_runs:
         mine = {(m.algorithm, m.name) for m in chosen}
         survivors = [
             Merge.of(r)
             for r in rows
-            if r["verdict"] == "survives" and r["ks"] == ks_text and (r["algorithm"], r["merge"]) in mine
+            if r["verdict"] in ("survives", "untested")
+            and r["ks"] == ks_text
+            and (r["algorithm"], r["merge"]) in mine
         ]
         if survivors:
+            variants = [survivors[0].algorithm] + [m.variant for m in survivors]
             runs = sweep.run_sweep(
-                random_cells(survivors, random_runs),
+                random_cells(variants, random_runs),
                 out.with_name(out.stem + "-random.parquet"),
                 traces=traces,
                 workers=workers,
                 cluster=cluster,
                 progress=sweep.report_progress if progress else None,
             )
-            rows = [fold_random(r, runs) if r["ks"] == ks_text else r for r in rows]
+            rows = [
+                fold_random(r, runs) if r["ks"] == ks_text and Merge.of(r) in survivors else r for r in rows
+            ]
             write_lights(out, rows)
     return rows
 
 
-def _explore_all(todo, ks, traces, out, rows, workers, cluster, progress) -> list[dict]:
+def base_path(out: Path) -> Path:
+    """Where stage 0's verdicts on the base algorithm are kept beside the table (JSON)."""
+    return out.with_name(out.stem + "-base.json")
+
+
+def base_verified_starts(
+    algorithm: str, ks: Sequence[int], path: Path, workers, cluster, progress
+) -> list[tuple[str, list]]:
+    """Stage 0: the base algorithm explored on every start of :func:`starts_for` (kept in ``path`` and
+    reused when it covers them); the starts it verifies on, in order."""
+    from apf_viz.sweep import _client, _shut_down, by_the_second
+
+    starts = starts_for(ks)
+    known: dict[str, dict] = {}
+    if path.is_file():
+        data = json.loads(path.read_text(encoding="utf-8"))
+        if data.get("algorithm") == algorithm:
+            known = {r["start"]: r for r in data["starts"]}
+    todo = [(name, start) for name, start in starts if name not in known]
+    if todo:
+        client, local = _client(cluster, workers)
+        futures = {
+            client.submit(verify_start, algorithm, name, start, pure=False): name for name, start in todo
+        }
+        t0 = time.monotonic()
+        try:
+            for finished, _ in by_the_second(futures):
+                for fut in finished:
+                    r = fut.result()
+                    known[r["start"]] = r
+                if progress:
+                    left = len(starts) - len(known)
+                    progress(f"apf-viz lights: the base algorithm on {len(known)}/{len(starts)} starts, "
+                             f"{time.monotonic() - t0:.0f} s{', ETA done' if not left else ''}")  # fmt: skip
+        finally:
+            write_atomic(path, _base_json(algorithm, known))
+            _shut_down(futures, client, local)
+    return [(name, start) for name, start in starts if known[name]["verdict"] == "verified"]
+
+
+def _base_json(algorithm: str, known: dict[str, dict]) -> str:
+    rows = sorted(known.values(), key=lambda r: r["start"])
+    return json.dumps({"algorithm": algorithm, "starts": rows}, indent=1) + "\n"
+
+
+def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress) -> list[dict]:
     from apf_viz.sweep import _client, _shut_down, by_the_second
 
     client, local = _client(cluster, workers)
-    futures = {client.submit(explore_merge, m, tuple(ks), str(traces), pure=False): m for m in todo}
+    shared = client.scatter(list(starts), broadcast=True)
+    futures = {client.submit(explore_merge, m, tuple(ks), str(traces), shared, pure=False): m for m in todo}
     new: list[dict] = []
     t0 = time.monotonic()
     try:
@@ -365,7 +504,16 @@ def write_lights(path: Path, rows: list[dict]) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    ints = ("k", "events", "starts", "states", "random_runs", "random_failed")
+    ints = (
+        "k",
+        "events",
+        "starts",
+        "states",
+        "random_runs",
+        "random_failed",
+        "exercised",
+        "random_exercised",
+    )
     schema = pa.schema(
         [(c, pa.int64() if c in ints else pa.float64() if c == "seconds" else pa.string()) for c in COLUMNS]
     )
@@ -381,11 +529,22 @@ def summary(rows: Sequence[dict]) -> str:
         "| merge (b shown as a) | verdict | found by | violation | start, flips | evidence / what it shows |",
         "|---|---|---|---|---|---|",
     ]
-    for r in sorted(rows, key=lambda r: (r["verdict"] != "survives", r["shown"], r["hidden"])):
-        if r["verdict"] == "survives":
-            said = f"{r['starts']} starts, {r['states']:,} states"
+    order = {"survives": 0, "untested": 1, "inconclusive": 2, "error": 3, "breaks": 4}
+    for r in sorted(rows, key=lambda r: (order.get(r["verdict"], 5), r["shown"], r["hidden"])):
+        if r["verdict"] in ("survives", "untested"):
+            said = (
+                f"{r['starts']} starts, {r['states']:,} states, the merge at work in {r['exercised']:,} views"
+            )
             if r["random_runs"]:
-                said += f", {r['random_runs']} random runs, all formed"
+                failed = (
+                    f"{r['random_failed']} failed where the base formed"
+                    if r["random_failed"]
+                    else "none failed"
+                )
+                said += (
+                    f"; {r['random_runs']} random runs, the merge at work in {r['random_exercised']:,} "
+                    f"decisions, {failed}"
+                )
         elif r["trace"] and Path(r["trace"]).is_file():
             said = story(Path(r["trace"]))
         else:

@@ -130,13 +130,20 @@ def _time_per_move(rows: Sequence[dict], algorithms: list[str], path: Path) -> P
 
 
 LIGHTS_FIGURE = "light_merges.png"
-_VERDICT_COLOURS = {"breaks": "#d9534f", "survives": "#5cb85c", "inconclusive": "#f0ad4e", "error": "#999999"}
+_VERDICT_COLOURS = {
+    "breaks": "#d9534f",
+    "survives": "#5cb85c",
+    "untested": "#5b7fbf",
+    "inconclusive": "#f0ad4e",
+    "error": "#999999",
+}
 
 
 def plot_lights(rows: Sequence[dict], out: Path) -> Path:
     """The matrix of merges of ``apf-viz lights``: row a, column b is ``merge(a=b)`` (b shown as a);
-    red breaks (marked with the violation's initial and the robots of the counterexample), green survives,
-    grey not run. One figure per table (the first algorithm and --ks if it holds several)."""
+    red breaks (marked with the violation's initial and the robots of the counterexample), green survives
+    (its merge at work somewhere), blue untested (never at work: nothing is claimed), grey not run. One
+    figure per table (the first algorithm and --ks if it holds several)."""
     if not rows:
         raise InputError("the lights table has no rows")
     import matplotlib
@@ -188,7 +195,8 @@ def plot_lights(rows: Sequence[dict], out: Path) -> Path:
     runs = max((r["random_runs"] for r in rows), default=0)
     ax.set_title(
         f"{first['algorithm']}+merge(a=b): is light b needed?\nexplorer on k = {first['ks']} "
-        "(k ≤ 3: every start of a 4×4 box; 4–5: the stated starts), every flip assignment"
+        "(symmetric starts with robots on the axis in a 5×5 box, k ≤ 3: every start of a 4×4 box; "
+        "4–5: the stated starts), every flip assignment"
         + (f"; survivors: {runs} random runs (rnd)" if runs else ""),
         fontsize=9,
     )

@@ -21,13 +21,16 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from apf_viz.algorithms.merged_lights import AtWork, MergedLights
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
 from apf_viz.progress import show_progress
 
 COLUMNS = (
     "k", "D", "seed", "scheduler", "algorithm", "light_semantics", "start", "outcome", "moves", "events",
-    "cycles", "lights_used", "moves_per_kD", "wall_s", "trace", "error",
+    "cycles", "lights_used", "moves_per_kD", "wall_s", "trace", "error", "hidden",
 )  # fmt: skip
+# Added later: a table written before it still resumes (read as 0).
+_LATER_COLUMNS = {"hidden": 0}
 KEY = ("k", "seed", "scheduler", "algorithm", "light_semantics", "start")
 
 
@@ -176,10 +179,13 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         robots, pattern, y_up = generated_start(cell.k, cell.seed)
     budget = run_budget(robots, pattern)
     t0 = time.perf_counter()
+    algorithm = get_algorithm(cell.algorithm)
+    if isinstance(algorithm, MergedLights):
+        algorithm = AtWork(algorithm)  # counts the decisions its merge is at work in (the light lab)
     engine = Engine(
         robots,
         pattern,
-        get_algorithm(cell.algorithm),
+        algorithm,
         y_up=y_up,
         light_semantics=cell.light_semantics,  # type: ignore[arg-type]
         max_events=budget.max_events,
@@ -205,19 +211,24 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         write_atomic(path, trace_text(header, engine.history.events()))
         trace = str(path)
     outcome = st.outcome or "timeout"
-    return row(cell, d, outcome, st.moves, st.events, st.cycles, len(st.lights_used), wall, trace)
+    hidden = algorithm.count if isinstance(algorithm, AtWork) else 0
+    return row(
+        cell, d, outcome, st.moves, st.events, st.cycles, len(st.lights_used), wall, trace, hidden=hidden
+    )
 
 
 _TIMEOUT_CHUNK = 2_000  # steps between looks at the clock: milliseconds at any k
 
 
-def row(cell: Cell, d, outcome, moves, events, cycles, lights, wall, trace, error: str = "") -> dict:
+def row(
+    cell: Cell, d, outcome, moves, events, cycles, lights, wall, trace, error: str = "", hidden: int = 0
+) -> dict:
     return {
         "k": cell.k, "D": d, "seed": cell.seed, "scheduler": cell.scheduler, "algorithm": cell.algorithm,
         "light_semantics": cell.light_semantics, "start": cell.start, "outcome": outcome, "moves": moves,
         "events": events, "cycles": cycles, "lights_used": lights,
         "moves_per_kD": (moves / (cell.k * d)) if d else 0.0, "wall_s": round(wall, 4), "trace": trace,
-        "error": error,
+        "error": error, "hidden": hidden,
     }  # fmt: skip
 
 
@@ -234,12 +245,12 @@ def read_results(path: Path) -> list[dict]:
             with path.open(newline="", encoding="utf-8") as f:
                 reader = csv.DictReader(f)
                 _check_columns(path, reader.fieldnames or [])
-                return [_typed(r) for r in reader]
+                return [_typed({**_LATER_COLUMNS, **r}) for r in reader]
         import pyarrow.parquet as pq
 
         table = pq.read_table(path)
         _check_columns(path, table.column_names)
-        return table.to_pylist()
+        return [{**_LATER_COLUMNS, **r} for r in table.to_pylist()]
     except InputError:
         raise
     except Exception as e:  # a file that is not a results table: say so rather than overwrite it
@@ -249,7 +260,7 @@ def read_results(path: Path) -> list[dict]:
 
 
 def _check_columns(path: Path, columns: Sequence[str]) -> None:
-    missing = [c for c in COLUMNS if c not in columns]
+    missing = [c for c in COLUMNS if c not in columns and c not in _LATER_COLUMNS]
     extra = [c for c in columns if c not in COLUMNS]
     if missing or extra:
         what = f"missing columns {', '.join(missing)}" if missing else ""
@@ -260,7 +271,7 @@ def _check_columns(path: Path, columns: Sequence[str]) -> None:
 
 
 def _typed(r: dict) -> dict:
-    ints = ("k", "D", "seed", "moves", "events", "cycles", "lights_used")
+    ints = ("k", "D", "seed", "moves", "events", "cycles", "lights_used", "hidden")
     floats = ("moves_per_kD", "wall_s")
     return {c: (int(v) if c in ints else float(v) if c in floats else v) for c, v in r.items()}
 

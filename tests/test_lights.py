@@ -40,33 +40,60 @@ def test_every_ordered_pair_of_lights_is_a_merge_and_bad_ones_are_refused():
             lights.parse_ks(bad)
 
 
-def test_the_starts_are_every_solvable_small_start_up_to_mirror_then_the_stated_ones():
+def test_the_starts_are_the_symmetric_ones_with_robots_on_the_axis_then_every_small_start():
+    from apf_viz.core.pattern_match import normalise
+    from apf_viz.explore.small_starts import STATED_STARTS, axis_symmetric, axis_symmetric_box_starts
+
     starts = lights.starts_for((1, 2, 3, 4, 5))
     sizes = [len(s) for _, s in starts]
     assert sizes == sorted(sizes)  # fewest robots first: the first counterexample is a small one
-    assert [sizes.count(k) for k in (1, 2, 3, 4, 5)] == [1, 12, 107, 3, 3]
+    keys = [tuple(normalise(s)) for _, s in starts]
+    assert len(set(keys)) == len(keys)  # each start once
+    for k in (2, 3, 4, 5):
+        mine = [s for _, s in starts if len(s) == k]
+        symmetric = axis_symmetric_box_starts(k, 5)
+        assert len(symmetric) == {2: 4, 3: 24, 4: 56, 5: 182}[k]
+        assert mine[: len(symmetric)] == symmetric  # the hardest first, every one of them
+        assert all(axis_symmetric(s) for s in symmetric)
+    assert all(tuple(normalise(s)) in set(keys) for s in STATED_STARTS.values())
     # A mirror image is left out only because every flip assignment is explored: it is the same run.
     assert not any(json.loads(n) == [[0, 1], [1, 0]] for n, s in starts if len(s) == 2)
 
 
-def test_a_broken_merge_keeps_its_counterexample_and_a_sound_one_survives(tmp_path):
+def test_a_broken_merge_keeps_its_counterexample_and_one_never_at_work_is_untested(tmp_path):
+    small = lights.starts_for((1, 2))
     broken = lights.explore_merge(
-        lights.Merge("apf-opaque-grid", "decider", "leader1"), (1, 2), str(tmp_path)
+        lights.Merge("apf-opaque-grid", "decider", "leader1"), (1, 2), str(tmp_path), small
     )
     assert broken["verdict"] == "breaks" and broken["violation"].startswith("deadlock")
-    assert broken["k"] == 2 and Path(broken["trace"]).is_file()
-    sound = lights.explore_merge(lights.Merge("apf-opaque-grid", "off", "call"), (1, 2), str(tmp_path))
-    assert sound["verdict"] == "survives" and sound["starts"] == 13 and sound["states"] > 0
+    assert broken["k"] == 2 and Path(broken["trace"]).is_file() and broken["exercised"] > 0
+    # One robot alone never calls: the merge of call is never at work, and nothing is claimed of it.
+    alone = lights.explore_merge(
+        lights.Merge("apf-opaque-grid", "off", "call"), (1,), str(tmp_path), small[:1]
+    )
+    assert (alone["verdict"], alone["exercised"], alone["starts"]) == ("untested", 0, 1)
+    assert alone["states"] > 0
 
 
-def test_a_random_run_that_does_not_form_breaks_a_survivor():
-    row = lights._row(lights.Merge("a", "x", "y"), (1,), "survives", "explorer", "", t0=0.0)
-    run = {"algorithm": "a+merge(x=y)", "scheduler": "async", "start": "", "error": "", "trace": ""}
+def test_a_merge_at_work_that_breaks_nowhere_survives_with_its_coverage(tmp_path):
+    starts = lights.starts_for((1, 2, 3))[:40]
+    row = lights.explore_merge(
+        lights.Merge("apf-opaque-grid", "terminal1", "call"), (1, 2, 3), str(tmp_path), starts
+    )
+    assert row["verdict"] == "survives" and row["exercised"] > 0 and row["starts"] == 40
+
+
+def test_a_random_run_breaks_a_merge_only_where_the_base_algorithm_forms():
+    row = lights._row(lights.Merge("a", "x", "y"), (1,), "untested", "explorer", "", t0=0.0)
+    run = {"algorithm": "a+merge(x=y)", "scheduler": "async", "start": "", "error": "", "trace": "",
+           "light_semantics": "compute", "hidden": 3}  # fmt: skip
+    stuck = dict(run, seed=1, k=7, outcome="stuck", events=90, start="sym-call-7", scheduler="stale-first",
+                 trace="t.jsonl")  # fmt: skip
     runs = [
         dict(run, seed=2, k=6, outcome="formed", events=50),
-        dict(run, seed=1, k=7, outcome="stuck", events=90, start="sym-call-7", scheduler="stale-first",
-             trace="t.jsonl"),
+        stuck,
         dict(run, seed=1, k=7, outcome="stuck", events=9, algorithm="a+merge(x=z)"),
+        dict(stuck, algorithm="a", hidden=0, outcome="formed", trace=""),  # the base, on the same run
     ]  # fmt: skip
     folded = lights.fold_random(row, runs)
     assert (folded["verdict"], folded["stage"], folded["random_runs"], folded["random_failed"]) == (
@@ -77,7 +104,11 @@ def test_a_random_run_that_does_not_form_breaks_a_survivor():
     )
     assert folded["violation"] == "stuck" and folded["trace"] == "t.jsonl"
     assert folded["start"] == "sym-call-7, seed 1, stale-first"
-    assert lights.fold_random(row, runs[:1])["verdict"] == "survives"
+    # Where the base algorithm fails too, the failure is not the merge's.
+    assert lights.fold_random(row, runs[:3])["verdict"] == "survives"
+    assert lights.fold_random(row, runs[:1])["verdict"] == "survives"  # at work in a run: evidence
+    never = [dict(runs[0], hidden=0)]
+    assert lights.fold_random(row, never)["verdict"] == "untested"  # never at work: nothing claimed
 
 
 def _cli(*args, cwd):
@@ -87,16 +118,21 @@ def _cli(*args, cwd):
 
 
 def test_the_command_writes_resumes_and_plots_the_matrix(tmp_path):
-    args = ["--ks", "1-2", "--merges", "decider=leader1,off=call", "--random", "2", "--workers", "1"]
+    args = ["--ks", "1-2", "--merges", "decider=leader1,terminal1=call", "--random", "2", "--workers", "1"]
     first = _cli(*args, "--out", "l.parquet", cwd=tmp_path)
     assert first.returncode == 0, first.stderr
     assert "| decider=leader1 | breaks | explorer | deadlock" in first.stdout
-    assert (
-        "| off=call | survives | explorer |" in first.stdout and "2 random runs, all formed" in first.stdout
-    )
+    assert "the base algorithm on 14/14 starts" in first.stderr
     assert "2/2 merges explored, 1 broken" in first.stderr
     rows = lights.read_lights(tmp_path / "l.parquet")
-    assert {r["merge"]: r["verdict"] for r in rows} == {"decider=leader1": "breaks", "off=call": "survives"}
+    verdicts = {r["merge"]: r["verdict"] for r in rows}
+    assert verdicts["decider=leader1"] == "breaks"
+    call = next(r for r in rows if r["merge"] == "terminal1=call")
+    assert call["random_runs"] == 2 and f"| terminal1=call | {call['verdict']} |" in first.stdout
+    assert call["verdict"] == ("untested" if call["exercised"] + call["random_exercised"] == 0 else
+                               "survives" if not call["random_failed"] else "breaks")  # fmt: skip
+    base = json.loads((tmp_path / "l-base.json").read_text())
+    assert len(base["starts"]) == 14 and {r["verdict"] for r in base["starts"]} == {"verified"}
     assert (tmp_path / "l-traces" / "apf-opaque-grid+merge(decider=leader1).jsonl").is_file()
     again = _cli(*args, "--out", "l.parquet", cwd=tmp_path)  # everything is in the file: nothing is run
     assert again.returncode == 0 and "merges explored" not in again.stderr
@@ -134,8 +170,8 @@ def _violation_reached(header, events) -> str:
     verdict = header.options.get("verdict", e.state.outcome)
     if verdict == "collision":
         assert e.state.outcome == "collision"
-    elif verdict in ("deadlock", "stuck"):  # (a start can be stuck before any event: no outcome yet)
-        assert e.state.outcome == "stuck" or not events
+    elif verdict in ("deadlock", "stuck"):  # a start stuck before any event replays as stuck too
+        assert e.state.outcome == "stuck"
         assert all(e.decide(e.look(r)).is_noop(e.state.lights[r]) for r in range(e.k))
     elif verdict == "escape":
         robot, at = header.options["detail"].removeprefix("escape: robot ").split(" left the box at ")
@@ -143,6 +179,12 @@ def _violation_reached(header, events) -> str:
         assert at.startswith(str((x, y)))
         far = max(max(abs(x - sx), abs(y - sy)) for sx, sy in header.robots)
         assert far > 2 * len(header.robots) + 4  # beyond any margin the explorer gives this start
+    elif verdict is None:  # a random run cut by its budget: the robots never stopped
+        from apf_viz.core.budget import run_budget
+
+        budget = run_budget([tuple(p) for p in header.robots], [tuple(p) for p in header.pattern])
+        assert e.state.events >= budget.max_events or e.state.moves >= budget.max_moves
+        verdict = "limit"
     else:
         assert verdict == "livelock" and e.state.outcome is None  # the loop, twice, and not formed
     return verdict
@@ -168,15 +210,19 @@ def test_each_kept_counterexample_breaks_its_merge_and_not_the_algorithm(path):
 
 def test_the_table_keeps_a_counterexample_for_every_broken_merge_and_nothing_else():
     rows = lights.read_lights(TABLE)
-    assert len(rows) == 56 and {r["verdict"] for r in rows} <= {"breaks", "survives"}
+    assert len(rows) == 56 and {r["verdict"] for r in rows} <= {"breaks", "survives", "untested"}
     broken = [r for r in rows if r["verdict"] == "breaks"]
     assert sorted(ROOT / r["trace"] for r in broken) == KEPT
     for r in broken:
         header, _ = load_trace(ROOT / r["trace"])
         assert header.algorithm == f"apf-opaque-grid+merge({r['merge']})"
+    verified = json.loads((ROOT / "docs" / "lights-base.json").read_text())["starts"]
+    assert len(verified) == len(lights.starts_for((1, 2, 3, 4, 5)))
+    explored = sum(v["verdict"] == "verified" for v in verified)
     for r in rows:
-        if r["verdict"] == "survives":
-            assert r["starts"] == 126 and r["random_runs"] == 140 and r["random_failed"] == 0
+        if r["verdict"] in ("survives", "untested"):
+            assert r["starts"] == explored and r["random_runs"] == 150 and r["random_failed"] == 0
+            assert (r["exercised"] + r["random_exercised"] > 0) == (r["verdict"] == "survives")
 
 
 def test_a_foreign_table_is_not_taken_for_a_lights_table(tmp_path):
@@ -188,11 +234,25 @@ def test_a_foreign_table_is_not_taken_for_a_lights_table(tmp_path):
 def test_ctrl_c_keeps_the_merges_that_finished(tmp_path):
     from tests.sweep_helpers import interrupt_when
 
-    # decider=leader1 breaks on the third start; off=call runs the whole explorer stage (about a minute).
-    argv = [sys.executable, "-m", "apf_viz.cli", "lights", "--merges", "decider=leader1,off=call",
-            "--workers", "2", "--out", "l.parquet"]  # fmt: skip
+    # decider=leader1 breaks on a k = 2 start; terminal1=call runs the whole explorer stage.
+    argv = [sys.executable, "-m", "apf_viz.cli", "lights", "--merges", "decider=leader1,terminal1=call",
+            "--ks", "1-3", "--workers", "2", "--out", "l.parquet"]  # fmt: skip
     code, err = interrupt_when(argv, tmp_path, rb"1/2 merges explored")
     assert code == 130 and "interrupted; keeping the merges that finished" in err, err[-300:]
     assert "Traceback" not in err
     kept = lights.read_lights(tmp_path / "l.parquet")
     assert [(r["merge"], r["verdict"]) for r in kept] == [("decider=leader1", "breaks")]
+
+
+def test_a_start_the_base_algorithm_fails_on_is_left_out_and_said(tmp_path):
+    """Stage 0: where the algorithm fails unmerged, a merge's failure would say nothing (the literal
+    paper's variant livelocks with two robots)."""
+    path = tmp_path / "base.json"
+    kept = lights.base_verified_starts("apf-opaque-grid-literal", (1, 2), path, 1, None, None)
+    said = json.loads(path.read_text())
+    failed = [r for r in said["starts"] if r["verdict"] != "verified"]
+    assert failed and len(said["starts"]) == len(lights.starts_for((1, 2)))
+    assert {name for name, _ in kept} == {r["start"] for r in said["starts"] if r["verdict"] == "verified"}
+    assert all(r["detail"] and r["y_up"] for r in failed)
+    # Kept beside the table, it is not explored again.
+    assert lights.base_verified_starts("apf-opaque-grid-literal", (1, 2), path, 1, None, None) == kept

@@ -92,6 +92,12 @@ class MergedLights:
     def decide(self, view: Snapshot, pattern: Pattern) -> Decision:
         return self._merged(self.base.decide(view, pattern))
 
+    def decide_telling(self, view: Snapshot, pattern: Pattern) -> tuple[Decision, bool]:
+        """:meth:`decide`, and whether the merge is at work in it: BASE set a light that shows as another
+        (the light lab counts these: a merge never at work is untested, not survived)."""
+        decision = self.base.decide(view, pattern)
+        return self._merged(decision), decision.light in self._as
+
     def _merged(self, decision: Decision) -> Decision:
         watch = decision.watch
         if watch is not None and watch.lights & self._as.keys():
@@ -130,6 +136,24 @@ class MergedLights:
     def explain(self, view: Snapshot, pattern: Pattern) -> Explanation:
         found = explain(self.base, view, pattern)
         return replace(found, decision=self._merged(found.decision))
+
+
+class AtWork:
+    """A merged variant that counts the decisions in which its merge is at work: BASE set a light that
+    shows as another. What an engine or the explorer asks it is what is counted: each distinct view once
+    where they memoise, and also the probes whose answer the merge turned into "same light, stay" (call
+    shown as off, for a robot that is off: it never even Computes)."""
+
+    def __init__(self, variant: MergedLights) -> None:
+        self.variant = variant
+        self.name = variant.name
+        self.lights = variant.lights
+        self.count = 0
+
+    def decide(self, view: Snapshot, pattern: Pattern) -> Decision:
+        decision, at_work = self.variant.decide_telling(view, pattern)
+        self.count += at_work
+        return decision
 
 
 def merged_algorithm(name: str, get: Callable[[str], Algorithm]) -> Algorithm | None:

@@ -127,3 +127,11 @@ def generate(family: str, seed: int, k: int | None = None, far: int = 1000) -> C
         if len(set(robots)) == size and unsolvable_axis(robots) is None:
             return Case(family, robots, pattern, [rng.random() < 0.5 for _ in range(size)])
     raise ValueError(f"no solvable {family} start of {size} robots drawn from seed {seed}")
+
+
+def symmetric_start(k: int, seed: int) -> tuple[list[Point], list[Point], list[bool]]:
+    """A random ``symmetric-axis`` start of exactly k robots (scaled ×1 to ×3), a random pattern of k
+    points and random flips, from ``seed`` (the light lab's random symmetric starts)."""
+    rng = random.Random(f"symmetric:{k}:{seed}")
+    robots, pattern = symmetric_axis(k, rng, 24)
+    return robots, pattern, [rng.random() < 0.5 for _ in range(k)]

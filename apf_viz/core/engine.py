@@ -753,6 +753,12 @@ class Engine:
         st.last_cycle_end[r] = st.steps + 1
 
     # ------------------------------------------------------------------ outcomes
+    def settle_outcome(self) -> None:
+        """Decide now whether the run is over (formed or stuck), as after a Move: for an engine that
+        keeps every activation, which looks only after a step, so that a trace that ends where no robot
+        can act (a deadlock at the start: no step at all) replays as stuck, not as running."""
+        self._update_outcome()
+
     def _update_outcome(self, changed: bool = True) -> None:
         st = self.state
         if st.outcome is not None:

@@ -175,3 +175,5 @@ def replay(engine: Engine, events: Sequence[Event], where: str = "trace") -> Non
                     f"{where}: event {done + 1} differs on replay: recorded {recorded}, got {produced_now}"
                 )
             done += 1
+    if not engine.finished:
+        engine.settle_outcome()  # a trace that ends where nobody can act ends the run there (stuck)

@@ -48,3 +48,18 @@ def solvable_box_starts(k: int, side: int = 4, mirrored: bool = False) -> list[l
 def line_pattern(k: int) -> list[Point]:
     """The pattern the small-start searches form: k robots in a row."""
     return [(i, 0) for i in range(k)]
+
+
+def axis_symmetric(points: list[Point]) -> bool:
+    """Mirror-symmetric about a horizontal line through at least one robot: solvable (Theorem 1), and
+    the starts whose leader election needs Phase 1's symmetric case, K and the robots on it."""
+    ys = [y for _, y in points]
+    c2 = min(ys) + max(ys)
+    cells = set(points)
+    return any(2 * y == c2 for y in ys) and all((x, c2 - y) in cells for x, y in points)
+
+
+def axis_symmetric_box_starts(k: int, side: int = 5) -> list[list[Point]]:
+    """Every start of k robots in a side × side box that is symmetric with robots on its axis, up to
+    translation (a mirror image is the start itself): 4, 24, 56 and 182 of k = 2 … 5 in a 5×5 box."""
+    return [s for s in box_starts(k, side, mirrored=True) if axis_symmetric(s)]
