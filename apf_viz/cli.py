@@ -660,7 +660,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--max-events",
         type=_positive,
-        help="stop with outcome 'limit' after this many events (default: the run's budget, "
+        help="stop with outcome 'limit' at this many events, never past them (under lc-atomic, where a "
+        "Look is two events, possibly one short) (default: the run's budget, "
         f"{EVENTS_PER_MOVE} per budgeted move, or {EVENTS_PER_MOVE} + {EVENTS_PER_MOVE_PER_ROBOT}·k with "
         "--all-activations)",
     )
