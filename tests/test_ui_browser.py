@@ -1315,3 +1315,23 @@ def choose_mode(page, app: App, label: str, mode: str) -> None:
     page.get_by_role("combobox", name="Mode").click()
     page.get_by_role("option", name=label, exact=True).click()
     wait_for(lambda: app.session.mode == mode)
+
+
+def test_a_counterexample_stuck_before_any_event_opens_as_stuck(browser):
+    """The light lab's call=off trace ends where it starts (every robot off, which shows call, waits for
+    ever): opened in the visualiser at 1024×768 it reads as stuck, not as a run that has not begun."""
+    trace = (
+        Path(__file__).resolve().parent.parent
+        / "demo_patterns/traces/lights/apf-opaque-grid+merge(call=off).jsonl"
+    )
+    session = demo_session()
+    session.load_trace(trace.name, trace.read_bytes())
+    a = App(session, port=free_port(), verbose=False)
+    try:
+        page = open_page(browser, a, {"width": 1024, "height": 768})
+        page.get_by_role("heading", name="⊘ STUCK").wait_for()
+        assert a.session.engine.outcome == "stuck" and a.session.engine.step_index == 0
+        shot(page, "lights-call-off-stuck")
+        page.close()
+    finally:
+        a.stop()

@@ -112,6 +112,8 @@ class RunController:
         with self.lock:
             engine.seek(0)
             engine.skip_noops = config.skip_noops  # it replayed with every activation; a branch skips
+            if not trace_events:
+                engine.settle_outcome()  # a trace of a start where nobody can act: stuck at once
             self._rebuild(config, engine, trace_events, trace_options)
             self.following_what = what
 
