@@ -18,7 +18,7 @@ to every robot including itself (docs/ALGORITHM.md, "Variants"). Each merge is p
 
 **Coverage before verdict.** A merge can only change a run where the base algorithm sets the hidden
 light (it then shows the merged colour): the lab counts those decisions (``merged_lights.AtWork``) in
-the explorer and in the random runs, each distinct view once per start and flips (or per run), probes
+the explorer and in the random runs, each distinct view once per start (or per run), probes
 included: a merge can turn a decision into "same light, stay", and then no Compute ever shows it. A
 merge that breaks nowhere *and was never at work* is ``untested``, never ``survives``; one that was at
 work and broke nowhere ``survives`` with its counts: evidence, not a proof.
@@ -45,7 +45,7 @@ COLUMNS = (
     "events", "starts", "states", "random_runs", "random_failed", "seconds", "trace", "error",
     "exercised", "random_exercised",
 )  # fmt: skip
-# exercised: explorer views (per start and flips) in which the base algorithm set the hidden light;
+# exercised: explorer views (each once per start) in which the base algorithm set the hidden light;
 # random_exercised: the same in the random runs (decisions asked, each distinct view once per run).
 KEY = ("algorithm", "merge", "ks")
 RANDOM_KS = (6, 7, 8, 9, 10, 11, 12)

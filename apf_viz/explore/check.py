@@ -11,7 +11,7 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.formats import trace_text, write_atomic
 from apf_viz.core.grid import Point
 from apf_viz.core.run import trace_header
-from apf_viz.explore.explorer import Explorer, Result
+from apf_viz.explore.explorer import Decisions, Explorer, Result
 
 
 def check(
@@ -29,6 +29,7 @@ def check(
     total_states = total_transitions = 0
     seconds = 0.0
     last: Result | None = None
+    decisions = Decisions()  # shared by every flip assignment: a decision depends on its robot's flip only
     for y_up in flips:
         r = explore(
             algorithm,
@@ -40,6 +41,7 @@ def check(
             progress=_report if progress else None,
             light_semantics=light_semantics,
             reduction=reduction,
+            decisions=decisions,
         )
         total_states += r.states
         total_transitions += r.transitions
@@ -63,8 +65,10 @@ def explore(
     progress: Callable[[int, int, float], None] | None = None,
     light_semantics: str = "compute",
     reduction: bool = True,
+    decisions: Decisions | None = None,
 ) -> Result:
-    """One assignment of flips. With ``reduction`` (ASYNC only) the search skips the orders of invisible
+    """One assignment of flips (``decisions``: what searches from the same start share). With
+    ``reduction`` (ASYNC only) the search skips the orders of invisible
     events and finds the same verdict; a violation it finds is searched again without the reduction, so
     the counterexample is the shortest schedule of all, as without it (docs/VERIFICATION.md)."""
 
@@ -79,6 +83,7 @@ def explore(
             progress=progress,
             light_semantics=light_semantics,  # type: ignore[arg-type]
             reduction=reduce,
+            decisions=decisions,
         ).run()
 
     r = search(reduction)

@@ -42,7 +42,9 @@ class State:
     positions: tuple[Point, ...]
     lights: tuple[str, ...]
     phases: tuple[int, ...]
-    held: tuple[Decision | None, ...]  # LOOKED: the decision its snapshot leads to; COMPUTED: pending move
+    # LOOKED: the decision its snapshot leads to; COMPUTED: its pending move; as an index of
+    # Decisions.table (a state's key then hashes small ints, not decisions); NONE when idle
+    held: tuple[int, ...]
     origin: Point  # the translation removed (not part of equality)
 
     def key(self) -> tuple:
@@ -60,10 +62,32 @@ class Result:
     detail: str = ""
 
 
+NONE = -1  # a state's held entry for a robot that holds nothing (idle)
+
+
+class Decisions:
+    """What the searches from one start share, whatever the flips: a robot's decision depends on its
+    snapshot alone (the view memo), or on the configuration, which robot it is and its own flip (the
+    configuration memo), never on the other robots' flips; and the decisions as small integers."""
+
+    def __init__(self) -> None:
+        self.by_view: dict[Snapshot, int] = {}
+        self.by_configuration: dict[tuple, int] = {}
+        self.index: dict[Decision, int] = {}
+        self.table: list[Decision] = []
+
+    def intern(self, decision: Decision) -> int:
+        i = self.index.get(decision)
+        if i is None:
+            i = self.index[decision] = len(self.table)
+            self.table.append(decision)
+        return i
+
+
 def _canonical(positions: Sequence[Point], lights, phases, held, origin: Point) -> State:
-    mx = min(x for x, _ in positions)
-    my = min(y for _, y in positions)
-    pts = tuple((x - mx, y - my) for x, y in positions)
+    xs, ys = zip(*positions, strict=True)
+    mx, my = min(xs), min(ys)
+    pts = tuple(positions) if mx == my == 0 else tuple((x - mx, y - my) for x, y in positions)
     return State(pts, tuple(lights), tuple(phases), tuple(held), (origin[0] + mx, origin[1] + my))
 
 
@@ -98,6 +122,7 @@ class Explorer:
         light_semantics: Literal["compute", "lc-atomic"] = "compute",
         progress: Callable[[int, int, float], None] | None = None,
         reduction: bool = False,
+        decisions: Decisions | None = None,
     ) -> None:
         self.algorithm = algorithm
         self.robots = [tuple(p) for p in robots]
@@ -110,8 +135,10 @@ class Explorer:
         self.lc_atomic = light_semantics == "lc-atomic"
         # Partial-order reduction (docs/VERIFICATION.md): only under ASYNC, where one event is one robot's.
         self.reduction = reduction and scheduler == "async"
-        self._decisions: dict[Snapshot, Decision] = {}
-        self._by_configuration: dict[tuple, Decision] = {}
+        # Shared by the searches of one start under several flips (explore/check.py), or this one's own.
+        self._memo = decisions if decisions is not None else Decisions()
+        self._table = self._memo.table
+        self._quiet: dict[tuple, bool] = {}  # configuration → every robot's decision is a no-op
         pts = self.robots + list(self.pattern)
         span = max(
             max(p[0] for p in pts) - min(p[0] for p in pts), max(p[1] for p in pts) - min(p[1] for p in pts)
@@ -129,27 +156,31 @@ class Explorer:
     # ------------------------------------------------------------------ transitions
     def initial(self) -> State:
         first = self.algorithm.lights[0]
-        return _canonical(self.robots, [first] * self.k, [IDLE] * self.k, [None] * self.k, (0, 0))
+        return _canonical(self.robots, [first] * self.k, [IDLE] * self.k, [NONE] * self.k, (0, 0))
 
     def _decide(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
-        """Robot r's decision on this configuration; memoised on (configuration, r): many states differ
-        only in phases and held decisions."""
-        key = (tuple(positions), tuple(lights), r)
-        d = self._by_configuration.get(key)
+        return self._table[self._decide_id(positions, lights, r)]
+
+    def _decide_id(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> int:
+        """Robot r's decision on this configuration (its index in the table); memoised on (configuration,
+        r, r's flip): many states differ only in phases and held decisions, and many flip assignments
+        reach the same configurations."""
+        key = (tuple(positions), tuple(lights), r, self.y_up[r])
+        d = self._memo.by_configuration.get(key)
         if d is None:
-            d = self._by_configuration[key] = self._decide_uncached(positions, lights, r)
+            d = self._memo.by_configuration[key] = self._decide_uncached(positions, lights, r)
         return d
 
-    def _decide_uncached(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> Decision:
+    def _decide_uncached(self, positions: Sequence[Point], lights: Sequence[str], r: int) -> int:
         x0, y0 = positions[r]
         s = 1 if self.y_up[r] else -1
         seen = sorted(
             Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j]) for j in _visible(positions, r)
         )
         view = Snapshot(lights[r], tuple(seen))
-        d = self._decisions.get(view)
+        d = self._memo.by_view.get(view)
         if d is None:
-            d = self._decisions[view] = self.algorithm.decide(view, self.pattern)
+            d = self._memo.by_view[view] = self._memo.intern(self.algorithm.decide(view, self.pattern))
         return d
 
     def successors(self, st: State) -> list[tuple[tuple[int, ...], State | str]]:
@@ -172,11 +203,12 @@ class Explorer:
         (only its own phase and held decision), and its robot has no other event: it commutes with every
         event of the others, so exploring it alone loses no configuration, violation or fair cycle (the
         argument: docs/VERIFICATION.md, "Partial-order reduction")."""
+        table = self._table
         for r in range(self.k):
-            phase, held = st.phases[r], st.held[r]
-            if phase == LOOKED and held.light == st.lights[r]:
+            phase = st.phases[r]
+            if phase == LOOKED and table[st.held[r]].light == st.lights[r]:
                 return r
-            if phase == COMPUTED and held.move is None:
+            if phase == COMPUTED and table[st.held[r]].move is None:
                 return r
         return None
 
@@ -184,29 +216,34 @@ class Explorer:
         phases, held = list(st.phases), list(st.held)
         if phases[r] == IDLE:
             # Decisions depend on offsets only: the canonical positions serve as well as absolute ones.
-            decision = self._decide(st.positions, st.lights, r)
-            held[r] = decision
+            held[r] = self._decide_id(st.positions, st.lights, r)
             phases[r] = LOOKED
             lights = st.lights
             if self.lc_atomic:  # Look and Compute are one event: the light shows from the Look
-                lights = (*lights[:r], decision.light, *lights[r + 1 :])
+                lights = (*lights[:r], self._table[held[r]].light, *lights[r + 1 :])
                 phases[r] = COMPUTED
             return State(st.positions, lights, tuple(phases), tuple(held), st.origin)
         if phases[r] == LOOKED:
             phases[r] = COMPUTED
-            lights = (*st.lights[:r], held[r].light, *st.lights[r + 1 :])
+            lights = (*st.lights[:r], self._table[held[r]].light, *st.lights[r + 1 :])
             return State(st.positions, lights, tuple(phases), tuple(held), st.origin)
-        pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
-        move = move_to_global(held[r].move, self.y_up[r])
-        if move is not None:
-            to = (pos[r][0] + move.delta[0], pos[r][1] + move.delta[1])
-            if to in pos:
-                return f"collision: robot {r} moves onto robot {pos.index(to)} at {to}"
-            pos[r] = to
-            if not self._inside(to):
-                return f"escape: robot {r} left the box at {to}"
-        phases[r], held[r] = IDLE, None
-        return _canonical(pos, st.lights, phases, held, (0, 0))
+        move = move_to_global(self._table[held[r]].move, self.y_up[r])
+        phases[r], held[r] = IDLE, NONE
+        if move is None:  # a Move that stays: the configuration, hence its canonical form, is unchanged
+            return State(st.positions, st.lights, tuple(phases), tuple(held), st.origin)
+        # In the state's canonical coordinates; absolute ones (+ origin) only for the box and the messages.
+        x, y = st.positions[r]
+        to = (x + move.delta[0], y + move.delta[1])
+        ox, oy = st.origin
+        if to in st.positions:
+            at = (to[0] + ox, to[1] + oy)
+            return f"collision: robot {r} moves onto robot {st.positions.index(to)} at {at}"
+        at = (to[0] + ox, to[1] + oy)
+        if not self._inside(at):
+            return f"escape: robot {r} left the box at {at}"
+        pos = list(st.positions)
+        pos[r] = to
+        return _canonical(pos, st.lights, phases, held, st.origin)
 
     def _round(self, st: State, group: tuple[int, ...]) -> State | str:
         pos = [(x + st.origin[0], y + st.origin[1]) for x, y in st.positions]
@@ -229,7 +266,7 @@ class Explorer:
                 return f"collision: robots {r} and {other} swap across an edge"
             if not self._inside(t):
                 return f"escape: robot {r} left the box at {t}"
-        return _canonical(new, lights, [IDLE] * self.k, [None] * self.k, (0, 0))
+        return _canonical(new, lights, [IDLE] * self.k, [NONE] * self.k, (0, 0))
 
     def _inside(self, p: Point) -> bool:
         x0, y0, x1, y1 = self._box
@@ -238,14 +275,23 @@ class Explorer:
     def quiescent(self, st: State) -> bool:
         """No robot can change anything: every held decision and every decision on the current view
         keeps the light and stays, and no move is pending."""
-        pos = st.positions  # decisions depend on offsets only
         for r in range(self.k):
-            h = st.held[r]
-            if h is not None and (h.move is not None or (st.phases[r] == LOOKED and h.light != st.lights[r])):
-                return False
-            if not self._decide(pos, st.lights, r).is_noop(st.lights[r]):
-                return False
-        return True
+            if st.held[r] != NONE:
+                h = self._table[st.held[r]]
+                if h.move is not None or (st.phases[r] == LOOKED and h.light != st.lights[r]):
+                    return False
+        return self._all_noop(st.positions, st.lights)
+
+    def _all_noop(self, positions: tuple[Point, ...], lights: tuple[str, ...]) -> bool:
+        """Every robot's decision on this configuration keeps its light and stays (many states share a
+        configuration: asked once for each)."""
+        key = (positions, lights)
+        quiet = self._quiet.get(key)
+        if quiet is None:
+            quiet = self._quiet[key] = all(
+                self._decide(positions, lights, r).is_noop(lights[r]) for r in range(self.k)
+            )
+        return quiet
 
     # ------------------------------------------------------------------ search
     def run(self) -> Result:
