@@ -146,3 +146,23 @@ def test_a_merged_run_writes_a_trace_that_replays(tmp_path):
         [*cli, "replay", "--trace", str(tmp_path / "t.jsonl")], capture_output=True, text=True
     )
     assert replayed.returncode in (0, 1) and "differs" not in replayed.stderr, replayed.stderr
+
+
+def test_a_merge_is_at_work_where_the_base_sets_the_hidden_light_or_hides_the_start_light():
+    from apf_viz.algorithms.merged_lights import AtWork
+    from apf_viz.core.view import Seen, Snapshot
+
+    base = get_algorithm("apf-opaque-grid")
+    pattern = ((0, 0), (1, 0))
+    leftmost = Snapshot("off", (Seen(1, 1, "off"),))  # A1.off.terminal: it turns terminal1
+    waiting = Snapshot("off", (Seen(-1, 1, "off"),))  # A1.off.wait: it stays off
+
+    def count(a: str, b: str, view: Snapshot) -> int:
+        counted = AtWork(MergedLights(base, [(a, b)]))
+        counted.decide(view, pattern)
+        return counted.count
+
+    assert count("symmetric", "terminal1", leftmost) == 1  # terminal1 set, shown as symmetric
+    assert count("symmetric", "terminal1", waiting) == 0  # nothing hidden in a decision to wait
+    assert count("call", "off", waiting) == 1  # off is everyone's start light: hidden from the start
+    assert count("leader", "done", leftmost) == 0

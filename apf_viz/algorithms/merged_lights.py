@@ -81,6 +81,7 @@ class MergedLights:
                 raise ValueError(f"cannot merge {a}={b}: each light may be in one merge only")
             self._as[b] = a
         self.pairs = tuple((a, b) for b, a in self._as.items())
+        self._start_hidden = base.lights[0] in self._as
         self.lights: tuple[str, ...] = tuple(dict.fromkeys(self.shown(light) for light in base.lights))
         merges = ",".join(f"{a}={b}" for a, b in self.pairs)
         self.name = f"{base.name}{MARKER}{merges})" if merges else base.name
@@ -93,10 +94,12 @@ class MergedLights:
         return self._merged(self.base.decide(view, pattern))
 
     def decide_telling(self, view: Snapshot, pattern: Pattern) -> tuple[Decision, bool]:
-        """:meth:`decide`, and whether the merge is at work in it: BASE set a light that shows as another
-        (the light lab counts these: a merge never at work is untested, not survived)."""
+        """:meth:`decide`, and whether the merge is at work in it: BASE set a light that shows as another,
+        or BASE's start light is hidden (every robot shows the merged colour from the start, so every
+        decision is taken among robots that may not be what they show). The light lab counts these: a
+        merge never at work is untested, not survived."""
         decision = self.base.decide(view, pattern)
-        return self._merged(decision), decision.light in self._as
+        return self._merged(decision), self._start_hidden or decision.light in self._as
 
     def _merged(self, decision: Decision) -> Decision:
         watch = decision.watch
@@ -139,10 +142,10 @@ class MergedLights:
 
 
 class AtWork:
-    """A merged variant that counts the decisions in which its merge is at work: BASE set a light that
-    shows as another. What an engine or the explorer asks it is what is counted: each distinct view once
-    where they memoise, and also the probes whose answer the merge turned into "same light, stay" (call
-    shown as off, for a robot that is off: it never even Computes)."""
+    """A merged variant that counts the decisions in which its merge is at work
+    (:meth:`MergedLights.decide_telling`). What an engine or the explorer asks it is what is counted:
+    each distinct view once where they memoise, and also the probes whose answer the merge turned into
+    "same light, stay" (call shown as off, for a robot that is off: it never even Computes)."""
 
     def __init__(self, variant: MergedLights) -> None:
         self.variant = variant
