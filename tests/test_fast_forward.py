@@ -27,6 +27,7 @@ from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance, trace_header
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.view import Seen, Snapshot
+from apf_viz.explore.fast_forward_campaign import run_state as state_of
 
 
 def spread_case(seed: int, k: int | None = None, scale: int | None = None):
@@ -53,25 +54,6 @@ def engine(
         light_semantics=semantics,
         fast_forward=fast,
         **caps,
-    )
-
-
-def state_of(e: Engine) -> tuple:
-    """Everything a run's future and its reports depend on (not the engine's caches)."""
-    st = e.state
-    return (
-        st.outcome,
-        e.current_points(),
-        list(st.lights),
-        st.phase.tolist(),
-        (st.steps, st.events, st.moves, st.cycles, st.skipped, st.version),
-        st.look_step.tolist(),
-        st.last_act.tolist(),
-        st.last_cycle_end.tolist(),
-        st.decided,
-        st.decided_seen,
-        st.decided_look.tolist(),
-        sorted(st.lights_used),
     )
 
 

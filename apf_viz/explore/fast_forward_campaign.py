@@ -94,7 +94,8 @@ def _engine(trial: Trial, fast: bool) -> Engine:
     )
 
 
-def _state(e: Engine) -> tuple:
+def run_state(e: Engine) -> tuple:
+    """Everything a run's future and its reports depend on (not the engine's caches)."""
     st = e.state
     return (
         st.outcome,
@@ -104,7 +105,11 @@ def _state(e: Engine) -> tuple:
         (st.steps, st.events, st.moves, st.cycles, st.skipped, st.version),
         st.look_step.tolist(),
         st.last_act.tolist(),
+        st.last_cycle_end.tolist(),
+        st.decided,
+        st.decided_seen,
         st.decided_look.tolist(),
+        sorted(st.lights_used),
     )
 
 
@@ -121,7 +126,7 @@ def compare(trial: Trial) -> Result:
     if a != b:
         at = next((i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y), min(len(a), len(b)))
         mismatch = f"events differ from event {at} (step by step {len(a)} events, with walks {len(b)})"
-    elif _state(slow) != _state(fast):
+    elif run_state(slow) != run_state(fast):
         mismatch = "same events, different final state"
     outcome = slow.outcome or "running"
     return Result(trial, outcome, slow.state.events, fast.walks, fast.forced_walks, mismatch)
