@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import re
 import sys
 import time
@@ -100,9 +99,10 @@ _CLUSTER = re.compile(r"((tcp|tls|ws|wss|ucx)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9
 
 def _workers(text: str) -> int:
     """An argparse type: local worker processes, at most ``WORKERS_PER_CORE`` per core of this machine."""
+    from apf_viz.sweep import usable_cores
+
     n = _positive(text)
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-    most = WORKERS_PER_CORE * cores
+    most = WORKERS_PER_CORE * usable_cores()
     if n > most:
         raise argparse.ArgumentTypeError(
             f"{n:,} local worker processes: this machine can run at most {most} ({WORKERS_PER_CORE} per "
@@ -430,6 +430,8 @@ def _cmd_pattern(args: argparse.Namespace) -> int:
         check_writable(args.out)
     if args.text is not None:
         cells = shapes.text(args.text, (0, 0))
+        if not cells:
+            _fail(f"--text {args.text!r}: no cells to draw (only spaces)")
     elif args.ascii is not None:
         lines = read_text(args.ascii, MAX_INPUT_BYTES).splitlines()
         try:
@@ -444,8 +446,6 @@ def _cmd_pattern(args: argparse.Namespace) -> int:
             _fail(f"--shape {args.shape} --size {args.size}: choose a whole number from {least} to "
                   f"{shapes.MAX_SIZE:,}")  # fmt: skip
         cells = SHAPES[args.shape](args.size)
-    if not cells:
-        _fail(f"--text {args.text!r}: no cells to draw (only spaces)")
     for axis in args.mirror:
         cells = shapes.mirrored(cells, axis)
     for _ in range(args.rotate):

@@ -151,18 +151,23 @@ def starts_for(ks: Sequence[int]) -> list[tuple[str, list]]:
     return out
 
 
+def explore_every_flip(algorithm, start: list):
+    """The explorer on one start towards a row of its robots, under every assignment of flips (ASYNC, the
+    reduction): what stage 0 asks of the base algorithm and stage 1 of each merge."""
+    from apf_viz.explore.check import all_flips, check
+    from apf_viz.explore.small_starts import line_pattern
+
+    k = len(start)
+    return check(algorithm, start, line_pattern(k), all_flips(k), "async", MAX_STATES, False)
+
+
 # ---------------------------------------------------------------------------------------------- stage 0
 def verify_start(algorithm: str, name: str, start: list) -> dict:
     """On a worker: the base algorithm explored on one start under every flip assignment."""
     from apf_viz.algorithms import get_algorithm
-    from apf_viz.explore.check import all_flips, check
-    from apf_viz.explore.small_starts import line_pattern
 
     t0 = time.perf_counter()
-    k = len(start)
-    result, y_up = check(
-        get_algorithm(algorithm), start, line_pattern(k), all_flips(k), "async", MAX_STATES, False
-    )
+    result, y_up = explore_every_flip(get_algorithm(algorithm), start)
     return {
         "start": name,
         "verdict": result.verdict,
@@ -178,7 +183,7 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
     """On a worker: the explorer on every start (those the base algorithm verifies on) until the first
     violation; the merge's row."""
     from apf_viz.algorithms import get_algorithm
-    from apf_viz.explore.check import all_flips, check, counterexample_text
+    from apf_viz.explore.check import counterexample_text
     from apf_viz.explore.small_starts import line_pattern
 
     algorithm = get_algorithm(merge.variant)
@@ -188,7 +193,7 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
     states = 0
     for n, (name, start) in enumerate(starts, 1):
         k = len(start)
-        result, y_up = check(counted, start, line_pattern(k), all_flips(k), "async", MAX_STATES, False)
+        result, y_up = explore_every_flip(counted, start)
         states += result.states
         if result.verdict == "verified":
             continue
@@ -310,9 +315,11 @@ def fold_random(row: dict, runs: Sequence[dict]) -> dict:
     ]
     at_work = sum(r.get("hidden", 0) for r in mine)
     row = dict(row, random_runs=len(mine), random_failed=len(failed), random_exercised=at_work)
-    if row["verdict"] in ("survives", "untested") and not failed:
+    if row["verdict"] not in ("survives", "untested"):
+        return row
+    if not failed:
         row["verdict"] = "survives" if row["exercised"] or at_work else "untested"
-    if failed and row["verdict"] in ("survives", "untested"):
+    else:
         f = min(failed, key=lambda r: (r["events"], r["seed"]))  # the shortest to step through
         row.update(
             verdict="breaks",

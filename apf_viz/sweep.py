@@ -347,7 +347,7 @@ def _client(cluster: str | None, workers: int | None):
             reason = str(e) if str(e) not in ("", "None") else type(e).__name__
             raise InputError(f"--cluster {cluster}: cannot reach a Dask scheduler there ({reason})") from None
     local = LocalCluster(
-        n_workers=workers or _cores(),
+        n_workers=workers or usable_cores(),
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
@@ -510,7 +510,7 @@ def _shut_down(futures, client, local) -> None:
             lg.setLevel(level)
 
 
-def _cores() -> int:
+def usable_cores() -> int:
     import os
 
     return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)

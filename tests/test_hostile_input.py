@@ -197,20 +197,28 @@ def test_schedule_out_a_directory_is_refused_before_reading_the_trace(tmp_path):
     assert ".tmp" not in out.stderr
 
 
-# ------------------------------------------------------------------------- 9. negative robots
-@pytest.mark.parametrize("line", [{"round": [-1]}, {"round": [0, -1]}, {"robot": -1, "phase": "look"}])
-def test_a_negative_robot_is_refused_with_its_line_and_the_run_so_far_kept(tmp_path, line):
+SCHEDULE_HEADER = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
+
+
+def run_schedule(tmp_path: Path, lines: list[dict]):
+    """The Demo's run following a schedule of these lines: the schedule's path, the command's result and
+    the events of the trace it kept."""
     sched = tmp_path / "s.jsonl"
-    header = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
-    body = [{"robot": 0, "phase": "look"}, {"robot": 0, "phase": "compute"}, {"robot": 0, "phase": "move"}]
-    sched.write_text("\n".join(json.dumps(x) for x in [header, *body, line]) + "\n")
+    sched.write_text("\n".join(json.dumps(x) for x in [SCHEDULE_HEADER, *lines]) + "\n")
     trace = tmp_path / "t.jsonl"
     out = run_cli(
         "run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(sched),
         "--trace", str(trace),
     )  # fmt: skip
+    return sched, out, load_trace(trace)[1] if trace.exists() else []
+
+
+# ------------------------------------------------------------------------- 9. negative robots
+@pytest.mark.parametrize("line", [{"round": [-1]}, {"round": [0, -1]}, {"robot": -1, "phase": "look"}])
+def test_a_negative_robot_is_refused_with_its_line_and_the_run_so_far_kept(tmp_path, line):
+    body = [{"robot": 0, "phase": "look"}, {"robot": 0, "phase": "compute"}, {"robot": 0, "phase": "move"}]
+    sched, out, events = run_schedule(tmp_path, [*body, line])
     one_line_exit_2(out, f"{sched}:5: robot -1 does not exist (10 robots)")
-    _, events = load_trace(trace)
     assert [(e.robot, e.phase) for e in events] == [(0, "look"), (0, "compute"), (0, "move")]
 
 
@@ -325,21 +333,13 @@ def test_the_atomic_rename_itself_refuses_a_special_file(tmp_path):
 
 
 def test_a_schedule_line_naming_a_robot_beyond_any_index_keeps_the_run_up_to_it(tmp_path):
-    sched = tmp_path / "s.jsonl"
-    header = {"format": "apf-viz-schedule", "version": 2, "robots": 10, "y_up": [True] * 10}
-    body = [{"robot": 0, "phase": "look"}, {"robot": 10**23, "phase": "look"}]
-    sched.write_text("\n".join(json.dumps(x) for x in [header, *body]) + "\n")
-    trace = tmp_path / "t.jsonl"
-    out = run_cli(
-        "run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN), "--schedule", str(sched),
-        "--trace", str(trace),
-    )  # fmt: skip
+    sched, out, events = run_schedule(
+        tmp_path, [{"robot": 0, "phase": "look"}, {"robot": 10**23, "phase": "look"}]
+    )
     one_line_exit_2(out, f"{sched}:3: robot {10**23} does not exist (10 robots)")
-    assert [(e.robot, e.phase) for e in load_trace(trace)[1]] == [(0, "look")]
-    round_line = [header, {"round": [0, 10**23]}]
-    sched.write_text("\n".join(json.dumps(x) for x in round_line) + "\n")
-    one_line_exit_2(run_cli("run", "--robots", str(DEMO_START), "--pattern", str(DEMO_PATTERN),
-                            "--schedule", str(sched)), "does not exist")  # fmt: skip
+    assert [(e.robot, e.phase) for e in events] == [(0, "look")]
+    sched, out, _ = run_schedule(tmp_path, [{"round": [0, 10**23]}])
+    one_line_exit_2(out, "does not exist")
 
 
 def test_lights_random_beyond_its_maximum_is_refused(tmp_path):

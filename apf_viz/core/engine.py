@@ -525,12 +525,12 @@ class Engine:
         positions = self.state.positions.copy()
         positions[r] = here
         problem = walk_mismatch(
-            positions, self.state.lights, self.y_up, r, gmove.delta, n, decision, self.algorithm_decide
+            positions, self.state.lights, self.y_up, r, gmove.delta, n, decision, self._decide_afresh
         )
         if problem:
             raise WalkMismatch(f"fast-forward is not the step-by-step run: {problem}")
 
-    def algorithm_decide(self, view: Snapshot) -> Decision:
+    def _decide_afresh(self, view: Snapshot) -> Decision:
         """The algorithm's decision, asked directly (no memo): the walk check's independent witness."""
         return self.algorithm.decide(view, self.pattern)
 

@@ -350,6 +350,12 @@ def not_regular(path: Path | str) -> str | None:
     return None
 
 
+def _refuse_special(path: Path | str) -> None:
+    problem = not_regular(path)
+    if problem:
+        raise InputError(problem)
+
+
 def check_writable(path: Path | str) -> None:
     """Refuse, before any work is done, an output path that :func:`write_atomic` could not write: its
     folder missing or read-only, the path a folder, or anything but a regular file (:func:`not_regular`).
@@ -358,9 +364,7 @@ def check_writable(path: Path | str) -> None:
     folder = p.parent
     if p.is_dir():
         raise InputError(f"{path}: is a directory, not a file")
-    problem = not_regular(p)
-    if problem:
-        raise InputError(problem)
+    _refuse_special(p)
     if not folder.is_dir():
         raise InputError(f"{path}: cannot write: folder {str(folder)!r} does not exist")
     if not os.access(folder, os.W_OK | os.X_OK):
@@ -371,9 +375,7 @@ def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: s
     """The whole file or nothing: ``write(temporary path)`` in the same folder, then rename over ``path``
     (a table or an image written by another library goes through here too)."""
     p = Path(path)
-    problem = not_regular(p)  # before a temporary file is made beside it (in /dev, for /dev/null)
-    if problem:
-        raise InputError(problem)
+    _refuse_special(p)  # before a temporary file is made beside it (in /dev, for /dev/null)
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=suffix, dir=p.parent or ".")
     os.close(fd)
     try:
@@ -381,9 +383,7 @@ def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: s
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a saved file gets the usual permissions
         write(tmp)
-        problem = not_regular(p)  # checked again at the rename: the path may have changed meanwhile
-        if problem:
-            raise InputError(problem)
+        _refuse_special(p)  # again at the rename: the path may have changed meanwhile
         os.replace(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
