@@ -422,7 +422,7 @@ def test_a_crowd_advanced_a_few_steps_at_a_time_and_seeked_into_is_the_same_run(
 class SlideAway:
     """A plug-in: the robot with a robot just to its left (closer than 10) steps right, with a true stride
     (the moves until 10 apart) or none; every other view stays, watching only its own row to its left. The
-    run ends formed at the last step of a walk or of forced cycles (found by review, session 12: the
+    run ends formed at the last step of a walk or of forced cycles (found by review at eea1ada: the
     checkpoint there was taken before the outcome was set)."""
 
     name = "slide-away"

@@ -57,3 +57,19 @@ def test_the_playing_the_adversary_commands_run_as_written(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "Traceback" not in proc.stderr and "error" not in proc.stderr, proc.stderr
     assert (tmp_path / "l2.robots.json").is_file() and (tmp_path / "start-of-s.jsonl").is_file()
+
+
+def test_the_project_dates_its_figures_by_date_and_commit_never_by_work_session():
+    """A figure is dated by its date and its commit; the text never counts working sessions ("session 18's
+    code", "this session"). ``Session`` the class (one server's shared state) is a name, not a date."""
+    dating = re.compile(r"\b(session \d+|sessions? \d+|this session|previous session|last session)\b", re.I)
+    files = [ROOT / "README.md", *(ROOT / "docs").glob("*.md"), *(ROOT / "apf_viz").rglob("*.py")]
+    files += [*(ROOT / "tests").glob("*.py"), *(ROOT / "benchmarks").glob("*.py"), *(ROOT / "scripts").glob("*")]
+    found = [
+        f"{path.relative_to(ROOT)}:{n}"
+        for path in files
+        if path.is_file() and path.name != "test_readme.py"
+        for n, line in enumerate(path.read_text(errors="replace").splitlines(), 1)
+        if dating.search(line)
+    ]
+    assert not found, found

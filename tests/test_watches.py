@@ -424,7 +424,7 @@ def _random_box(rng: random.Random) -> tuple:
 
 
 def _old_quiet_occupied(w: Watches, path: _Path, n: int) -> int:
-    """The bound as it was before the count test came first (session 11): the reference."""
+    """The bound as it was before the count test came first (before eea1ada): the reference."""
     quiet = n
     for boxes, counts in w._occupied.values():
         spans = [path.box(box) for box in boxes]

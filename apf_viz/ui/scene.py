@@ -68,7 +68,7 @@ RIM_PLAYING_PX = GRID_CELL_PX
 """While a run of at least ``RIM_CROWD`` robots plays, their dark outlines are drawn only where a cell is
 at least this wide on screen (the width under which the grid has no line per cell either): over a
 crowd framed whole they are a thousand more discs in every frame, a tenth of a software-rendered
-page's frame at full resolution (docs/PERFORMANCE.md, session 19), and a pixel-wide ring. Paused, or
+page's frame at full resolution (docs/PERFORMANCE.md, 60be800), and a pixel-wide ring. Paused, or
 zoomed in, they are drawn; a smaller run keeps them (its outlines cost the page little)."""
 GHOST_BADGE_OFFSET = (-0.34, 0.34)  # a light-only ghost, beside the robot it is the ghost of
 STALE_MARK = "stale"  # beside every robot holding a snapshot that others' moves or lights have made stale
