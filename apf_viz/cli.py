@@ -521,11 +521,11 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _cmd_lecture(args: argparse.Namespace) -> int:
     """Every stop of the lecture in order, headless: its condition met or not, at which event; exit 1 if
     any was not (a lecturer checks the evening before)."""
-    from apf_viz.lecture import load_lecture
+    from apf_viz.lecture import find_lecture
     from apf_viz.ui.lecturer import Lecturer
     from apf_viz.ui.session import Session
 
-    lecture = load_lecture(args.file)
+    lecture = find_lecture(args.file)
     print(f"{args.file}: {lecture.title} — {len(lecture.stops)} stops", flush=True)
     failed = 0
     blank = Session([(0, 0)], [(0, 0)])  # the first stop loads its scenario (no viser is imported)
@@ -533,11 +533,17 @@ def _cmd_lecture(args: argparse.Namespace) -> int:
         stop = lecture.stops[reached.index]
         where = "its scenario's start" if stop.scenario else "where the stop before left the run"
         until = stop.until.describe() if stop.until else where
-        mark = "ok " if reached.met else "NOT"
+        mark = "ok " if reached.holds else "NOT"
         note = f" — {reached.note}" if reached.note else ""
-        print(f"  {mark} stop {reached.index + 1}: {stop.title} (to {until}; event {reached.event}){note}")
-        failed += not reached.met
-    print(f"{len(lecture.stops) - failed} of {len(lecture.stops)} stops reached", flush=True)
+        claims = len(stop.expect.model_dump(exclude_none=True)) if stop.expect else 0
+        said = f"; {claims} claim(s) hold" if claims and not reached.broken else ""
+        where = f"to {until}; event {reached.event}{said}"
+        print(f"  {mark} stop {reached.index + 1}: {stop.title} ({where}){note}")
+        for broken in reached.broken:
+            print(f"      {broken}")
+        failed += not reached.holds
+    held = len(lecture.stops) - failed
+    print(f"{held} of {len(lecture.stops)} stops reached, their claims true", flush=True)
     return EXIT_NOT_FORMED if failed else 0
 
 
@@ -851,7 +857,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     lec = command("lecture", "check a guided lecture: run every stop headless, report each condition")
     lec.add_argument("action", choices=["check"], help="what to do with the lecture")
-    lec.add_argument("file", type=Path, help="the lecture file (JSON; demo_patterns/lectures/ has examples)")
+    lec.add_argument(
+        "file", type=Path, help="a lecture file (JSON), or a shipped lecture's name: algorithm-in-12-stops, …"
+    )
     lec.set_defaults(func=_cmd_lecture)
 
     serve = command("serve", "serve the visualiser (the default command)")
@@ -871,7 +879,10 @@ def _add_serve_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--robots", type=Path, help="start file (default: the built-in demo)")
     p.add_argument("--pattern", type=Path, help="pattern file (default: the built-in demo)")
     p.add_argument("--trace", type=Path, help="open this trace, to step through it")
-    p.add_argument("--lecture", type=Path, help="open this guided lecture at its first stop (PageDown: next)")
+    p.add_argument(
+        "--lecture",
+        help="open this guided lecture (a file, or a shipped lecture's name) at its first stop, presenting",
+    )
     p.add_argument(
         "--library",
         type=Path,

@@ -6,6 +6,7 @@ walks a session through it."""
 
 from __future__ import annotations
 
+import re
 from functools import cache
 from pathlib import Path
 from typing import Literal
@@ -19,6 +20,11 @@ MAX_LECTURE_BYTES = 1_000_000
 MAX_EVENT = 10_000_000  # a stop runs at most this far (a lecture is checked the evening before)
 
 Outcome = Literal["formed", "collision", "stuck", "limit", "end"]  # "end": the run can go no further
+State = Literal["running", "formed", "collision", "stuck", "limit"]  # a run's state when a stop is reached
+
+# Presentation mode collapses the whole panel: words that send the room to a panel or folder name
+# something the projector does not show.
+_PANEL_WORDS = re.compile(r"\b(?:(?:the )?(\w+) (?:panel|folder)|the panel)\b", re.I)
 
 
 class Until(BaseModel):
@@ -49,6 +55,35 @@ class Until(BaseModel):
         return f"the outcome {self.outcome}"
 
 
+class Expect(BaseModel):
+    """What a stop claims is true when it is reached; ``apf-viz lecture check`` holds every claim. Each
+    field is optional; a field given is a claim."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    # light -> how many robots show it, exactly (0: none); lights not named are not claimed
+    lights: dict[str, int] | None = Field(default=None, max_length=20)
+    state: State | None = None  # the run's state
+    compare_state: State | None = None  # the state of the run drawn beside it (a stop that compares)
+    stage: str | None = Field(default=None, min_length=1, max_length=200)  # words of the stage name
+    drawn: list[str] | None = Field(default=None, max_length=20)  # marks on the canvas, by label ("K")
+    sees: int | None = Field(default=None, ge=0, le=100_000)  # robots the selected robot sees
+    hidden: int | None = Field(default=None, ge=0, le=100_000)  # robots hidden from the selected robot
+    stale: bool | None = None  # some robot holds a snapshot that shows others as they no longer are
+
+    @model_validator(mode="after")
+    def _counts(self) -> Expect:
+        for light, n in (self.lights or {}).items():
+            if not 0 <= n <= 100_000 or len(light) > 40:
+                raise ValueError(f"lights: {light[:40]!r}: a count from 0 to 100000")
+        return self
+
+
+def panel_words(text: str) -> str | None:
+    """The panel or folder that ``text`` sends the room to (presentation mode hides every one), if any."""
+    m = _PANEL_WORDS.search(text)
+    return m.group(0) if m else None
+
+
 class Stop(BaseModel):
     """One stop: where (a Demo scenario, else the run as the previous stop left it), until when, what
     to select or compare, and the words (a few sentences; the paper's symbols as ``L_1``, ``H_L^O``)."""
@@ -60,6 +95,7 @@ class Stop(BaseModel):
     until: Until | None = None
     select: int | None = Field(default=None, ge=0, le=100_000)
     compare: str | None = Field(default=None, max_length=200)
+    expect: Expect | None = None
 
     @model_validator(mode="after")
     def _known_scenario(self) -> Stop:
@@ -89,6 +125,20 @@ def parse_lecture(text: str, where: str = "lecture") -> Lecture:
 
 def load_lecture(path: Path | str) -> Lecture:
     return parse_lecture(read_text(path, MAX_LECTURE_BYTES), str(path))
+
+
+def find_lecture(name: Path | str) -> Lecture:
+    """A lecture file, or a shipped lecture by its file's name (``algorithm-in-12-stops``) or its title:
+    what ships with the package is reachable without knowing where it was installed."""
+    path = Path(name)
+    if path.exists():
+        return load_lecture(path)
+    shipped = demo_files("lectures")
+    if str(name) in shipped:
+        return load_lecture(shipped[str(name)])
+    if str(name) in lectures():
+        return lectures()[str(name)]
+    raise InputError(f"{name}: no such file, nor a shipped lecture (shipped: {', '.join(shipped)})")
 
 
 @cache

@@ -26,12 +26,88 @@ def lecture_json(**stop) -> str:
 def test_each_shipped_lecture_passes_the_check(name, capsys):
     assert main(["lecture", "check", str(SHIPPED[name])]) == 0
     out = capsys.readouterr().out
-    assert "NOT" not in out and out.strip().endswith("stops reached")
+    assert "NOT" not in out and out.strip().endswith("stops reached, their claims true")
+    assert "claim(s) hold" in out  # the shipped lectures state their claims
 
 
 def test_the_shipped_lectures_are_the_issues_two_at_least():
     assert {"The algorithm in 12 stops", "Where the paper breaks under ASYNC"} <= set(lectures())
     assert len(lectures()["The algorithm in 12 stops"].stops) == 12
+
+
+def shipped_json(name: str) -> dict:
+    return json.loads(SHIPPED[name].read_text())
+
+
+@pytest.mark.parametrize(
+    ("stop", "expect", "said"),
+    [
+        (3, {"lights": {"decider": 1}}, "expects 1 robot(s) lit decider, the screen shows 2"),
+        (2, {"drawn": ["the leader's frame"]}, "expects the leader's frame drawn, the marks are K, pattern"),
+        (11, {"state": "stuck"}, "expects the run stuck, it is formed"),
+        (4, {"stage": "Phase 3"}, "expects the stage “Phase 3”"),
+        (0, {"sees": 3}, "expects what the selected robot sees, but no robot is selected"),
+    ],
+)
+def test_an_edited_claim_fails_the_check_and_says_what_the_screen_shows(tmp_path, capsys, stop, expect, said):
+    data = shipped_json("algorithm-in-12-stops")
+    data["stops"][stop]["expect"] = expect
+    edited = tmp_path / "edited.json"
+    edited.write_text(json.dumps(data))
+    assert main(["lecture", "check", str(edited)]) == 1
+    out = capsys.readouterr().out
+    assert f"NOT stop {stop + 1}:" in out and said in out
+    assert out.count("NOT") == 1  # the other stops' claims still hold
+
+
+def test_words_that_send_the_room_to_a_panel_fail_the_check(tmp_path, capsys):
+    """Presentation mode hides the panel: "the Paper panel shows…" names what the room cannot see."""
+    data = shipped_json("algorithm-in-12-stops")
+    data["stops"][1]["say"] += " The Paper panel shows the line it used."
+    edited = tmp_path / "edited.json"
+    edited.write_text(json.dumps(data))
+    assert main(["lecture", "check", str(edited)]) == 1
+    assert "its words name “The Paper panel”, which presentation mode hides" in capsys.readouterr().out
+
+
+def test_a_shipped_lecture_is_checked_by_its_name_as_a_wheel_user_would(capsys):
+    assert main(["lecture", "check", "where-the-paper-breaks"]) == 0
+    assert main(["lecture", "check", "The algorithm in 12 stops"]) == 0
+
+
+def test_a_stage_is_named_only_when_the_configuration_shows_it():
+    """The 12-stop lecture's fourth stop once said "two deciders" while one robot was lit decider: the
+    stage was named on the first decider. Now every event of the run is checked."""
+    from collections import Counter
+
+    s = demo_session()
+    while s.step():
+        lights = Counter(s.engine.state.lights)
+        stage = s.view().stage
+        if "two deciders" in stage:
+            assert lights["decider"] == 2, (s.engine.state.events, lights)
+        if "terminal pair is symmetric" in stage:
+            assert lights["symmetric"] == 2, (s.engine.state.events, lights)
+    assert s.engine.outcome == "formed"
+
+
+def test_after_play_or_a_step_past_a_stop_the_caption_says_where_the_run_is():
+    s = demo_session()
+    s.start_lecture(lectures()["The algorithm in 12 stops"])
+    stop = lectures()["The algorithm in 12 stops"].stops[0]
+    assert s.view().lecture == ("The algorithm in 12 stops · stop 1 of 12", stop.title, stop.say)
+    s.step()
+    where, title, words = s.view().lecture
+    assert where == "The algorithm in 12 stops · after stop 1 of 12 · event 1" and stop.say not in words
+    assert "PageDown: stop 2, “Phase 1: the terminals of L_1”" in words
+    s.toggle_play()
+    assert s.view().lecture[0].endswith("after stop 1 of 12 · playing")
+    s.pause()
+    s.next_stop()
+    s.next_stop()
+    s.back()
+    where, _, words = s.view().lecture
+    assert "before stop 3 of 12" in where and "PageDown replays it" in words
 
 
 def test_a_stop_that_is_never_reached_fails_the_check_with_exit_1(tmp_path, capsys):
@@ -68,15 +144,15 @@ def test_a_malformed_lecture_is_one_line_naming_the_field_and_exit_2(tmp_path, c
 def test_next_and_previous_stop_walk_the_session_and_replay_from_the_scenario():
     s = demo_session()
     s.start_lecture(lectures()["The algorithm in 12 stops"])
-    assert s.screen.lecture[0] == "The algorithm in 12 stops · stop 1 of 12"
+    assert s.view().lecture[0] == "The algorithm in 12 stops · stop 1 of 12"
     events = []
     for _ in range(4):
         s.next_stop()
         events.append(s.engine.state.events)
-    assert events == sorted(events) and s.screen.lecture[0].endswith("stop 5 of 12")
+    assert events == sorted(events) and s.view().lecture[0].endswith("stop 5 of 12")
     s.previous_stop()  # replayed from the heart's start: the same event as when it was reached
-    assert s.engine.state.events == events[-2] and s.screen.lecture[0].endswith("stop 4 of 12")
-    assert s.view().lecture == s.screen.lecture  # the view carries the words to the caption
+    assert s.engine.state.events == events[-2] and s.view().lecture[0].endswith("stop 4 of 12")
+    assert s.view().lecture[2] == s.screen.lecture.say  # the view carries the words to the caption
     s.start_lecture(None)
     assert s.view().lecture is None
 
@@ -92,7 +168,7 @@ def test_an_uploaded_lecture_that_is_malformed_keeps_the_run_and_the_lecture():
         s.load_lecture("mine.json", b"\xff\xfe")
     assert (s.engine.state.events, s.screen.lecture) == before
     said = s.load_lecture("mine.json", lecture_json(until={"rule": "A1.off.terminal"}).encode())
-    assert said.startswith("stop 1") and s.screen.lecture[0] == "t · stop 1 of 2"
+    assert said.startswith("stop 1") and s.view().lecture[0] == "t · stop 1 of 2"
 
 
 def test_parse_lecture_refuses_a_first_stop_without_a_scenario():
@@ -114,7 +190,7 @@ def test_each_figure_of_the_paper_holds_at_its_stated_event(label):
     said = s.start_lecture(figure.as_lecture())
     assert "not reached" not in said and s.engine.state.events == figure.event
     assert dict(Counter(s.engine.state.lights)) == figure.lights, figure.caption
-    assert s.screen.lecture[2] == figure.caption  # the caption on screen
+    assert s.view().lecture[2] == figure.caption  # the caption on screen
     pts, lights = s.engine.current_points(), list(s.engine.state.lights)
     for claim in figure.positions:
         assert POSITION_CLAIMS[claim](pts, lights, s), (label, claim)

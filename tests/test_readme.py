@@ -64,7 +64,11 @@ def test_the_project_dates_its_figures_by_date_and_commit_never_by_work_session(
     code", "this session"). ``Session`` the class (one server's shared state) is a name, not a date."""
     dating = re.compile(r"\b(session \d+|sessions? \d+|this session|previous session|last session)\b", re.I)
     files = [ROOT / "README.md", *(ROOT / "docs").glob("*.md"), *(ROOT / "apf_viz").rglob("*.py")]
-    files += [*(ROOT / "tests").glob("*.py"), *(ROOT / "benchmarks").glob("*.py"), *(ROOT / "scripts").glob("*")]
+    files += [
+        *(ROOT / "tests").glob("*.py"),
+        *(ROOT / "benchmarks").glob("*.py"),
+        *(ROOT / "scripts").glob("*"),
+    ]
     found = [
         f"{path.relative_to(ROOT)}:{n}"
         for path in files

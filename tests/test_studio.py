@@ -71,14 +71,43 @@ def test_move_translates_the_pattern_and_moves_one_robot_in_one_action():
     assert (9, 9) in s.editor.robots and (5, 1) not in s.editor.robots and len(s.editor.robots) == 4
 
 
-def test_fit_to_k_says_what_it_did():
+def test_fit_pattern_never_removes_what_was_drawn_and_fit_robots_says_what_it_did():
+    """The issue's drawing: more cells than robots. Fit pattern removes nothing (it used to drop the last
+    drawn: APF + ring + box left the old heart); Fit robots places robots instead, the start solvable;
+    Undo brings back either."""
     s = session()
     s.clear_pattern()
     s.draw_box((0, 0), (2, 1), erase=False)  # 6 cells for 4 robots
-    said = s.transform("Fit to k")
-    assert len(s.editor.pattern) == 4 and "removed the 2 last-drawn cells" in said
+    drawn = list(s.editor.pattern)
+    said = s.transform("Fit pattern")
+    assert s.editor.pattern == drawn and "nothing removed" in said and "Fit robots" in said
+    said = s.transform("Fit robots")
+    assert len(s.editor.robots) == 6 and "added 2 robots" in said and s.editor.pattern == drawn
+    assert s.editor.problem() is None  # sizes equal, and the start is solvable
     s.transform("Undo")
-    assert len(s.editor.pattern) == 6
+    assert len(s.editor.robots) == 4
+    s.draw_box((0, 0), (2, 1), erase=True)
+    s.draw_box((0, 0), (1, 0), erase=False)  # 2 cells for 4 robots
+    said = s.transform("Fit pattern")
+    assert len(s.editor.pattern) == 4 and s.editor.pattern[:2] == [(0, 0), (1, 0)] and "added 2" in said
+    s.transform("Undo")
+    said = s.transform("Fit robots")
+    assert len(s.editor.robots) == 2 and "removed 2 robots" in said
+    s.transform("Undo")
+    assert len(s.editor.robots) == 4
+
+
+@given(
+    st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)), unique=True, max_size=12), st.integers(1, 20)
+)
+def test_fit_robots_gives_k_robots_keeping_a_solvable_start_solvable(robots, k):
+    from apf_viz.core.symmetry import unsolvable_axis
+
+    out, said = shapes.robots_fitted(robots, k, lambda r: unsolvable_axis(r) is None)
+    assert len(out) == k == len(set(out)) and said
+    assert out[: min(k, len(robots))] == robots[: min(k, len(robots))] or len(out) < len(robots)
+    if robots and unsolvable_axis(robots) is None and k > len(robots):
+        assert unsolvable_axis(out) is None
 
 
 def test_every_tool_and_transform_is_listed_and_an_unknown_one_refused():

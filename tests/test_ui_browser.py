@@ -863,10 +863,10 @@ def test_a_camera_moved_by_hand_is_that_browsers_own_until_frame_run(browser, ap
     assert screen.state.camera == "framed"
 
 
-def inside_canvas(app: App, page, client_id, cells, top_room: float = 0.0) -> list:
+def inside_canvas(app: App, page, client_id, cells, caption_room: float = 0.0) -> list:
     """The cells a browser's own camera (as it is now) projects outside its canvas, half a cell of
-    margin included: robots and targets must be whole (``top_room``: a share of the canvas's height at
-    its top that must stay free, presentation mode's caption)."""
+    margin included: robots and targets must be whole (``caption_room``: a share of the canvas's height
+    at its bottom that must stay free, presentation mode's caption)."""
     camera = app.screens[client_id].client.camera
     p, target = np.array(camera.position, dtype=float), np.array(camera.look_at, dtype=float)
     f = (target - p) / np.linalg.norm(target - p)
@@ -882,7 +882,7 @@ def inside_canvas(app: App, page, client_id, cells, top_room: float = 0.0) -> li
             d = np.array([x + dx, y + dy, 0.0]) - p
             ndc_x = (d @ r) / ((d @ f) * t * (box["width"] / box["height"]))
             ndc_y = (d @ u) / ((d @ f) * t)
-            if not (-1 <= ndc_x <= 1 and -1 <= ndc_y <= 1 - 2 * top_room):
+            if not (-1 <= ndc_x <= 1 and -1 + 2 * caption_room <= ndc_y <= 1):
                 out.append(cell)
     return out
 
@@ -890,7 +890,7 @@ def inside_canvas(app: App, page, client_id, cells, top_room: float = 0.0) -> li
 def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser, app):
     """The issue's walk-through: PageDown from the start to FORMED, each stop one of the paper's stages,
     named in the caption, with the whole run in view below it (screenshots: test-output/lecture-*)."""
-    from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
+    from apf_viz.ui.panels.presentation import CAPTION_ROOM
     from apf_viz.ui.presenter.legend import symbol_html
 
     played = demo_session()
@@ -908,7 +908,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
         wait_for(lambda stage=stage, caption=caption: symbol_html(stage) in caption.content)
         settled(app, screen)
         cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
-        assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], (i, stage)
+        assert inside_canvas(app, page, cid, cells, CAPTION_ROOM) == [], (i, stage)
         assert page.locator(".mantine-Notification-root").filter(has_text="Stage").count() == 0
         shot(page, f"lecture-stop-{i:02d}")
     assert app.session.engine.outcome == "formed" and "FORMED" in screen.panels.presentation.html.content
@@ -1110,7 +1110,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     """The shipped lecture from the Lecture dropdown, then PageDown to its last stop in presentation mode:
     each stop's words on the canvas and the whole run in view (screenshots: test-output/lecture12-*)."""
     from apf_viz.lecture import lectures
-    from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
+    from apf_viz.ui.panels.presentation import CAPTION_ROOM
     from apf_viz.ui.presenter.legend import symbol_html
 
     lecture = lectures()["The algorithm in 12 stops"]
@@ -1132,7 +1132,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
         wait_for(lambda stop=stop, caption=caption: symbol_html(stop.title) in caption.content)
         settled(app, screen)
         cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
-        assert inside_canvas(app, page, cid, cells, PRESENTATION_TOP_ROOM) == [], stop.title
+        assert inside_canvas(app, page, cid, cells, CAPTION_ROOM) == [], stop.title
         shot(page, f"lecture12-{i + 1:02d}")
     assert app.session.engine.outcome == "formed"
     page.keyboard.press("PageUp")  # back one stop: replayed from the heart's start
@@ -1229,8 +1229,11 @@ def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
     wait_for(lambda: len(s.editor.pattern) == 20)
     page.get_by_role("button", name="Undo").click()
     wait_for(lambda: len(s.editor.pattern) == 24)  # undo ×2: the box whole again
-    page.get_by_role("button", name="Fit to k").click()  # 24 cells for 10 robots: the last drawn go
-    wait_for(lambda: len(s.editor.pattern) == s.engine.k)
+    page.get_by_role("button", name="Fit pattern").click()  # 24 cells for 10 robots: nothing removed
+    time.sleep(0.5)
+    assert len(s.editor.pattern) == 24
+    page.get_by_role("button", name="Fit robots").click()  # 14 robots placed beside the 10
+    wait_for(lambda: len(s.editor.robots) == 24)
     drawn = set(s.editor.pattern)
     _choose(page, "Mode", "Run")
     wait_for(lambda: s.mode == "run")

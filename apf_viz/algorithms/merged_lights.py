@@ -34,6 +34,7 @@ from apf_viz.core.portrayal import (
     overlays_of,
     pseudocode_of,
     stage_of,
+    title_of,
 )
 from apf_viz.core.view import Snapshot
 
@@ -135,6 +136,10 @@ class MergedLights:
 
     def pseudocode(self) -> Pseudocode | None:
         return pseudocode_of(self.base)
+
+    def title(self) -> str:
+        merges = ", ".join(f"{b} shown as {a}" for a, b in self.pairs)
+        return f"{title_of(self.base)}, {merges}"
 
     def explain(self, view: Snapshot, pattern: Pattern) -> Explanation:
         found = explain(self.base, view, pattern)

@@ -263,6 +263,15 @@ class Portrayed(Protocol):
 
     def explain(self, view: Snapshot, pattern: Pattern) -> Explanation: ...
 
+    def title(self) -> str: ...
+
+
+def title_of(algorithm: Algorithm) -> str:
+    """The algorithm in words, for a room (Compare's titles): its own ``title`` where it gives one, else
+    its registry name."""
+    own = getattr(algorithm, "title", None)
+    return own() if callable(own) else algorithm.name
+
 
 def legend_of(algorithm: Algorithm) -> dict[str, LightStyle]:
     """Every light of the algorithm with its style: its own legend where it gives one, the palette

@@ -5,7 +5,7 @@ returns a new list. Used by the Edit folder (ui/editor.py) and by ``apf-viz patt
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 from apf_viz.core.grid import Point
 
@@ -238,3 +238,43 @@ def fitted(cells: Sequence[Point], k: int) -> tuple[Cells, str]:
             out.append(p)
             have.add(p)
     return out, f"added {n - len(cells)} cells along the outline"
+
+
+def _neighbours_free(cells: Sequence[Point], taken: set[Point]) -> list[Point]:
+    """The free cells beside ``cells``, from the top row down, left to right."""
+    near = {(x + dx, y + dy) for x, y in cells for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))}
+    return sorted(near - taken, key=lambda p: (-p[1], p[0]))
+
+
+def grown(cells: Sequence[Point], k: int) -> tuple[Cells, str]:
+    """The drawing with cells added along its outline up to ``k``; never one removed (a drawing with more
+    cells is returned as it is, and the words say so)."""
+    n = _size(k, "robot count")
+    if len(cells) >= n:
+        extra = len(cells) - n
+        return list(cells), (f"already {n} cells" if not extra else f"{extra} cells more than {n}: kept")
+    return fitted(cells, n)
+
+
+def robots_fitted(
+    robots: Sequence[Point], k: int, solvable: Callable[[Sequence[Point]], bool]
+) -> tuple[Cells, str]:
+    """``k`` robots: the last-placed ones removed, or new ones placed beside the others (the free cells
+    from the top row down), each choice one that keeps the start ``solvable`` (Theorem 1) where one does."""
+    n = _size(k, "pattern size")
+    out = list(robots)
+    if len(out) > n:
+        while len(out) > n:
+            # The last-placed robot whose removal leaves a solvable start (else the last one).
+            i = next((i for i in reversed(range(len(out))) if solvable(out[:i] + out[i + 1 :])), len(out) - 1)
+            del out[i]
+        return out, f"removed {len(robots) - n} robots, the last placed"
+    taken = set(out)
+    while len(out) < n:
+        free = _neighbours_free(out, taken) if out else [(0, 0)]
+        cell = next((c for c in free if solvable([*out, c])), free[0])
+        out.append(cell)
+        taken.add(cell)
+    return out, f"added {n - len(robots)} robots beside the others" if n > len(
+        robots
+    ) else f"already {n} robots"

@@ -28,10 +28,11 @@ from apf_viz.core.formats import (
     load_trace,
 )
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
-from apf_viz.lecture import load_lecture
+from apf_viz.lecture import find_lecture
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.panels.presentation import PRESENTATION_TOP_ROOM
+from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.scene import (
     NARROW_ASPECT,
     Bounds,
@@ -162,7 +163,8 @@ class BrowserScreen:
 
     def frame(self, renderer: SceneRenderer, bounds: Bounds | None = None) -> None:
         """Frame its camera on the run, or on ``bounds`` (the run with room to grow)."""
-        room = PRESENTATION_TOP_ROOM if self.panels.presenting else 0.0
+        room = CAPTION_ROOM if self.panels.presenting else 0.0
+        self.panels.presentation.fit(self.client)  # the caption across the canvas as it is now
         position, self._framed_aspect = renderer.frame_camera(self.client.camera, room, bounds)
         if position is not None:
             self._sending(position)
@@ -185,9 +187,15 @@ class App:
     """The visualiser: server, the shared scene, each browser's panel and selection, the render loop."""
 
     def __init__(
-        self, session: Session, host: str = "127.0.0.1", port: int = 8080, verbose: bool = True
+        self,
+        session: Session,
+        host: str = "127.0.0.1",
+        port: int = 8080,
+        verbose: bool = True,
+        present: bool = False,
     ) -> None:
         self.session = session
+        self.present = present  # a browser that opens while a lecture is followed opens presenting it
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         gui = self.server.gui
         gui.configure_theme(control_width="large")
@@ -229,6 +237,8 @@ class App:
         with self._screens_lock:
             self.screens[client.client_id] = screen
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
+        if self.present and self.session.lecturer is not None:  # serve --lecture: the room's view
+            screen.panels.presentation.present(True, client)
         self.request_render()
 
     def _disconnect(self, client) -> None:
@@ -340,7 +350,7 @@ class App:
         cells = [x.cells for x in screens if x.cells is not None]
         self.renderer.view_cells = min(cells) if cells else None
         with self.server.atomic():
-            self.renderer.render(run_view, f"A: {run_view.algorithm}" if run_view.compare else None)
+            self.renderer.render(run_view, compare_title("A", run_view) if run_view.compare else None)
             self._render_compare(run_view)
         for screen in screens:
             view = views[screen.client.client_id]
@@ -399,11 +409,16 @@ class App:
         gap = max(xs) - min(xs) + len(c.robots) + 8
         a = self.renderer
         self.compare_renderer.fixed_origin = (a.origin[0] - gap, a.origin[1])
-        outcome = f" · {other.outcome.upper()}" if other.outcome else ""
-        self.compare_renderer.render(other, f"B: {other.algorithm}{outcome}")
+        self.compare_renderer.render(other, compare_title("B", other))
         b = self.compare_renderer.bounds
         x0, y0, x1, y1 = a.bounds
         a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]), max(y1, b[3]))
+
+
+def compare_title(side: str, view: SessionView) -> str:
+    """A Compare run's title above it, in words a room reads: which algorithm, and how its run stands."""
+    state = view.outcome.upper() if view.outcome else "running"
+    return f"{side}: {view.algorithm_title or view.algorithm} · {state}"
 
 
 def demo_session(**options) -> Session:
@@ -466,8 +481,9 @@ def serve(args: argparse.Namespace) -> int:
     if getattr(args, "library", None):
         session.use_library(PatternLibrary(args.library))
     if getattr(args, "lecture", None):
-        session.start_lecture(load_lecture(args.lecture))  # a bad file: one line, before the UI starts
-    app = App(session, host=args.host, port=args.port, verbose=False)
+        session.start_lecture(find_lecture(args.lecture))  # a bad file: one line, before the UI starts
+    present = bool(getattr(args, "lecture", None))  # serve --lecture: pages open presenting it
+    app = App(session, host=args.host, port=args.port, verbose=False, present=present)
     print(f"apf-viz: serving on http://{args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
     try:
         while True:

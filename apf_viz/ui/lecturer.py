@@ -5,11 +5,13 @@ are reproducible: the same scenario, seed and adversary give the same events). P
 
 from __future__ import annotations
 
+import re
+from collections import Counter
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from apf_viz.lecture import MAX_EVENT, Lecture, Stop, Until
-from apf_viz.ui.presenter import stage_of
+from apf_viz.lecture import MAX_EVENT, Expect, Lecture, Stop, Until, panel_words
+from apf_viz.ui.presenter import SessionView, stage_of
 
 if TYPE_CHECKING:  # the session holds its lecturer
     from apf_viz.ui.session import Session
@@ -23,6 +25,12 @@ class Reached:
     met: bool
     event: int
     note: str = ""
+    broken: tuple[str, ...] = ()  # the stop's claims that do not hold there, each in words
+
+    @property
+    def holds(self) -> bool:
+        """Reached, and everything it says is true on screen."""
+        return self.met and not self.broken
 
 
 class Lecturer:
@@ -75,7 +83,7 @@ class Lecturer:
         met, note = (True, "") if stop.until is None else self._run_until(stop.until)
         if stop.select is not None:
             s.selected = stop.select if stop.select < s.engine.k else None
-        return Reached(index, met, s.engine.state.events, note)
+        return Reached(index, met, s.engine.state.events, note, broken_claims(stop, s.view()))
 
     def _run_until(self, until: Until) -> tuple[bool, str]:
         s = self.session
@@ -102,3 +110,54 @@ class Lecturer:
             return False
         last = e.history.steps[e.step_index - 1].events
         return any(ev.rule_id and until.rule in ev.rule_id.split("/") for ev in last if ev.phase == "compute")
+
+
+def broken_claims(stop: Stop, view: SessionView) -> tuple[str, ...]:
+    """What ``stop`` says that the screen does not show when it is reached: its ``expect`` claims, and
+    words that name a panel (presentation mode hides the panel, so the room cannot see it)."""
+    out = [
+        f"its words name “{words}”, which presentation mode hides"
+        for text in (stop.title, stop.say)
+        if (words := panel_words(text))
+    ]
+    return tuple(out + (_broken_expectations(stop.expect, view) if stop.expect else []))
+
+
+def _broken_expectations(expect: Expect, view: SessionView) -> list[str]:
+    out = []
+    shown = Counter(r.light for r in view.robots)
+    for light, n in (expect.lights or {}).items():
+        if shown[light] != n:
+            out.append(f"expects {n} robot(s) lit {light}, the screen shows {shown[light]}")
+    state = view.outcome or "running"
+    if expect.state is not None and state != expect.state:
+        out.append(f"expects the run {expect.state}, it is {state}")
+    if expect.compare_state is not None:
+        other = "not compared" if view.compare is None else view.compare.outcome or "running"
+        if other != expect.compare_state:
+            out.append(f"expects the run beside it {expect.compare_state}, it is {other}")
+    if expect.stage is not None and expect.stage not in view.stage:
+        out.append(f"expects the stage “{expect.stage}”, it is “{view.stage}”")
+    labels = [m.label for m in view.overlays.marks]
+    for label in expect.drawn or []:
+        if not any(re.search(rf"(?<!\w){re.escape(label)}(?!\w)", x) for x in labels):
+            out.append(f"expects {label} drawn, the marks are {', '.join(labels) or 'none'}")
+    if expect.sees is not None or expect.hidden is not None:
+        out += _sight(expect, view)
+    if expect.stale is not None and bool(view.stale_holders) != expect.stale:
+        holders = ", ".join(map(str, view.stale_holders)) or "none"
+        out.append(f"expects {'a' if expect.stale else 'no'} stale snapshot, robots holding one: {holders}")
+    return out
+
+
+def _sight(expect: Expect, view: SessionView) -> list[str]:
+    if view.selected is None:
+        return ["expects what the selected robot sees, but no robot is selected"]
+    hidden = len(view.hidden)
+    sees = len(view.robots) - 1 - hidden
+    out = []
+    if expect.sees is not None and sees != expect.sees:
+        out.append(f"expects robot {view.selected} to see {expect.sees} robot(s), it sees {sees}")
+    if expect.hidden is not None and hidden != expect.hidden:
+        out.append(f"expects {expect.hidden} robot(s) hidden from robot {view.selected}, {hidden} are")
+    return out

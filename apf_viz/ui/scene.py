@@ -104,6 +104,23 @@ NARROW_ASPECT = 0.83
 LABEL_SCALE = 1.1
 
 
+def number_labels(
+    pts: list[list[float]], numbers: bool, stale: tuple[int, ...]
+) -> list[tuple[str, tuple[float, float, float]]]:
+    """Each robot's number at its upper right, "stale" joined to it for a robot holding a stale snapshot
+    (one label per robot: it cannot be read as a neighbour's, nor pile onto another); without numbers,
+    "stale" alone in the same place."""
+    holding = set(stale)
+    return [
+        (
+            f"{i} {STALE_MARK}" if numbers and i in holding else str(i) if numbers else STALE_MARK,
+            (x + 0.25, y + 0.3, 0.7),
+        )
+        for i, (x, y) in enumerate(pts)
+        if numbers or i in holding
+    ]
+
+
 def _xyz(points, z: float) -> np.ndarray:
     arr = np.asarray(points, dtype=np.float32).reshape(-1, 2)
     return np.column_stack([arr, np.full(len(arr), z, dtype=np.float32)])
@@ -244,12 +261,7 @@ class SceneRenderer:
         dense = len(pts) > DENSE
         self._robots(view, pts)
         self._rings(view, pts)
-        numbers = [(str(i), (float(x) + 0.25, float(y) + 0.3, 0.7)) for i, (x, y) in enumerate(pts.tolist())]
-        self._labels("/numbers", numbers if view.numbers else [])
-        stale = [
-            (STALE_MARK, (float(pts[r][0]) - 0.55, float(pts[r][1]) - 0.6, 0.7)) for r in view.stale_holders
-        ]
-        self._labels("/stale", stale)
+        self._labels("/numbers", number_labels(pts.tolist(), view.numbers, view.stale_holders))
         split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
         self._points("/diverged", _xyz(split, _LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
         here = [("diverges here", (float(x) + 0.45, float(y) - 0.2, 0.7)) for x, y in split.tolist()]
@@ -706,19 +718,20 @@ class SceneRenderer:
     def camera_pose(
         self,
         aspect: float = NARROW_ASPECT,
-        top_room: float = 0.0,
+        caption_room: float = 0.0,
         bounds: Bounds | None = None,
     ) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
         """(position, look_at, fov) of a top-down view of the whole run (start, pattern, in between), for
         a canvas ``aspect`` = width / height (the field of view is vertical, so a narrow canvas needs the
-        camera higher to fit the run's width); ``top_room``: the share of the canvas's height to leave
-        free at the top (presentation mode's caption floats there). ``bounds``: a box to show instead of
+        camera higher to fit the run's width); ``caption_room``: the share of the canvas's height to
+        leave free at the bottom (presentation mode's caption floats there, clear of the notifications,
+        which the page shows at the top left). ``bounds``: a box to show instead of
         the run's own (one with room to grow, :func:`grown_box`)."""
         x0, y0, x1, y1 = self.bounds if bounds is None else bounds
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
         fov = float(np.deg2rad(50))
-        extent = max((y1 - y0 + 4) / (1 - top_room), (x1 - x0 + 4) / max(aspect, 0.2), 10)
-        cy += top_room * extent / 2  # the run in the middle of the canvas's lower part
+        extent = max((y1 - y0 + 4) / (1 - caption_room), (x1 - x0 + 4) / max(aspect, 0.2), 10)
+        cy -= caption_room * extent / 2  # the run in the middle of the canvas's upper part
         h = extent / (2 * np.tan(fov / 2))
         # A little south of straight above: the orbit controls need a direction that is not "up".
         return (cx, cy - 0.05 * h, h), (cx, cy, 0.0), fov
@@ -738,13 +751,13 @@ class SceneRenderer:
         initial.look_at = look_at
 
     def frame_camera(
-        self, camera, top_room: float = 0.0, bounds: Bounds | None = None
+        self, camera, caption_room: float = 0.0, bounds: Bounds | None = None
     ) -> tuple[tuple[float, float, float] | None, float]:
         """Move a connected browser's camera to the whole run, or to ``bounds`` (position first: it drags
-        look_at along), fitted to that browser's canvas (``top_room``: :meth:`camera_pose`). Returns the
+        look_at along), fitted to that browser's canvas (``caption_room``: :meth:`camera_pose`). Returns the
         position sent (None if none could be) and the aspect it was fitted to."""
         aspect = camera_aspect(camera)
-        position, look_at, fov = self.camera_pose(aspect, top_room, bounds)
+        position, look_at, fov = self.camera_pose(aspect, caption_room, bounds)
         try:
             camera.fov = fov
             camera.position = position

@@ -27,8 +27,21 @@ class SharedScreen:
     twin: Twin | None = None  # Compare: a second algorithm stepping with the run
     trails: int = 0  # draw each robot's last this-many moves (0: none)
     studio: Studio = field(default_factory=Studio)  # Edit: the tool, its size and text, a gesture begun
-    # A guided lecture's stop on screen: (the lecture and where in it, the stop's title, its words).
-    lecture: tuple[str, str, str] | None = None
+    lecture: LectureStop | None = None  # a guided lecture's stop, as it was reached
+
+
+@dataclass(frozen=True)
+class LectureStop:
+    """A guided lecture's stop as it was reached: its words hold at ``event`` only; once the run is
+    played or stepped past it (or back before it), the screen says where the run is instead."""
+
+    lecture: str  # the lecture's title
+    index: int  # 0-based
+    count: int  # stops in the lecture
+    title: str
+    say: str
+    event: int  # the event at which the stop was reached
+    next_title: str | None = None  # the next stop's title (None: the last stop)
 
 
 @dataclass

@@ -42,7 +42,7 @@ from apf_viz.ui.presenter import SessionView, for_browser, present, present_run,
 from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
-from apf_viz.ui.screen_state import BrowserState, Mode, SharedScreen
+from apf_viz.ui.screen_state import BrowserState, LectureStop, Mode, SharedScreen
 
 SCHEDULER_LABELS = {
     "FSYNC": "fsync",
@@ -710,9 +710,12 @@ class Session:
         assert lecturer is not None
         if reached is None:
             return f"already at {edge}"
-        stop = lecturer.lecture.stops[reached.index]
-        where = f"{lecturer.lecture.title} · stop {reached.index + 1} of {len(lecturer.lecture.stops)}"
-        self.screen.lecture = (where, stop.title, stop.say)
+        stops = lecturer.lecture.stops
+        stop = stops[reached.index]
+        following = stops[reached.index + 1].title if reached.index + 1 < len(stops) else None
+        self.screen.lecture = LectureStop(
+            lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event, following
+        )
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"
 

@@ -8,6 +8,7 @@ from typing import Literal
 
 from apf_viz.core import shapes
 from apf_viz.core.grid import Point
+from apf_viz.core.symmetry import unsolvable_axis
 from apf_viz.ui.editor import Editor
 
 # (tool, what it does), in the Tool dropdown's order.
@@ -25,7 +26,8 @@ TOOLS: dict[str, str] = {
     "move": "click a cell, then where it goes: a robot, or the whole pattern",
     "flip": "click a robot: its y-axis up or down (the adversary's choice)",
 }
-TRANSFORMS = ("Mirror ↔", "Mirror ↕", "Rotate 90°", "Scale ×2", "Fit to k")
+FIT_PATTERN, FIT_ROBOTS = "Fit pattern", "Fit robots"
+TRANSFORMS = ("Mirror ↔", "Mirror ↕", "Rotate 90°", "Scale ×2", FIT_PATTERN, FIT_ROBOTS)
 NUDGES = {"←": (-1, 0), "→": (1, 0), "↑": (0, 1), "↓": (0, -1)}  # the whole draft by one cell
 Mode = Literal["edit-pattern", "edit-robots"]
 
@@ -86,13 +88,22 @@ class Studio:
         return self._add(editor, mode, cells, what)
 
     def transform(self, editor: Editor, mode: Mode, name: str) -> str:
-        """Mirror, rotate, scale or fit the whole draft being edited (Fit to k: the pattern only)."""
+        """Mirror, rotate, scale the whole draft being edited; fit the pattern to the robots (cells added,
+        never one removed) or the robots to the pattern (robots added or removed, the start kept solvable)."""
         cells = editor.robots if mode == "edit-robots" else editor.pattern
-        if name == "Fit to k":
-            if mode == "edit-robots":
-                return "Fit to k fits the pattern to the robots: use it in Edit pattern"
-            fitted, said = shapes.fitted(cells, len(editor.robots))
-            return editor.set_pattern(fitted, f"fit to {len(editor.robots)} robots: {said}")
+        if name == FIT_PATTERN:
+            k = len(editor.robots)
+            if len(editor.pattern) > k:
+                return (
+                    f"the pattern has {len(editor.pattern)} cells for {k} robots: nothing removed "
+                    f"(Fit robots places {len(editor.pattern) - k} more robots; Erase removes cells)"
+                )
+            fitted, said = shapes.grown(editor.pattern, k)
+            return editor.set_pattern(fitted, f"the pattern fitted to {k} robots: {said}")
+        if name == FIT_ROBOTS:
+            n = len(editor.pattern)
+            robots, said = shapes.robots_fitted(editor.robots, n, lambda r: unsolvable_axis(r) is None)
+            return editor.set_robots(robots, f"the robots fitted to the {n}-cell pattern: {said}")
         if name in NUDGES:
             dx, dy = NUDGES[name]
             return self._set(editor, mode, shapes.translated(cells, dx, dy), f"moved {name}")

@@ -27,6 +27,7 @@ from apf_viz.algorithms.apf_opaque_grid.resolutions import (
     G1,
     G2,
     G3,
+    LA,
     LITERAL,
     LW,
     RESOLUTIONS,
@@ -100,6 +101,10 @@ def dispatch(view: Snapshot, pattern: Pattern, res: Resolutions, ev: Evidence = 
     return decision
 
 
+def _listed(names: list[str]) -> str:
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
 class ApfOpaqueGrid:
     """The paper's algorithm with a chosen set of resolutions (see :data:`RESOLUTIONS`).
 
@@ -138,6 +143,20 @@ class ApfOpaqueGrid:
     def pseudocode(self) -> Pseudocode:
         """The paper's algorithms with this variant's resolutions in place (the Paper panel)."""
         return paper.pseudocode(self.resolutions)
+
+    def title(self) -> str:
+        """This variant in words: the paper as written (with LA, which every run needs to finish), plus
+        the resolutions it adds, or all of them but those it leaves out, whichever is shorter."""
+        if self.resolutions == ALL:
+            return "the default algorithm (every resolution)"
+        added = [r.value for r in Resolution if r in self.resolutions - LITERAL]
+        missing = [r.value for r in Resolution if r in ALL - self.resolutions]
+        if not added:
+            return "the paper as written" + ("" if LA in self.resolutions else " (without LA)")
+        if len(missing) < len(added):
+            return "every resolution but " + _listed(missing)
+        noun = "resolution" if len(added) == 1 else "resolutions"
+        return f"the paper as written with {noun} {_listed(added)}"
 
     @classmethod
     def parse(cls, name: str) -> ApfOpaqueGrid:

@@ -44,10 +44,16 @@ def stage(positions: tuple[Point, ...], lights: tuple[str, ...]) -> str:
         return f"{STAGES[2]} — leader elected (leader1), walking to its corner"
     if "call" in present:
         return f"{STAGES[2]} — a robot closest to K answers with call"
-    if "decider" in present:
+    # A stage is named only when the configuration shows it: the second robot of a pair lights its
+    # light a few events after the first (ASYNC), and the words must not run ahead of the screen.
+    if lights.count("decider") >= 2:
         return f"{STAGES[2]} — two deciders stand on L_1"
-    if "symmetric" in present:
+    if "decider" in present:
+        return f"{STAGES[2]} — a robot lights decider; its partner has not yet"
+    if lights.count("symmetric") >= 2:
         return f"{STAGES[1]} — L_1's terminal pair is symmetric about K"
+    if "symmetric" in present:
+        return f"{STAGES[1]} — a terminal robot finds R_I symmetric about K"
     if "terminal1" in present:
         return f"{STAGES[1]} — L_1's terminal robots light terminal1"
     return f"{STAGES[1]} — every robot off"
@@ -75,8 +81,8 @@ def phase_of(stage: str) -> str:
 
 
 def line_K(positions: tuple[Point, ...], lights: tuple[str, ...]) -> float | None:
-    """K: the midline of two deciders, or of two terminal1 robots, on one vertical line."""
-    for light in ("decider", "terminal1"):
+    """K: the midline of two deciders, two symmetric or two terminal1 robots on one vertical line."""
+    for light in ("decider", "symmetric", "terminal1"):
         by_x: dict[int, list[int]] = {}
         for (x, y), lt in zip(positions, lights, strict=True):
             if lt == light:

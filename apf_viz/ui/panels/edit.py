@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.studio import NUDGES, TOOLS, TRANSFORMS
+from apf_viz.ui.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
@@ -35,8 +35,10 @@ class EditFolder:
             transforms.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             nudge = gui.add_button_group("Move all", tuple(NUDGES))
             nudge.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
-            history = gui.add_button_group("History ", ("Undo", "Redo", "Fit to k"))
+            history = gui.add_button_group("History ", ("Undo", "Redo"))
             history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            fit = gui.add_button_group("Fit to k", (FIT_PATTERN, FIT_ROBOTS))
+            fit.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
             self.save_as = gui.add_text("Save as", initial_value="", hint="a name for the pattern drawn")
             gui.add_button("Save pattern", hint="into the pattern library (serve --library DIR)").on_click(

@@ -1,17 +1,38 @@
 """Presentation mode (P, or the Run folder's button): this browser's panel collapses and a large caption
-floats over the canvas — the stage, the last event, a failure's outcome, the lights in use — while the
-keyboard drives the run (ui/panels/shortcuts.py). Another browser's screen is not touched."""
+floats over the bottom of the canvas — a lecture stop's words, the stage, the last event, a failure's
+outcome, the lights in use — while the keyboard drives the run (ui/panels/shortcuts.py). Another
+browser's screen is not touched.
+
+The caption always shows all of its words: it spans the canvas's width, the camera leaves its share of
+the height free, and the page itself shrinks the words' size until they fit the box (a few steps, never
+below 60 %), starting each new caption at the top (a scroll never carries over to the next stop). It sits
+at the bottom: the page's notifications appear at the top left."""
 
 from __future__ import annotations
+
+import zlib
 
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.presenter.legend import lecture_html
 from apf_viz.ui.recorder import canvas_size
 
-# The caption floats over the top of the canvas, this share of its height; a framed camera leaves that
-# room free (ui/app.py), so the caption never covers the run.
-PRESENTATION_TOP_ROOM = 0.35
+# The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
+# that room free (ui/app.py), so the caption never covers the run.
+CAPTION_ROOM = 0.38
+CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of a room
+MARGIN = 10  # px between the caption and the canvas's edges
+
+# Runs in the page each time the caption changes (an image that fails to load runs its onerror; a new
+# caption is a new image): back to the top, then smaller words until they fit.
+FIT = (
+    '<img alt="" src="data:,{key}" style="display:none" onerror="'
+    "var r=this.parentElement,b=r;"
+    "while(b&&!/(auto|scroll)/.test(getComputedStyle(b).overflowY))b=b.parentElement;"
+    "if(b){{b.scrollTop=0;var s=100;r.style.fontSize='';"
+    "while(b.scrollHeight>b.clientHeight+1&&s>60){{s-=5;r.style.fontSize=s+'%';}}}}"
+    '">'
+)
 
 
 class Presentation:
@@ -19,6 +40,7 @@ class Presentation:
         self.gui, self.ctx = gui, ctx
         self.panel = None
         self.html = None
+        self._placed: tuple[int, int] | None = None  # the caption's (width, height) last sent
         command = gui.add_command(
             "Presentation mode", description="collapse the panel; a large caption on the canvas", hotkey="P"
         )
@@ -26,28 +48,48 @@ class Presentation:
         ctx.toggle_presentation = self.toggle
         ctx.presenting = lambda: self.on
 
+    def fit(self, client) -> None:
+        """The caption across the bottom of this browser's canvas (as it reports its size; a page that has
+        not reported yet gets a 1024×768 projector's)."""
+        if self.panel is None:
+            return
+        height, width = canvas_size(client) if client is not None else (768, 1024)
+        if client is None or width <= 16:
+            height, width = 768, 1024
+        placed = (min(width - 2 * MARGIN, CAPTION_MAX_WIDTH), int(CAPTION_ROOM * height) - MARGIN)
+        if placed != self._placed:
+            self._placed = placed
+            self.panel.float(x=MARGIN, y=-MARGIN, width=placed[0], height=placed[1])
+
     @property
     def on(self) -> bool:
         return self.panel is not None
 
     def toggle(self, event=None) -> None:
-        if self.panel is None:
+        self.present(not self.on, event.client if event is not None else None)
+
+    def present(self, on: bool, client=None) -> None:
+        """Presentation mode on or off in this browser (``client``: its canvas, to size the caption)."""
+        if on == self.on:
+            return
+        if on:
             self.gui.main_panel.minimize()
             self.panel = self.gui.add_panel()
             with self.panel.add_tab("Caption"):
                 self.html = self.gui.add_html("")
-            height = canvas_size(event.client)[0] if event is not None and event.client is not None else 768
-            self.panel.float(x=12, y=8, width=560, height=int(PRESENTATION_TOP_ROOM * height) - 12)
+            self._placed = None
+            self.fit(client)
         else:
             self.panel.remove()
             self.panel = self.html = None
             self.gui.main_panel.expand()
-        if event is not None and event.client is not None:
-            self.ctx.frame(event.client)  # the caption's room at the top comes and goes
+        if client is not None:
+            self.ctx.frame(client)  # the caption's room at the top comes and goes
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:
         if self.html is not None:
-            content = lecture_html(view)
+            words = lecture_html(view)
+            content = words + FIT.format(key=zlib.crc32(words.encode()))
             if self.html.content != content:
                 self.html.content = content

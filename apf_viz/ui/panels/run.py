@@ -16,6 +16,16 @@ from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_controller import MAX_SPEED
 
+# Escape gives the keyboard back to the run from any field of the panel (viser ignores its hotkeys while
+# a field has focus): one listener a page, installed by an image that fails to load.
+ESCAPE_RELEASES = (
+    '<img alt="" src="data:,escape" style="display:none" onerror="'
+    "if(!window.apfEscape){window.apfEscape=1;document.addEventListener('keydown',function(e){"
+    "if(e.key==='Escape'&&document.activeElement&&document.activeElement!==document.body)"
+    "{document.activeElement.blur();}},true);}"
+    '">'
+)
+
 RELEASE_FOCUS = (
     '<img alt="" src="data:,{n}" style="display:none" '
     'onerror="document.activeElement && document.activeElement.blur && document.activeElement.blur()">'
@@ -41,6 +51,7 @@ class RunFolder:
             # After a Demo is picked, the keyboard belongs to the lecture again: viser ignores hotkeys while
             # a field has focus, and the dropdown keeps it. A constant handler in this browser's own panel
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
+            gui.add_html(ESCAPE_RELEASES)
             self._release = gui.add_html("")
             self._releases = 0
             ctx.release_focus = self.release_focus  # for the other folders' fields (Edit's Mode)
@@ -104,8 +115,16 @@ class RunFolder:
     def _on_lecture(self, event) -> str | None:
         """A shipped lecture from the list (never a path), from its first stop, in presentation mode (its
         words large on the canvas); "—" leaves it."""
-        name = self.lecture.value
-        said = self.ctx.session.start_lecture(lectures()[name] if name != "—" else None)
+        name, s = self.lecture.value, self.ctx.session
+        if name == "—":
+            lecture = None
+        elif name in lectures():
+            lecture = lectures()[name]
+        elif s.lecturer is not None and s.lecturer.lecture.title == name:  # a lecture from a file: again
+            lecture = s.lecturer.lecture
+        else:
+            return "that lecture is no longer loaded"
+        said = s.start_lecture(lecture)
         self.release_focus()
         if name != "—" and not self.ctx.presenting():  # the words large on the canvas; P brings the panel
             self.ctx.toggle_presentation(event)
@@ -177,8 +196,11 @@ class RunFolder:
             self.words.content = words
         if self.stops.visible != (view.lecture is not None):
             self.stops.visible = view.lecture is not None
-        if view.lecture is None and self.lecture.value != "—":  # the lecture was left
-            self.lecture.value = "—"
+        title = view.lecture_title or "—"
+        if title != "—" and title not in self.lecture.options:  # a lecture from a file (serve --lecture)
+            self.lecture.options = ("—", *lectures(), title)
+        if self.lecture.value != title:  # the lecture followed, or "—" once it is left
+            self.lecture.value = title
 
     def _refresh_trace(self, view: SessionView) -> None:
         following = view.trace_position is not None

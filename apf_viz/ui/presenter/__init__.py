@@ -18,7 +18,15 @@ from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.pattern_match import matches_only_mirrored
-from apf_viz.core.portrayal import Cells, Configuration, Overlays, legend_of, overlays_of, pseudocode_of
+from apf_viz.core.portrayal import (
+    Cells,
+    Configuration,
+    Overlays,
+    legend_of,
+    overlays_of,
+    pseudocode_of,
+    title_of,
+)
 from apf_viz.core.portrayal import stage_of as algorithm_stage
 from apf_viz.ui.presenter import story
 from apf_viz.ui.presenter.paper import paper_html
@@ -26,7 +34,7 @@ from apf_viz.ui.presenter.staleness import hidden_from, seen_robots, stale_holde
 from apf_viz.ui.presenter.views import Ghost, RobotView, SessionView, WhyView
 from apf_viz.ui.presenter.why import why_markdown, why_view
 from apf_viz.ui.run_controller import RunController
-from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, SharedScreen
+from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
 
 __all__ = ["RobotView", "SessionView", "WhyView", "for_browser", "present", "present_run"]
 
@@ -76,6 +84,7 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         never_act=tuple(range(e.k)) if stuck else (),
         scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
+        algorithm_title=title_of(e.algorithm),
         set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
         following_what=run.following_what,
         click_advances=screen.click_advances,
@@ -95,7 +104,8 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         playing=run.playing,
         why_text=why_markdown(None),
         paper_decision=story.last_decision(e),
-        lecture=screen.lecture,
+        lecture=lecture_words(screen.lecture, st.events, run.playing),
+        lecture_title=screen.lecture.lecture if screen.lecture is not None else "",
     )
     view = replace(
         view, paper_text=paper_html(pseudocode_of(e.algorithm), view.paper_decision, view.algorithm)
@@ -108,6 +118,31 @@ def present_run(run: RunController, screen: SharedScreen) -> SessionView:
         view = replace(view, endless=story.endless_words(run.trace_options))
     mirrored = view.outcome == "formed" and matches_only_mirrored(e.current_points(), run.config.pattern)
     return replace(view, **_sentences(view, crash[0] if crash else None, stuck, mirrored))
+
+
+def lecture_words(stop: LectureStop | None, event: int, playing: bool) -> tuple[str, str, str] | None:
+    """A lecture's caption: (where, title, words). The stop's words hold at the event it was reached; once
+    the run is played or stepped away from it, they would describe another moment: the caption then says
+    where the run stands relative to the lecture, and how to go on."""
+    if stop is None:
+        return None
+    where = f"{stop.lecture} · stop {stop.index + 1} of {stop.count}"
+    if event == stop.event and not playing:
+        return where, stop.title, stop.say
+    now = "playing" if playing else f"event {event}"
+    if event < stop.event:
+        return (
+            f"{stop.lecture} · before stop {stop.index + 1} of {stop.count} · {now}",
+            stop.title,
+            f"The run is back before this stop (reached at event {stop.event}). PageDown replays it.",
+        )
+    ahead = f"PageDown: stop {stop.index + 2}, “{stop.next_title}”." if stop.next_title else "The last stop."
+    return (
+        f"{stop.lecture} · after stop {stop.index + 1} of {stop.count} · {now}",
+        stop.title,
+        f"The run has gone on past this stop (reached at event {stop.event}); its words were about that "
+        f"moment. {ahead}",
+    )
 
 
 def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> dict:
@@ -318,4 +353,5 @@ def _twin_view(run: RunController, screen: SharedScreen) -> SessionView:
         collision=None,
         never_act=tuple(range(t.k)) if st.outcome == "stuck" else (),
         algorithm=screen.twin.algorithm,
+        algorithm_title=title_of(t.algorithm),
     )

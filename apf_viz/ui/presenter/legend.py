@@ -203,12 +203,34 @@ def lecture_html(view: SessionView) -> str:
             f'<div style="font-size:1.25em;font-weight:bold">{symbol_html(title)}</div>'
             f'<div style="margin-bottom:6px">{symbol_html(say)}</div>'
         )
+    # A failure's outcome and its explanation come right after the stop's words: the point of the stop.
     return (
-        f'<div style="font-size:1.1em;line-height:1.3">{words}'
+        f'<div style="font-size:1.1em;line-height:1.3">{words}{outcome}{compared(view)}'
         f"<div><b>{symbol_html(view.stage)}</b></div>"
-        f"<div>Event {view.event} · {last}</div>{outcome}"
-        f'<div style="margin-top:6px">{lights}</div></div>'
+        f"<div>Event {view.event} · {last}</div>"
+        f'<div style="margin-top:6px">{lights}</div>{KEYS}</div>'
     )
+
+
+# Presentation mode hides the panel and its list of keys: the caption names the ones a lecture needs.
+KEYS = (
+    '<div style="margin-top:6px;color:#777;font-size:0.75em">'
+    "P the panel · PageDown / PageUp next / previous stop · Enter step · Space play · "
+    "Esc gives the keys back from a field · Ctrl+K every key</div>"
+)
+
+
+def compared(view: SessionView) -> str:
+    """Compare: how each side stands, in words (the left run's verdict alone would tell half the story)."""
+    other = view.compare
+    if other is None:
+        return ""
+
+    def side(name: str, v: SessionView) -> str:
+        state = v.outcome.upper() if v.outcome else f"running (event {v.event})"
+        return f"<b>{name}</b> {html.escape(v.algorithm_title or v.algorithm)}: <b>{state}</b>"
+
+    return f'<div style="margin:2px 0">{side("A", view)} · {side("B", other)}</div>'
 
 
 def slide_legend(view: SessionView) -> list[Entry]:

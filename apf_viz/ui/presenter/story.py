@@ -333,7 +333,7 @@ def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, 
 def counts(mode: str, draft_count: int, robot_count: int, robots: int, axis: float | None) -> str:
     """The Edit folder's line: the draft's size against the other draft's, and (robots) Theorem 1."""
     if mode == "edit-pattern":
-        fit = "" if draft_count == robot_count else " — Fit to k makes them equal"
+        fit = "" if draft_count == robot_count else " — Fit pattern or Fit robots makes them equal"
         return f"Targets: **{draft_count}** / robots: {robot_count}{fit}"
     if mode == "edit-robots":
         if axis is not None:

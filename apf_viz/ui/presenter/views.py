@@ -91,6 +91,7 @@ class SessionView:
     never_act: tuple[int, ...] = ()  # stuck: robots whose every future cycle changes nothing
     scenario_note: str = ""  # what the Demo scenario shown shows
     algorithm: str = ""  # the run's algorithm (by name)
+    algorithm_title: str = ""  # the run's algorithm in words (Compare's titles, the caption)
     set_aside: tuple[int, int] | None = None  # a branch dropped recorded steps: (at step, how many)
     following_what: str = "the trace"  # what Step follows while trace_position is set
     click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
@@ -115,6 +116,7 @@ class SessionView:
     paper_decision: tuple[int, str] | None = None
     paper_text: str = ""
     lecture: tuple[str, str, str] | None = None  # a guided lecture's stop: (where, title, words)
+    lecture_title: str = ""  # the guided lecture being followed ("": none)
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection
