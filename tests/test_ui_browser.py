@@ -807,7 +807,7 @@ def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(brow
     a, b = app.renderer, app.compare_renderer
     assert b is not None and b.origin[0] < a.origin[0]  # B is drawn to the right of A
     titles = [h.text for n, h in b._handles.items() if n.startswith("/title/") and h.visible]
-    assert titles == ["B: apf-opaque-grid-literal · COLLISION"]
+    assert titles == ["B: the paper as written · COLLISION"]  # in words a room reads
     page.get_by_role("button", name="Frame run").click()
     shot(page, "compare")
     page.get_by_role("button", name="Stop comparing").click()
@@ -1338,3 +1338,83 @@ def test_a_counterexample_stuck_before_any_event_opens_as_stuck(browser):
         page.close()
     finally:
         a.stop()
+
+
+CAPTION_FIT = """(title) => {
+  const all = [...document.querySelectorAll('div')].filter(e => e.textContent.includes(title));
+  const root = all[all.length - 1].closest('div[style*="line-height"]') || all[all.length - 1];
+  let box = root;
+  while (box && !/(auto|scroll)/.test(getComputedStyle(box).overflowY)) box = box.parentElement;
+  const r = box.getBoundingClientRect();
+  const notes = [...document.querySelectorAll('.mantine-Notification-root')]
+    .map(n => n.getBoundingClientRect())
+    .filter(n => n.left < r.right && n.right > r.left && n.top < r.bottom && n.bottom > r.top);
+  return {client: box.clientHeight, scroll: box.scrollHeight, top: box.scrollTop,
+          font: root.parentElement.style.fontSize || '100%', covered: notes.length, bottom: r.bottom,
+          page: window.innerHeight};
+}"""
+
+
+@pytest.mark.parametrize("name", ["The algorithm in 12 stops", "Where the paper breaks under ASYNC"])
+def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(browser, name):
+    """As `apf-viz serve --lecture` starts it: the page opens in presentation mode at stop 1, the Lecture
+    dropdown naming it; then PageDown to the last stop, and at each the caption's words fit its box (no
+    scroll, none inherited, the words at 60 % of their size or more), no notification covers it, and the
+    run stays clear of it (screenshots: test-output/serve-lecture-*)."""
+    from apf_viz.lecture import lectures
+    from apf_viz.ui.panels.presentation import CAPTION_ROOM
+    from apf_viz.ui.presenter.legend import symbol_html
+
+    lecture = lectures()[name]
+    session = demo_session()
+    session.start_lecture(lecture)
+    served = App(session, port=free_port(), verbose=False, present=True)
+    try:
+        page = browser.new_page(viewport={"width": 1024, "height": 768})
+        page.set_default_timeout(60_000)
+        page.goto(f"http://127.0.0.1:{served.port}")
+        wait_for(lambda: len(served.screens) == 1)
+        ((cid, screen),) = served.screens.items()
+        wait_for(lambda: screen.panels.presenting)  # before any key: the room's view
+        page.get_by_text(lecture.stops[0].title).first.wait_for()
+        run = next(f for f in screen.panels.folders if hasattr(f, "lecture"))
+        wait_for(lambda: run.lecture.value == lecture.title)  # the dropdown names it
+        for i, stop in enumerate(lecture.stops):
+            if i:
+                page.keyboard.press("PageDown")
+            wait_for(lambda i=i: session.lecturer.position == i)
+            caption = screen.panels.presentation.html
+            wait_for(lambda stop=stop, caption=caption: symbol_html(stop.title) in caption.content)
+            settled(served, screen)
+            time.sleep(0.5)  # the page lays the caption out and fits it
+            fit = page.evaluate(CAPTION_FIT, stop.title.split("_")[0])
+            assert fit["scroll"] <= fit["client"] + 1 and fit["top"] == 0, (stop.title, fit)
+            assert float(fit["font"].rstrip("%")) >= 60 and fit["covered"] == 0, (stop.title, fit)
+            assert fit["bottom"] <= fit["page"], (stop.title, fit)
+            shot(page, f"serve-lecture-{lecture.stops[0].scenario[:12].replace(' ', '-')}-{i + 1:02d}")
+            if session.view().compare is not None:
+                # Known defect (issue #43 stays open): at a stop that begins Compare the page's camera is
+                # found back at the initial camera's pose after the framing pose was sent; the caption's
+                # checks above hold there, the run's place is not asserted.
+                continue
+            cells = [r.position for r in session.view().robots] + list(session.view().targets)
+            assert inside_canvas(served, page, cid, cells, CAPTION_ROOM) == [], stop.title
+        page.close()
+    finally:
+        served.stop()
+
+
+def test_escape_gives_the_keys_back_from_a_panel_field(browser, app):
+    """A field with focus keeps the keys (viser ignores its hotkeys then): Escape hands them back, and
+    Enter steps the run again."""
+    page = open_page(browser, app)
+    speed = page.get_by_label("Speed").first
+    speed.focus()
+    page.keyboard.press("Enter")
+    time.sleep(0.5)
+    assert app.session.view().steps == 0  # the field had the key
+    page.keyboard.press("Escape")
+    page.wait_for_function("document.activeElement === document.body")
+    page.keyboard.press("Enter")
+    wait_for(lambda: app.session.view().steps == 1)
+    page.close()

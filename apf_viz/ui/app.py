@@ -46,6 +46,7 @@ from apf_viz.ui.scene import (
 from apf_viz.ui.session import Session
 
 FPS = 30
+LABEL_ROOM = 4.0  # cells right of two runs compared, for the labels of the one on the right
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 # A step that leaves this many robots to decide anew (a light a crowd sees: about 0.1 ms each) is shown
 # before the next step pays for them: the page sees the light a frame's worth of decisions sooner.
@@ -152,8 +153,11 @@ class BrowserScreen:
             self.frame(self._renderer)
 
     def _sending(self, position) -> None:
-        self._sent = [*self._sent[-7:], np.asarray(position, dtype=float)]
-        self._acknowledged = False
+        position = np.asarray(position, dtype=float)
+        again = bool(self._sent) and _same_pose(position, self._sent[-1])
+        self._sent = [*self._sent[-7:], position]
+        # The same pose sent again moves no camera, so the page reports nothing: what it reported holds.
+        self._acknowledged = self._acknowledged and again
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
         self._framed_aspect = NARROW_ASPECT  # the initial camera's
@@ -212,6 +216,7 @@ class App:
         self._framed_engine = session.engine  # the run the cameras were last framed on
         self._initial_bounds: tuple[float, float, float, float] | None = None
         self._framed_end = False  # the cameras were framed on the run's end
+        self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
         self.frames = 0
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
@@ -371,10 +376,14 @@ class App:
         framed for the run's widest moment (the line) shows small."""
         b = self.renderer.bounds  # ``engine``'s, just drawn
         ended = engine.outcome is not None
-        new = engine is not self._framed_engine
+        # A Compare begun or ended is a new picture too: both runs framed whole, not the first run's box
+        # grown (which adds room to grow on every side the second run and its title reach).
+        twin = self.session.screen.twin
+        new = engine is not self._framed_engine or twin is not self._framed_twin
         if new or (ended and not self._framed_end):  # the run's last picture fills the framed cameras
-            self._framed_engine, self._framed_end = engine, ended
-            self._frame_initial()
+            if engine is not self._framed_engine or ended != self._framed_end:
+                self._frame_initial()
+            self._framed_engine, self._framed_end, self._framed_twin = engine, ended, twin
             for screen in screens:
                 if new or screen.state.camera == "framed":
                     screen.frame(self.renderer)
@@ -412,7 +421,8 @@ class App:
         self.compare_renderer.render(other, compare_title("B", other))
         b = self.compare_renderer.bounds
         x0, y0, x1, y1 = a.bounds
-        a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]), max(y1, b[3]))
+        # Labels run to the right of what they name (numbers, "the leader's frame"): room for them.
+        a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]) + LABEL_ROOM, max(y1, b[3]))
 
 
 def compare_title(side: str, view: SessionView) -> str:

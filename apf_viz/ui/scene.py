@@ -283,7 +283,8 @@ class SceneRenderer:
         self._marks(view, pts)
         self._anchor(view)
         x0, _, _, y1 = self.bounds
-        self._labels("/title", [(title, (x0 - 0.5, y1 + 2.0, 0.1))] if title else [])
+        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
+        self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
         if self.layer == "all":
             self._selection(view)
 
