@@ -31,7 +31,11 @@ def test_each_shipped_lecture_passes_the_check(name, capsys):
 
 
 def test_the_shipped_lectures_are_the_issues_two_at_least():
-    assert {"The algorithm in 12 stops", "Where the paper breaks under ASYNC"} <= set(lectures())
+    assert {
+        "The algorithm in 12 stops",
+        "Where the paper breaks under ASYNC",
+        "What a robot cannot see",
+    } <= set(lectures())
     assert len(lectures()["The algorithm in 12 stops"].stops) == 12
 
 

@@ -1355,7 +1355,9 @@ CAPTION_FIT = """(title) => {
 }"""
 
 
-@pytest.mark.parametrize("name", ["The algorithm in 12 stops", "Where the paper breaks under ASYNC"])
+@pytest.mark.parametrize(
+    "name", ["The algorithm in 12 stops", "Where the paper breaks under ASYNC", "What a robot cannot see"]
+)
 def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(browser, name):
     """As `apf-viz serve --lecture` starts it: the page opens in presentation mode at stop 1, the Lecture
     dropdown naming it; then PageDown to the last stop, and at each the caption's words fit its box (no
