@@ -27,7 +27,9 @@ def test_the_demo_passes_every_sub_stage_of_the_paper_in_order():
     expected_in_order = [
         "every robot off",
         "L_1's terminal robots light terminal1",
+        "a terminal robot finds R_I symmetric about K",  # the second lights symmetric a few events later
         "L_1's terminal pair is symmetric about K",
+        "a robot lights decider; its partner has not yet",
         "two deciders stand on L_1",
         "leader elected (leader1), walking to its corner",
         *[f"the leader at its corner; {i} of 9 robots lined up on its row" for i in range(10)],
