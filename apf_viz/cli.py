@@ -537,8 +537,8 @@ def _cmd_lecture(args: argparse.Namespace) -> int:
         note = f" — {reached.note}" if reached.note else ""
         claims = len(stop.expect.model_dump(exclude_none=True)) if stop.expect else 0
         said = f"; {claims} claim(s) hold" if claims and not reached.broken else ""
-        where = f"to {until}; event {reached.event}{said}"
-        print(f"  {mark} stop {reached.index + 1}: {stop.title} ({where}){note}")
+        span = f"to {until}; event {reached.event}{said}"
+        print(f"  {mark} stop {reached.index + 1}: {stop.title} ({span}){note}")
         for broken in reached.broken:
             print(f"      {broken}")
         failed += not reached.holds

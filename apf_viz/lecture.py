@@ -24,7 +24,7 @@ State = Literal["running", "formed", "collision", "stuck", "limit"]  # a run's s
 
 # Presentation mode collapses the whole panel: words that send the room to a panel or folder name
 # something the projector does not show.
-_PANEL_WORDS = re.compile(r"\b(?:(?:the )?(\w+) (?:panel|folder)|the panel)\b", re.I)
+_PANEL_WORDS = re.compile(r"\b(?:(?:the )?\w+ (?:panel|folder)|the panel)\b", re.I)
 
 
 class Until(BaseModel):

@@ -230,10 +230,7 @@ def fitted(cells: Sequence[Point], k: int) -> tuple[Cells, str]:
         return list(cells[:n]), f"removed the {len(cells) - n} last-drawn cells"
     out, have = list(cells) or [(0, 0)], set(cells) or {(0, 0)}
     while len(out) < n:
-        free = sorted(
-            {(x + dx, y + dy) for x, y in out for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))} - have,
-            key=lambda p: (-p[1], p[0]),
-        )
+        free = _neighbours_free(out, have)
         for p in free[: n - len(out)]:
             out.append(p)
             have.add(p)
@@ -244,16 +241,6 @@ def _neighbours_free(cells: Sequence[Point], taken: set[Point]) -> list[Point]:
     """The free cells beside ``cells``, from the top row down, left to right."""
     near = {(x + dx, y + dy) for x, y in cells for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))}
     return sorted(near - taken, key=lambda p: (-p[1], p[0]))
-
-
-def grown(cells: Sequence[Point], k: int) -> tuple[Cells, str]:
-    """The drawing with cells added along its outline up to ``k``; never one removed (a drawing with more
-    cells is returned as it is, and the words say so)."""
-    n = _size(k, "robot count")
-    if len(cells) >= n:
-        extra = len(cells) - n
-        return list(cells), (f"already {n} cells" if not extra else f"{extra} cells more than {n}: kept")
-    return fitted(cells, n)
 
 
 def robots_fitted(
@@ -275,6 +262,5 @@ def robots_fitted(
         cell = next((c for c in free if solvable([*out, c])), free[0])
         out.append(cell)
         taken.add(cell)
-    return out, f"added {n - len(robots)} robots beside the others" if n > len(
-        robots
-    ) else f"already {n} robots"
+    added = n - len(robots)
+    return out, f"added {added} robots beside the others" if added else f"already {n} robots"

@@ -381,9 +381,8 @@ class App:
         twin = self.session.screen.twin
         new = engine is not self._framed_engine or twin is not self._framed_twin
         if new or (ended and not self._framed_end):  # the run's last picture fills the framed cameras
-            if engine is not self._framed_engine or ended != self._framed_end:
-                self._frame_initial()
             self._framed_engine, self._framed_end, self._framed_twin = engine, ended, twin
+            self._frame_initial()
             for screen in screens:
                 if new or screen.state.camera == "framed":
                     screen.frame(self.renderer)

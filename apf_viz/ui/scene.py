@@ -152,7 +152,9 @@ class SceneRenderer:
         self.base = base
         self.fixed_origin: tuple[int, int] | None = None
         self.scene = owner.scene
-        if layer != "selection":
+        if layer != "selection" and not prefix:
+            # The scene's own settings, once: a second renderer in the same scene (Compare) setting the
+            # up direction again makes every page reset its camera to the initial pose.
             self.scene.set_up_direction("+z")
             # Nothing here casts a shadow, but lights that may cast one make the browser clear three
             # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).

@@ -98,7 +98,7 @@ class Studio:
                     f"the pattern has {len(editor.pattern)} cells for {k} robots: nothing removed "
                     f"(Fit robots places {len(editor.pattern) - k} more robots; Erase removes cells)"
                 )
-            fitted, said = shapes.grown(editor.pattern, k)
+            fitted, said = shapes.fitted(editor.pattern, k)  # cells added: there are no more than k
             return editor.set_pattern(fitted, f"the pattern fitted to {k} robots: {said}")
         if name == FIT_ROBOTS:
             n = len(editor.pattern)

@@ -24,13 +24,15 @@ CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of 
 MARGIN = 10  # px between the caption and the canvas's edges
 
 # Runs in the page each time the caption changes (an image that fails to load runs its onerror; a new
-# caption is a new image): back to the top, then smaller words until they fit.
+# caption is a new image): back to the top, then smaller words until they fit; and again whenever the
+# caption's box changes size (the page reports its canvas after the box was first placed).
 FIT = (
     '<img alt="" src="data:,{key}" style="display:none" onerror="'
     "var r=this.parentElement,b=r;"
     "while(b&&!/(auto|scroll)/.test(getComputedStyle(b).overflowY))b=b.parentElement;"
-    "if(b){{b.scrollTop=0;var s=100;r.style.fontSize='';"
-    "while(b.scrollHeight>b.clientHeight+1&&s>60){{s-=5;r.style.fontSize=s+'%';}}}}"
+    "if(b){{b.apfFit=function(){{b.scrollTop=0;var s=100;r.style.fontSize='';"
+    "while(b.scrollHeight>b.clientHeight+1&&s>60){{s-=5;r.style.fontSize=s+'%';}}}};b.apfFit();"
+    "if(!b.apfSized){{b.apfSized=1;new ResizeObserver(function(){{b.apfFit();}}).observe(b);}}}}"
     '">'
 )
 
@@ -53,8 +55,8 @@ class Presentation:
         not reported yet gets a 1024×768 projector's)."""
         if self.panel is None:
             return
-        height, width = canvas_size(client) if client is not None else (768, 1024)
-        if client is None or width <= 16:
+        height, width = canvas_size(client) if client is not None else (0, 0)
+        if width <= 16:  # not reported yet
             height, width = 768, 1024
         placed = (min(width - 2 * MARGIN, CAPTION_MAX_WIDTH), int(CAPTION_ROOM * height) - MARGIN)
         if placed != self._placed:
@@ -84,7 +86,7 @@ class Presentation:
             self.panel = self.html = None
             self.gui.main_panel.expand()
         if client is not None:
-            self.ctx.frame(client)  # the caption's room at the top comes and goes
+            self.ctx.frame(client)  # the caption's room at the bottom comes and goes
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:
