@@ -1393,7 +1393,7 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(brows
             assert fit["scroll"] <= fit["client"] + 1 and fit["top"] == 0, (stop.title, fit)
             assert float(fit["font"].rstrip("%")) >= 60 and fit["covered"] == 0, (stop.title, fit)
             assert fit["bottom"] <= fit["page"], (stop.title, fit)
-            shot(page, f"serve-lecture-{lecture.stops[0].scenario[:12].replace(' ', '-')}-{i + 1:02d}")
+            shot(page, f"serve-lecture-{lecture.title[:24].replace(' ', '-')}-{i + 1:02d}")
             cells = [r.position for r in session.view().robots] + list(session.view().targets)
             assert inside_canvas(served, page, cid, cells, CAPTION_ROOM) == [], stop.title
         page.close()
