@@ -196,3 +196,12 @@ def test_the_move_all_buttons_translate_the_draft_by_one_cell():
     s.transform("→")
     s.transform("↑")
     assert s.editor.pattern == [(x + 1, y + 1) for x, y in before]
+
+
+def test_next_stage_while_editing_says_why_not_a_scheduler_it_does_not_need():
+    """Found playing every Demo by keyboard: PageDown on the Unsolvable box (Edit robots) said "need a
+    scheduler other than Manual" under the async scheduler."""
+    s = session()
+    s.set_mode("edit-robots")
+    said = s.run_until("stage")
+    assert said.startswith("Next move / Next stage runs in Run mode") and "Manual" not in said

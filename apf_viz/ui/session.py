@@ -280,7 +280,9 @@ class Session:
         """Step until some robot moves, or the stage changes; stops early on an outcome, in Manual, or
         after ``limit`` steps. Returns what happened, for a notification."""
         with self.lock:
-            if self.mode != "run" or (self.scheduler_name == "manual" and not self.run.following):
+            if self.mode != "run":  # e.g. the Unsolvable box demo opens in Edit robots
+                return self._why_editing("Next move / Next stage")
+            if self.scheduler_name == "manual" and not self.run.following:
                 return "Next move / Next stage need a scheduler other than Manual"
             self.run.pause()
             e = self.engine
