@@ -333,3 +333,20 @@ def test_the_first_click_of_a_two_click_tool_is_marked_until_the_second(renderer
     assert not renderer._handles["/anchor"].visible and not renderer._handles["/anchor_label/0"].visible
     s.set_mode("run")
     assert s.view().anchor is None
+
+
+def test_every_region_label_the_heart_shows_is_typeset_on_the_canvas():
+    """The canvas writes the paper's symbols in Unicode; a label it could not set whole stayed raw
+    (``H_B^C`` beside ``Hᵤᶜ``). Every region a decision of the heart's run tested, for every robot."""
+    from apf_viz.ui.app import demo_session
+    from apf_viz.ui.presenter.legend import canvas_symbol
+
+    s = demo_session()
+    labels: set[str] = set()
+    while s.step():
+        for r in range(s.engine.k):
+            s.selected = r
+            why = s.view().why
+            labels |= {m.label for m in why.regions} if why is not None else set()
+    raw = sorted(label for label in labels if "_" in canvas_symbol(label) or "^" in canvas_symbol(label))
+    assert "H_B^C" in " ".join(labels) and raw == []

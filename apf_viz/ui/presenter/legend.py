@@ -273,9 +273,11 @@ def plain(text: str) -> str:
 
 
 # The canvas shows plain text: the paper's sub- and superscripts as Unicode where Unicode has them.
+# Unicode has no subscript B: a small capital stands in for it, so that H_B^C is set like H_U^C beside
+# it on the canvas, not written raw.
 _SUBSCRIPTS = {
     "L": "ₗ", "I": "ᵢ", "V": "ᵥ", "H": "ₕ", "U": "ᵤ", "1": "₁", "0": "₀", "2": "₂", "j": "ⱼ", "n": "ₙ",
-    "−": "₋",
+    "−": "₋", "B": "ʙ",
 }  # fmt: skip
 _SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
 
@@ -283,7 +285,7 @@ _SUPERSCRIPTS = {"O": "ᴼ", "C": "ᶜ"}
 def canvas_symbol(text: str) -> str:
     """``H_L^O`` → ``Hₗᴼ``, ``L_H1`` → ``Lₕ₁``: the panel's typesetting (the same symbols as
     :func:`symbol_html`) in Unicode. A label with a symbol Unicode cannot set whole (there is no
-    subscript B) is written as the paper's source writes it, ``H_B^C``: never half set."""
+    subscript R) is written as the paper's source writes it: never half set."""
 
     def settable(m: re.Match) -> bool:
         sub, sup = m.group(2).strip("{}"), m.group(3) or ""
