@@ -278,3 +278,18 @@ def test_serve_with_a_bad_lecture_stops_before_the_ui_with_one_line(tmp_path):
     )
     assert done.returncode == 2
     assert done.stderr.strip().count("\n") == 0 and "stops[1].until.outcome" in done.stderr
+
+
+def test_enter_at_a_compare_stop_whose_run_is_over_says_each_sides_state():
+    """Stop 5 of "Where the paper breaks": the run on the left is stuck; Enter says so and where the run
+    beside it stands (it replays the left run's steps, so it cannot go on alone)."""
+    s = demo_session()
+    lecture = lectures()["Where the paper breaks under ASYNC"]
+    s.start_lecture(lecture)
+    for _ in range(4):
+        s.next_stop()
+    assert s.lecturer.position == 4 and s.engine.outcome == "stuck"
+    assert not s.step()
+    said = s.why_not_step()
+    assert said.startswith("the run is over (stuck)")
+    assert "the run beside it stands at event 70, running, with no steps left" in said

@@ -262,7 +262,12 @@ class Session:
         if self.mode != "run":
             return self._why_editing("Step")
         if self.engine.finished:
-            return f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
+            said = f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
+            twin = self.screen.twin.engine if self.screen.twin is not None else None
+            if twin is not None:  # Compare: the run beside it replays this run's steps, and there are no more
+                at, state = twin.state.events, twin.outcome or "running"
+                said += f"; the run beside it stands at event {at}, {state}, with no steps left"
+            return said
         if self.scheduler_name == "manual":
             return "Manual: click a robot to run its next phase"
         return "nothing could run"
