@@ -535,12 +535,13 @@ def _cmd_lecture(args: argparse.Namespace) -> int:
         until = stop.until.describe() if stop.until else where
         mark = "ok " if reached.holds else "NOT"
         note = f" — {reached.note}" if reached.note else ""
-        claims = len(stop.expect.model_dump(exclude_none=True)) if stop.expect else 0
+        claims = stop.expect.count() if stop.expect else 0
         said = f"; {claims} claim(s) hold" if claims and not reached.broken else ""
         span = f"to {until}; event {reached.event}{said}"
         print(f"  {mark} stop {reached.index + 1}: {stop.title} ({span}){note}")
         for broken in reached.broken:
             print(f"      {broken}")
+        print(f"      shows: {reached.shown}")
         failed += not reached.holds
     held = len(lecture.stops) - failed
     print(f"{held} of {len(lecture.stops)} stops reached, their claims true", flush=True)

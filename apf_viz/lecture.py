@@ -70,6 +70,11 @@ class Expect(BaseModel):
     hidden: int | None = Field(default=None, ge=0, le=100_000)  # robots hidden from the selected robot
     stale: bool | None = None  # some robot holds a snapshot that shows others as they no longer are
 
+    def count(self) -> int:
+        """How many claims: each light counted, each mark, each other field given."""
+        given = self.model_dump(exclude_none=True)
+        return sum(len(v) if isinstance(v, dict | list) else 1 for v in given.values())
+
     @model_validator(mode="after")
     def _counts(self) -> Expect:
         for light, n in (self.lights or {}).items():

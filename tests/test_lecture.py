@@ -47,7 +47,11 @@ def shipped_json(name: str) -> dict:
     ("stop", "expect", "said"),
     [
         (3, {"lights": {"decider": 1}}, "expects 1 robot(s) lit decider, the screen shows 2"),
-        (2, {"drawn": ["the leader's frame"]}, "expects the leader's frame drawn, the marks are K, pattern"),
+        (
+            2,
+            {"drawn": ["the leader's frame"]},
+            "expects “the leader's frame” drawn, the marks are “K”, “pattern",
+        ),
         (11, {"state": "stuck"}, "expects the run stuck, it is formed"),
         (4, {"stage": "Phase 3"}, "expects the stage “Phase 3”"),
         (0, {"sees": 3}, "expects what the selected robot sees, but no robot is selected"),
@@ -62,6 +66,66 @@ def test_an_edited_claim_fails_the_check_and_says_what_the_screen_shows(tmp_path
     out = capsys.readouterr().out
     assert f"NOT stop {stop + 1}:" in out and said in out
     assert out.count("NOT") == 1  # the other stops' claims still hold
+
+
+def test_a_stop_selecting_a_robot_the_run_does_not_have_fails_the_check(tmp_path, capsys):
+    """Found by a first-time lecturer: select 9 on a five-robot run passed as ok, selecting nothing."""
+    bad = tmp_path / "select.json"
+    bad.write_text(lecture_json(select=10))  # the heart has robots 0-9
+    assert main(["lecture", "check", str(bad)]) == 1
+    assert "selects robot 10, but the run has 10 robots (0–9)" in capsys.readouterr().out
+
+
+def test_the_check_shows_each_stop_in_the_words_a_claim_takes(capsys):
+    """A lecturer writes claims from what the check shows: the stage, the lights, the marks, the state,
+    and what a selected robot sees."""
+    assert main(["lecture", "check", "what-a-robot-cannot-see"]) == 0
+    out = capsys.readouterr().out
+    assert "shows: stage “Phase 1: leader election (Algorithm 1) — every robot off”; lights off 10; " in out
+    assert "marks “pattern, not yet placed”; state running; robot 0 sees 8, 1 hidden" in out
+
+
+def test_the_docs_example_stage_stops_where_its_words_hold():
+    """LECTURES.md's example, ``until: {"stage": "symmetric about K"}``, once stopped at a half-way stage
+    whose name held the same words (one robot lit symmetric, K not drawn): it stops at the pair now."""
+    from collections import Counter
+
+    from apf_viz.lecture import Lecture, Stop, Until
+
+    s = demo_session()
+    s.start_lecture(
+        Lecture(
+            format="apf-viz-lecture",
+            version=1,
+            title="t",
+            stops=[
+                Stop(title="a", say="b", scenario="Symmetric R_I: deciders"),
+                Stop(title="c", say="d", until=Until(stage="symmetric about K")),
+            ],
+        )
+    )
+    s.next_stop()
+    assert Counter(s.engine.state.lights)["symmetric"] == 2
+    assert "K" in [m.label for m in s.view().overlays.marks]
+
+
+def test_lectures_md_names_every_scenario_light_and_stage_a_lecture_can_use():
+    """A lecture names scenarios, lights, marks and stages by their exact words: the manual lists them
+    all (a first-time lecturer had to find them in the repository)."""
+    from pathlib import Path
+
+    from apf_viz.algorithms import get_algorithm
+    from apf_viz.algorithms.apf_opaque_grid import portrayal
+    from apf_viz.demos import scenarios
+
+    doc = " ".join((Path(__file__).resolve().parent.parent / "docs" / "LECTURES.md").read_text().split())
+    missing = [name for name in scenarios() if f"`{name}`" not in doc]
+    missing += [light for light in get_algorithm("apf-opaque-grid").lights if f"`{light}`" not in doc]
+    missing += [words for words in ("two deciders stand on L_1", "L_1's terminal pair is symmetric about K")
+                if words not in doc]  # fmt: skip
+    missing += [label for label in ("K", "targets", "the leader's frame", "pattern, not yet placed")
+                if f"`{label}`" not in doc]  # fmt: skip
+    assert not missing and portrayal.STAGES[1] in doc, missing
 
 
 def test_words_that_send_the_room_to_a_panel_fail_the_check(tmp_path, capsys):

@@ -27,7 +27,7 @@ def test_the_demo_passes_every_sub_stage_of_the_paper_in_order():
     expected_in_order = [
         "every robot off",
         "L_1's terminal robots light terminal1",
-        "a terminal robot finds R_I symmetric about K",  # the second lights symmetric a few events later
+        "one terminal robot lights symmetric; its partner has not yet",  # the second: a few events later
         "L_1's terminal pair is symmetric about K",
         "a robot lights decider; its partner has not yet",
         "two deciders stand on L_1",

@@ -26,6 +26,7 @@ class Reached:
     event: int
     note: str = ""
     broken: tuple[str, ...] = ()  # the stop's claims that do not hold there, each in words
+    shown: str = ""  # what the screen shows there, in the words a claim uses (to write claims from)
 
     @property
     def holds(self) -> bool:
@@ -83,7 +84,8 @@ class Lecturer:
         met, note = (True, "") if stop.until is None else self._run_until(stop.until)
         if stop.select is not None:
             s.selected = stop.select if stop.select < s.engine.k else None
-        return Reached(index, met, s.engine.state.events, note, broken_claims(stop, s.view()))
+        view = s.view()
+        return Reached(index, met, s.engine.state.events, note, broken_claims(stop, view), shown(view))
 
     def _run_until(self, until: Until) -> tuple[bool, str]:
         s = self.session
@@ -120,7 +122,21 @@ def broken_claims(stop: Stop, view: SessionView) -> tuple[str, ...]:
         for text in (stop.title, stop.say)
         if (words := panel_words(text))
     ]
+    if stop.select is not None and stop.select >= len(view.robots):
+        k = len(view.robots)
+        out.append(f"selects robot {stop.select}, but the run has {k} robots (0–{k - 1})")
     return tuple(out + (_broken_expectations(stop.expect, view) if stop.expect else []))
+
+
+def shown(view: SessionView) -> str:
+    """The stage, the lights and the marks on screen, in the words ``expect`` takes."""
+    lights = ", ".join(f"{light} {n}" for light, n in sorted(Counter(r.light for r in view.robots).items()))
+    marks = ", ".join(f"“{m.label}”" for m in view.overlays.marks) or "none"
+    said = f"stage “{view.stage}”; lights {lights}; marks {marks}; state {view.outcome or 'running'}"
+    if view.selected is not None:
+        hidden = len(view.hidden)
+        said += f"; robot {view.selected} sees {len(view.robots) - 1 - hidden}, {hidden} hidden"
+    return said
 
 
 def _broken_expectations(expect: Expect, view: SessionView) -> list[str]:
@@ -141,7 +157,8 @@ def _broken_expectations(expect: Expect, view: SessionView) -> list[str]:
     labels = [m.label for m in view.overlays.marks]
     for label in expect.drawn or []:
         if not any(re.search(rf"(?<!\w){re.escape(label)}(?!\w)", x) for x in labels):
-            out.append(f"expects {label} drawn, the marks are {', '.join(labels) or 'none'}")
+            marks = ", ".join(f"“{x}”" for x in labels) or "none"
+            out.append(f"expects “{label}” drawn, the marks are {marks}")
     if expect.sees is not None or expect.hidden is not None:
         out += _sight(expect, view)
     if expect.stale is not None and bool(view.stale_holders) != expect.stale:

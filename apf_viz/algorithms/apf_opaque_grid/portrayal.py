@@ -45,7 +45,9 @@ def stage(positions: tuple[Point, ...], lights: tuple[str, ...]) -> str:
     if "call" in present:
         return f"{STAGES[2]} — a robot closest to K answers with call"
     # A stage is named only when the configuration shows it: the second robot of a pair lights its
-    # light a few events after the first (ASYNC), and the words must not run ahead of the screen.
+    # light a few events after the first (ASYNC), and the words must not run ahead of the screen. The
+    # half-way stages share no words with the whole ones ("two deciders", "symmetric about K"): a
+    # lecture's ``until: {"stage": …}`` matches words of a stage name and stops at the first match.
     if lights.count("decider") >= 2:
         return f"{STAGES[2]} — two deciders stand on L_1"
     if "decider" in present:
@@ -53,7 +55,7 @@ def stage(positions: tuple[Point, ...], lights: tuple[str, ...]) -> str:
     if lights.count("symmetric") >= 2:
         return f"{STAGES[1]} — L_1's terminal pair is symmetric about K"
     if "symmetric" in present:
-        return f"{STAGES[1]} — a terminal robot finds R_I symmetric about K"
+        return f"{STAGES[1]} — one terminal robot lights symmetric; its partner has not yet"
     if "terminal1" in present:
         return f"{STAGES[1]} — L_1's terminal robots light terminal1"
     return f"{STAGES[1]} — every robot off"
