@@ -124,7 +124,7 @@ class BrowserScreen:
         self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
         self._renderer = app.renderer
         self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
-        self._acknowledged = False  # it has reported the last pose sent
+        self._reported: np.ndarray | None = None  # the camera position it last reported
         self.cells: float | None = None  # how many cells tall its camera shows (scene.camera_cells)
         self._request_render = app.request_render
         client.camera.on_update(self._camera_moved)
@@ -142,9 +142,9 @@ class BrowserScreen:
         cells, self.cells = self.cells, camera_cells(camera)
         if self.cells is not None and (cells is None or scene_detail(cells) != scene_detail(self.cells)):
             self._request_render()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
-        if any(_same_pose(position, p) for p in self._sent):
-            self._acknowledged = self._acknowledged or _same_pose(position, self._sent[-1])
-        elif self._acknowledged:
+        hand = self._acknowledged and not any(_same_pose(position, p) for p in self._sent)
+        self._reported = position
+        if hand:
             self.state.camera = "moved"
             return
         if self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
@@ -152,12 +152,16 @@ class BrowserScreen:
             # was fitted to another width.
             self.frame(self._renderer)
 
+    @property
+    def _acknowledged(self) -> bool:
+        """The page's camera is where it was last sent, by its own last report. Derived from the two, not
+        kept: a pose sent again, or sent back to where the page already is, moves no camera and brings
+        no report, and the page's last report still says it is there."""
+        last = self._reported
+        return last is not None and bool(self._sent) and _same_pose(last, self._sent[-1])
+
     def _sending(self, position) -> None:
-        position = np.asarray(position, dtype=float)
-        again = bool(self._sent) and _same_pose(position, self._sent[-1])
-        self._sent = [*self._sent[-7:], position]
-        # The same pose sent again moves no camera, so the page reports nothing: what it reported holds.
-        self._acknowledged = self._acknowledged and again
+        self._sent = [*self._sent[-7:], np.asarray(position, dtype=float)]
 
     def starts_framed(self, renderer: SceneRenderer) -> None:
         self._framed_aspect = NARROW_ASPECT  # the initial camera's
