@@ -38,6 +38,7 @@ from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import MARKER, AtWork, MergedLights, split_name
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
+from apf_viz.core.schedulers import ordered
 from apf_viz.progress import show_progress
 
 COLUMNS = (
@@ -49,7 +50,9 @@ COLUMNS = (
 # random_exercised: the same in the random runs (decisions asked, each distinct view once per run).
 KEY = ("algorithm", "merge", "ks")
 RANDOM_KS = (6, 7, 8, 9, 10, 11, 12)
-RANDOM_SCHEDULERS = ("fsync", "ssync", "async", "stale-first", "round-robin")
+RANDOM_SCHEDULERS = ordered(
+    ("fsync", "ssync", "async", "stale-first", "round-robin")
+)  # numbered runs keep theirs
 RANDOM_SYMMETRIC_KS = tuple(range(8, 21))
 DEMO_SCALES = (1, 2, 3)
 MAX_STATES = 2_000_000  # per start: a k = 5 start with every flip takes about 200,000 with the reduction

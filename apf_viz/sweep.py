@@ -100,14 +100,14 @@ def grid(
 ) -> list[Cell]:
     """The runs of the sweep; every name is checked first (one line for the first bad one)."""
     from apf_viz.algorithms import get_algorithm
-    from apf_viz.core.schedulers import SCHEDULERS
+    from apf_viz.core.schedulers import AUTOMATIC
 
     for name in algorithms:
         try:
             get_algorithm(name)
         except ValueError as e:
             raise InputError(f"--algorithms: {e}") from None
-    choices = [s for s in SCHEDULERS if s != "manual"]
+    choices = AUTOMATIC
     for s in schedulers:
         if s not in choices:
             raise InputError(f"--schedulers: unknown scheduler {s!r} (choose from {', '.join(choices)})")

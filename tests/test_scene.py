@@ -350,3 +350,52 @@ def test_every_region_label_the_heart_shows_is_typeset_on_the_canvas():
             labels |= {m.label for m in why.regions} if why is not None else set()
     raw = sorted(label for label in labels if "_" in canvas_symbol(label) or "^" in canvas_symbol(label))
     assert "H_B^C" in " ".join(labels) and raw == []
+
+
+class _ViserLikeCamera:
+    """A browser's camera as viser 1.1 holds it: a value equal (np.allclose) to the one held is dropped,
+    and what is held is the last value sent *or reported* (viser/_viser.py, CameraHandle's setters)."""
+
+    def __init__(self, position, look_at, fov) -> None:
+        self.held = {
+            "position": np.asarray(position, float),
+            "look_at": np.asarray(look_at, float),
+            "fov": fov,
+        }
+        self.aspect = 1024 / 700
+        self.sent: list[tuple[str, object]] = []
+
+    def __getattr__(self, name):
+        if name in ("position", "look_at", "fov"):
+            return self.held[name]
+        raise AttributeError(name)
+
+    def __setattr__(self, name, value) -> None:
+        if name in ("position", "look_at", "fov"):
+            if np.allclose(self.held[name], value):
+                return
+            self.held[name] = np.asarray(value, float) if name != "fov" else value
+            self.sent.append((name, value))
+        else:
+            object.__setattr__(self, name, value)
+
+
+def test_a_framing_equal_to_a_late_report_is_still_sent():
+    """Sent pose B; the page's late report says it is at A; framing A again must reach the page (it is
+    on its way to B). Viser drops a value equal to the one it holds: the framing goes a hair off it."""
+    from apf_viz.ui.app import _same_pose
+
+    renderer = SceneRenderer(viser.ViserServer(port=free_port(), verbose=False))
+    try:
+        renderer.bounds = (0.0, 0.0, 6.0, 4.0)
+        wanted, look_at, fov = renderer.camera_pose(1024 / 700)
+        camera = _ViserLikeCamera(wanted, look_at, fov)  # what viser holds: the late report, equal to A
+        position, _ = renderer.frame_camera(camera)
+        sent = dict(camera.sent)
+        assert "position" in sent and "look_at" in sent and "fov" in sent
+        assert _same_pose(np.asarray(sent["position"]), np.asarray(position))  # the same pose to the eye
+        elsewhere = _ViserLikeCamera((50.0, 50.0, 90.0), (50.0, 50.0, 0.0), 0.3)
+        position, _ = renderer.frame_camera(elsewhere)
+        assert dict(elsewhere.sent)["position"] == position  # unequal values go exactly as framed
+    finally:
+        renderer.server.stop()

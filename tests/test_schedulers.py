@@ -7,11 +7,11 @@ import pytest
 from apf_viz.algorithms.examples import CompactLeft
 from apf_viz.core.engine import Engine
 from apf_viz.core.run import advance
-from apf_viz.core.schedulers import ManualScheduler, make_scheduler, starve_bound, step_rng
+from apf_viz.core.schedulers import AUTOMATIC, ManualScheduler, make_scheduler, starve_bound, step_rng
 
 START = [(x, (x * 7) % 5) for x in range(0, 24, 2)]
 PATTERN = [(x, 0) for x in range(len(START))]  # not the start: a start that is the pattern is formed at once
-AUTO = ["fsync", "ssync", "async", "round-robin", "stale-first"]
+AUTO = list(AUTOMATIC)  # every registered scheduler that chooses by itself
 
 
 class Forever:

@@ -75,7 +75,13 @@ def settled(app: App, screen) -> None:
     frames = app.frames
     app.request_render()
     wait_for(lambda: app.frames > frames)
-    wait_for(lambda: screen._acknowledged or screen.state.camera == "moved")
+    try:
+        wait_for(lambda: screen._acknowledged or screen.state.camera == "moved")
+    except AssertionError:
+        raise AssertionError(
+            f"the page's camera never reported the pose sent: sent {screen._sent}, "
+            f"reported {screen._reported}, camera {screen.state.camera}"
+        ) from None
 
 
 def projector_page(browser, app: App):

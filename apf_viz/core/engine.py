@@ -230,7 +230,7 @@ class Engine:
         self._eligible = np.ones(k, dtype=bool)  # valid but for the robots in _dirty and _views.changed
         self._dirty: set[int] = set(range(k))
         # Bumped whenever a robot becomes eligible (and on seek): until then the eligible robots only
-        # leave, so a fairness deadline computed over them stays valid (schedulers._most_starved).
+        # leave, so a fairness deadline computed over them stays valid (schedulers.base.most_starved).
         self.eligible_gained = 0
         if skip_noops and self.state.outcome is None and not self.eligible().any():
             self._update_outcome()  # a start on which no robot can ever act: stuck (or formed) at once

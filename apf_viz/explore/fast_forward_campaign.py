@@ -17,10 +17,11 @@ from apf_viz.core.adversarial_starts import FAMILIES, Case, generate
 from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.run import advance
-from apf_viz.core.schedulers import make_scheduler
+from apf_viz.core.schedulers import kind_of, make_scheduler, ordered
 
-SCHEDULERS = ("async", "stale-first", "round-robin", "fsync", "ssync")
-WALKING = ("async", "stale-first", "round-robin")  # where the scheduler can be forced: walks happen
+# Numbered cases keep their scheduler: the order the campaign was first run in, then any added since.
+SCHEDULERS = ordered(("async", "stale-first", "round-robin", "fsync", "ssync"))
+WALKING = tuple(s for s in SCHEDULERS if kind_of(s).forced_when_alone)  # forced when alone: walks happen
 
 
 @dataclass(frozen=True)

@@ -762,12 +762,26 @@ class SceneRenderer:
         aspect = camera_aspect(camera)
         position, look_at, fov = self.camera_pose(aspect, caption_room, bounds)
         try:
-            camera.fov = fov
-            camera.position = position
-            camera.look_at = look_at
+            camera.fov = _unskipped(camera.fov, fov)
+            camera.position = _unskipped(camera.position, position)
+            camera.look_at = _unskipped(camera.look_at, look_at)
         except AssertionError:
             return None, aspect  # the browser has not reported its camera yet; its initial pose is right
         return position, aspect
+
+
+def _unskipped(held, wanted):
+    """``wanted``, or a hair off it when it equals what viser holds for the browser's camera: viser drops
+    a value equal to the one it holds, and what it holds may be the browser's late report while the page
+    is still on its way to an earlier pose (sent B, reported A, sent A: dropped, and the page came to
+    rest at B). The hair is 1e-4 of the last coordinate (the camera's height; a scalar's size), past
+    viser's 1e-5 and far inside what counts as the same pose (``app._same_pose``, 1e-3 of the height)."""
+    held_, wanted_ = np.asarray(held, dtype=float), np.array(wanted, dtype=float)
+    if not np.allclose(held_, wanted_):
+        return wanted
+    last = wanted_.reshape(-1)
+    last[-1] += 1e-4 * max(abs(last[-1]), 1.0)
+    return float(wanted_) if wanted_.ndim == 0 else tuple(float(v) for v in wanted_)
 
 
 GROWTH_ROOM = 0.2

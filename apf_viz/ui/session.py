@@ -31,6 +31,7 @@ from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
+from apf_viz.core.schedulers import REGISTRY as SCHEDULER_REGISTRY
 from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.lecture import Lecture
 from apf_viz.ui import loader
@@ -44,14 +45,8 @@ from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, LectureStop, Mode, SharedScreen
 
-SCHEDULER_LABELS = {
-    "FSYNC": "fsync",
-    "SSYNC": "ssync",
-    "ASYNC": "async",
-    "stale-first": "stale-first",
-    "round-robin": "round-robin",
-    "Manual": "manual",
-}
+SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
+"""The UI's dropdown: each scheduler's label, and the name it stands for (core/schedulers)."""
 
 
 def _screen_field(name: str) -> property:

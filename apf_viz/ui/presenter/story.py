@@ -8,6 +8,7 @@ from collections.abc import Mapping, Sequence
 
 from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.grid import Point
+from apf_viz.core.schedulers import SYNCHRONOUS
 from apf_viz.ui.presenter.legend import symbol_html
 from apf_viz.ui.presenter.staleness import SeenRobot, changes
 
@@ -306,7 +307,7 @@ def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tup
     start = options.get("loop_starts_at_step")
     if not isinstance(start, int) or isinstance(start, bool) or start < 0:
         return ()
-    per = 1 if scheduler in ("async", "manual", "stale-first", "round-robin") else 3
+    per = 3 if scheduler in SYNCHRONOUS else 1
     items = steps // per
     if items <= start:
         return ()

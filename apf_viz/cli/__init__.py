@@ -1,0 +1,109 @@
+"""The ``apf-viz`` command line: a module per command (its ``NAME``, ``HELP``, ``add_arguments`` and
+``run``), listed once in :data:`COMMANDS`.
+
+Exit codes: 0 formed (or success), 1 ran but not formed, 2 bad input, 3 unsolvable start (Theorem 1),
+4 check's state budget exhausted, 5 a fast-forward walk that is not the step-by-step run. Every error
+is one line on stderr, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from types import ModuleType
+
+from apf_viz.cli import (
+    check,
+    lecture,
+    lights,
+    pattern,
+    plot,
+    random_pattern,
+    random_robots,
+    replay,
+    run,
+    schedule,
+    serve,
+    sweep,
+)
+from apf_viz.cli.common import (
+    EXIT_BAD_INPUT,
+    EXIT_FORMED,
+    EXIT_NOT_FORMED,
+    EXIT_UNSOLVABLE,
+    EXIT_WALK_MISMATCH,
+    HelpFormatter,
+    Parser,
+    fail,
+)
+from apf_viz.core.fast_forward import WalkMismatch
+from apf_viz.core.formats import InputError
+
+COMMANDS: tuple[ModuleType, ...] = (
+    run,
+    sweep,
+    lights,
+    plot,
+    schedule,
+    replay,
+    random_robots,
+    random_pattern,
+    pattern,
+    check,
+    lecture,
+    serve,
+)
+"""Every command, in the order ``--help`` lists them; ``serve`` is the default."""
+
+__all__ = [
+    "COMMANDS",
+    "EXIT_BAD_INPUT",
+    "EXIT_FORMED",
+    "EXIT_NOT_FORMED",
+    "EXIT_UNSOLVABLE",
+    "EXIT_WALK_MISMATCH",
+    "build_parser",
+    "main",
+]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = Parser(
+        prog="apf-viz",
+        formatter_class=HelpFormatter,
+        description=(
+            "Interactive workbench for asynchronous opaque luminous robots on the infinite grid. "
+            "Without a command it serves the visualiser on a built-in demo."
+        ),
+        epilog=(
+            "Exit codes: 0 formed (check: verified), 1 not formed (check: a violation), 2 bad input, "
+            "3 unsolvable start (Theorem 1), 4 check: state budget exhausted, 5 run --check-walks: a walk "
+            "that is not the step-by-step run."
+        ),
+    )
+    sub = parser.add_subparsers(dest="command", parser_class=Parser)
+    for command in COMMANDS:
+        p = sub.add_parser(
+            command.NAME, help=command.HELP, description=command.HELP, formatter_class=HelpFormatter
+        )
+        command.add_arguments(p)
+        p.set_defaults(func=command.run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help")):
+        argv = ["serve", *argv]  # the visualiser is the default command
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except WalkMismatch as e:
+        fail(str(e), EXIT_WALK_MISMATCH)
+    except InputError as e:
+        fail(str(e))
+    except ValueError as e:
+        fail(str(e))
+    except OSError as e:
+        fail(f"{e.filename or ''}: {e.strerror}".lstrip(": "))

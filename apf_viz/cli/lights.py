@@ -1,0 +1,72 @@
+"""``apf-viz lights``: the light-budget lab."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.cli.common import (
+    cluster,
+    fail,
+    need_extra,
+    workers,
+)
+
+NAME = "lights"
+HELP = "which lights could be one colour? every merge of two, explored (docs/LIGHTS.md)"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help="the algorithm whose lights are merged")
+    p.add_argument(
+        "--ks",
+        default="1-5",
+        help="robots the explorer covers: 1–3 every start of a 4×4 box, 4–5 the stated starts",
+    )
+    p.add_argument("--merges", help="only these merges, e.g. leader1=decider,off=call (default: every one)")
+    p.add_argument(
+        "--random",
+        type=int,
+        default=0,
+        help="random runs (half of k = 6–12 random robots, half on the Demo starts) for each merge the "
+        "explorer could not break",
+    )
+    p.add_argument("--out", required=True, type=Path, help="the verdicts table (.parquet), resumed if there")
+    p.add_argument("--traces", type=Path, help="counterexample traces here (default: OUT's name + -traces)")
+    p.add_argument("--workers", type=workers, help="local worker processes (default: one per core)")
+    p.add_argument(
+        "--cluster", type=cluster, help="address of a running Dask scheduler, e.g. tcp://host:8786"
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    need_extra("lights", ["dask", "distributed", "pyarrow"])
+    from apf_viz import lights
+
+    if args.out.suffix != ".parquet":
+        fail(f"--out {args.out}: the lab writes a .parquet table")
+    if not 0 <= args.random <= lights.MAX_RANDOM_RUNS:
+        fail(f"--random {args.random:,}: a number of runs per merge, from 0 to {lights.MAX_RANDOM_RUNS:,}")
+    chosen = lights.merges(args.algorithm, args.merges)
+    ks = lights.parse_ks(args.ks)
+    t0 = time.perf_counter()
+    try:
+        rows = lights.run_lab(
+            chosen,
+            ks,
+            args.out,
+            random_runs=args.random,
+            traces=args.traces,
+            workers=args.workers,
+            cluster=args.cluster,
+            progress=lights.report_progress,
+        )
+    except KeyboardInterrupt:
+        return 130
+    names = {m.name for m in chosen}
+    print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == lights.ks_label(ks)]))
+    print(f"{time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    return 0

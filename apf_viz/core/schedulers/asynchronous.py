@@ -1,0 +1,30 @@
+"""ASYNC: one Look, Compute or Move of a uniformly random eligible robot per step."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from apf_viz.core.history import StepRecord
+from apf_viz.core.schedulers.base import StepRandom, candidates, most_starved, new_step
+
+if TYPE_CHECKING:
+    from apf_viz.core.engine import Engine
+
+
+class AsyncScheduler:
+    """ASYNC: one Look, Compute or Move of a uniformly random eligible robot per step."""
+
+    name = "async"
+    label = "ASYNC"
+    summary = "one Look, Compute or Move of a random robot per step"
+    synchronous = False
+    automatic = True
+    forced_when_alone = True
+
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        mask = candidates(engine)
+        r = most_starved(engine, mask)
+        if r is None:  # with every robot eligible, the same draw as a scheduler that never skips
+            pool = mask.nonzero()[0]
+            r = int(pool[rng.randrange(pool.size)])
+        return new_step(StepRecord, ((r,), None))

@@ -1,0 +1,39 @@
+"""Manual: the caller plays the adversary."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+from apf_viz.core.history import StepRecord
+from apf_viz.core.schedulers.base import Scheduler, StepRandom
+
+if TYPE_CHECKING:
+    from apf_viz.core.engine import Engine
+
+
+@dataclass
+class ManualScheduler:
+    """The caller plays the adversary: :meth:`pick` queues robots; each step runs the next one's phase.
+    With nothing queued it falls back to ``fallback`` (None: refuse)."""
+
+    fallback: Scheduler | None = None
+    name: ClassVar[str] = "manual"
+    label: ClassVar[str] = "Manual"
+    summary: ClassVar[str] = "you pick the robot whose next phase runs"
+    synchronous: ClassVar[bool] = False
+    automatic: ClassVar[bool] = False
+    forced_when_alone: ClassVar[bool] = False  # the caller picks
+
+    def __post_init__(self) -> None:
+        self._queue: list[int] = []
+
+    def pick(self, robot: int) -> None:
+        self._queue.append(robot)
+
+    def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        if self._queue:
+            return StepRecord((self._queue.pop(0),))
+        if self.fallback is None:
+            raise LookupError("manual scheduler: no robot picked")
+        return self.fallback.choose(engine, rng)
