@@ -7,17 +7,22 @@ Run: python benchmarks/bench_core.py   (prints a Markdown table; not part of the
 from __future__ import annotations
 
 import random
+import sys
 import time
 from math import gcd
+from pathlib import Path
 
 import numpy as np
 
 from apf_viz.algorithms.examples import CompactLeft
 from apf_viz.core.engine import Engine
-from apf_viz.core.grid import visible_from, visible_from_naive
+from apf_viz.core.grid import visible_from
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.visibility import Views
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the tests' oracle, from a checkout
+from tests.oracle import visible_by_lattice_walk
 
 
 def random_points(k: int, seed: int = 1, density: float = 0.25) -> list[tuple[int, int]]:
@@ -70,7 +75,9 @@ def bench_look(density: float) -> list[str]:
         assert visible_from(np.array(pts), 0).tolist() == visible_by_lattice_scan(pts, 0)
         arr = np.array(pts, dtype=np.int64)
         fast = per_call(lambda i, arr=arr, k=k: visible_from(arr, i % k))
-        walk = per_call(lambda i, pts=pts, k=k: visible_from_naive(pts, i % k), budget_s=3.0, max_calls=50)
+        walk = per_call(
+            lambda i, pts=pts, k=k: visible_by_lattice_walk(pts, i % k), budget_s=3.0, max_calls=50
+        )
         scan = per_call(
             lambda i, pts=pts, k=k: visible_by_lattice_scan(pts, i % k), budget_s=3.0, max_calls=5
         )

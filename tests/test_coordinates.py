@@ -15,10 +15,11 @@ from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import audit_run
 from apf_viz.core.engine import Engine, EngineError
 from apf_viz.core.formats import InputError, parse_pattern, parse_robots, parse_trace
-from apf_viz.core.grid import COORD_LIMIT, visible_from, visible_from_naive
+from apf_viz.core.grid import COORD_LIMIT, visible_from
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.view import Seen
 from apf_viz.core.visibility import Views
+from tests.oracle import visible_by_lattice_walk
 
 L = COORD_LIMIT
 
@@ -165,7 +166,7 @@ def clusters_at_an_edge(draw):
 def test_visibility_at_the_edges_equals_the_lattice_walk(points):
     arr = np.array(points, dtype=np.int64)
     for i in range(len(points)):
-        assert visible_from(arr, i).tolist() == sorted(visible_from_naive(points, i))
+        assert visible_from(arr, i).tolist() == sorted(visible_by_lattice_walk(points, i))
 
 
 def view_from_scratch(points, lights, y_up, r):

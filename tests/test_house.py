@@ -3,6 +3,7 @@ of one job (no module over 500 lines, no function over 60), and no two modules i
 
 from __future__ import annotations
 
+import ast
 import tomllib
 from pathlib import Path
 
@@ -26,3 +27,108 @@ def test_the_licence_is_stated_and_shipped():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     assert project["license"] == "MIT" and project["license-files"] == ["LICENSE"]
     assert (ROOT / "LICENSE").read_text().startswith("MIT License")
+
+
+def _modules() -> dict[str, Path]:
+    found = {}
+    for p in PACKAGE.rglob("*.py"):
+        if "__pycache__" in p.parts:
+            continue
+        parts = list(p.relative_to(ROOT).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        found[".".join(parts)] = p
+    return found
+
+
+def _imports(path: Path, modules: dict[str, Path]) -> set[str]:
+    """Every apf_viz module ``path`` imports, at any depth: in functions and under TYPE_CHECKING too (an
+    import made late or for annotations only is still a dependency a reader must follow)."""
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("apf_viz"):
+            for alias in node.names:
+                full = f"{node.module}.{alias.name}"
+                out.add(full if full in modules else node.module)
+        elif isinstance(node, ast.Import):
+            out.update(a.name for a in node.names if a.name.startswith("apf_viz"))
+    return {m for m in out if m in modules}
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan, iteratively)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    found = []
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = len(index)
+        stack.append(root)
+        on.add(root)
+        while work:
+            v, children = work[-1]
+            w = next(children, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = len(index)
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(graph[w]))))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                component = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    component.append(w)
+                    if w == v:
+                        break
+                if len(component) > 1:
+                    found.append(sorted(component))
+    return found
+
+
+def test_no_two_modules_import_each_other():
+    """Not even for annotations: a circle means neither module can be read, or moved, alone. (A package
+    importing its own submodules is how a package lists them, not a circle.)"""
+    modules = _modules()
+    graph = {
+        m: {d for d in _imports(p, modules) if d != m and not d.startswith(m + ".")}
+        for m, p in modules.items()
+    }
+    assert _cycles(graph) == [], _cycles(graph)
+    graph["apf_viz.core.history"].add("apf_viz.core.engine")  # the test can see a circle
+    (circle,) = _cycles(graph)
+    assert {"apf_viz.core.engine", "apf_viz.core.history"} <= set(circle)
+
+
+def test_the_view_model_reads_the_run_through_a_protocol_and_imports_nothing_stateful():
+    """ui/view_model turns state into what is drawn: it imports the core and plain data, never a
+    controller, the session, the lecturer, the scene, a panel or viser."""
+    modules = _modules()
+    rooms = (
+        "session",
+        "run_controller",
+        "app",
+        "panels",
+        "scene",
+        "lecturer",
+        "recorder",
+        "verifier",
+    )
+    stateful = tuple(f"apf_viz.ui.{m}" for m in rooms)
+    assert all(any(name.startswith(m) for name in modules) for m in stateful)  # each still exists
+    for name, path in modules.items():
+        if name.startswith("apf_viz.ui.view_model"):
+            bad = [m for m in _imports(path, modules) if m.startswith(stateful)]
+            assert bad == [], (name, bad)
+            assert "import viser" not in path.read_text() and "from viser" not in path.read_text()

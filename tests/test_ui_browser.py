@@ -897,7 +897,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
     """The issue's walk-through: PageDown from the start to FORMED, each stop one of the paper's stages,
     named in the caption, with the whole run in view below it (screenshots: test-output/lecture-*)."""
     from apf_viz.ui.panels.presentation import CAPTION_ROOM
-    from apf_viz.ui.presenter.legend import symbol_html
+    from apf_viz.ui.view_model.legend import symbol_html
 
     played = demo_session()
     while played.step():
@@ -1117,7 +1117,7 @@ def test_pagedown_through_the_algorithm_in_12_stops_at_1024x768(browser, app):
     each stop's words on the canvas and the whole run in view (screenshots: test-output/lecture12-*)."""
     from apf_viz.lecture import lectures
     from apf_viz.ui.panels.presentation import CAPTION_ROOM
-    from apf_viz.ui.presenter.legend import symbol_html
+    from apf_viz.ui.view_model.legend import symbol_html
 
     lecture = lectures()["The algorithm in 12 stops"]
     page, cid, screen = projector_page(browser, app)
@@ -1371,7 +1371,7 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(brows
     run stays clear of it (screenshots: test-output/serve-lecture-*)."""
     from apf_viz.lecture import lectures
     from apf_viz.ui.panels.presentation import CAPTION_ROOM
-    from apf_viz.ui.presenter.legend import symbol_html
+    from apf_viz.ui.view_model.legend import symbol_html
 
     lecture = lectures()[name]
     session = demo_session()

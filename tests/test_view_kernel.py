@@ -16,10 +16,10 @@ from hypothesis import strategies as st
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import view_kernel, visibility
 from apf_viz.core.engine import Engine
-from apf_viz.core.grid import visible_from_naive
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.visibility import Views
+from tests.oracle import visible_by_lattice_walk
 from tests.test_fast_forward import engine as budgeted_engine
 
 LIGHTS = tuple("abcdefghijkl")  # codes up to 11: the bits of `present` beyond a byte
@@ -86,7 +86,7 @@ def test_the_kernel_builds_the_numpy_view(compiled, configuration):
     got = kernel_view(kernel, positions, lights, y_up, r)
     assert got == expected
     if np.abs(positions).max() <= 40:
-        assert got[0] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], r))
+        assert got[0] == tuple(visible_by_lattice_walk([tuple(p) for p in positions.tolist()], r))
 
 
 def test_work_tables_used_again_by_every_observer_give_each_the_view_of_fresh_ones():
@@ -116,7 +116,7 @@ def test_lines_of_sight_in_a_crowd():
     r = pts.index((0, 0))
     lights = [LIGHTS[i % len(LIGHTS)] for i in range(len(pts))]
     ids, dx, ly, code = kernel_view(view_kernel.compiled(), positions, lights, [False] * len(pts), r)
-    assert ids == tuple(visible_from_naive(pts, r))
+    assert ids == tuple(visible_by_lattice_walk(pts, r))
     assert len(ids) == sum(math.gcd(x, y) == 1 for x, y in pts) == 96  # the primitive directions
     seen = list(zip(dx, ly, strict=True))
     assert (1, 0) in seen and (2, 0) not in seen
@@ -136,7 +136,7 @@ def test_without_numba_views_are_built_with_numpy(monkeypatch):
     positions = np.array([(i, i % 3) for i in range(view_kernel.KERNEL_MIN_ROBOTS)], dtype=np.int64)
     views = Views(positions, ["a"] * len(positions), [True] * len(positions))
     assert views._kernel is None
-    assert views.view(0)[1] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], 0))
+    assert views.view(0)[1] == tuple(visible_by_lattice_walk([tuple(p) for p in positions.tolist()], 0))
 
 
 def test_small_runs_do_not_use_the_kernel():
@@ -205,4 +205,4 @@ def test_a_cache_numba_cannot_write_compiles_without_one(monkeypatch):
     assert calls[0].get("cache") and not any(c.get("cache") for c in calls[1:])
     positions = np.array([(i, i % 3) for i in range(10)], dtype=np.int64)
     got = kernel_view(kernel, positions, ["a"] * 10, [True] * 10, 0)
-    assert got[0] == tuple(visible_from_naive([tuple(p) for p in positions.tolist()], 0))
+    assert got[0] == tuple(visible_by_lattice_walk([tuple(p) for p in positions.tolist()], 0))

@@ -9,16 +9,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from apf_viz.core import visibility
-from apf_viz.core.grid import visible_from_naive
 from apf_viz.core.view import Seen
 from apf_viz.core.visibility import Views
+from tests.oracle import visible_by_lattice_walk
 
 LIGHTS = ("a", "b", "c")
 
 
 def scratch_view(points, lights, y_up, r):
     """The oracle's view: walk every segment, then map to r's frame and sort."""
-    ids = visible_from_naive(points, r)
+    ids = visible_by_lattice_walk(points, r)
     x0, y0 = points[r]
     s = 1 if y_up[r] else -1
     entries = sorted(Seen(points[j][0] - x0, s * (points[j][1] - y0), lights[j]) for j in ids)

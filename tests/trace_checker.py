@@ -1,4 +1,5 @@
-"""An independent trace checker: it shares no code with the engine (only json and a lattice walk).
+"""An independent trace checker: it shares no code with the engine (only json and the lattice walk of
+tests/oracle.py).
 
 It replays a trace file and checks: each robot's events run Look → Compute → Move in order; every Look's
 ``sees`` is exactly the set of robots visible at that moment; no two robots ever share a point; every
@@ -8,25 +9,12 @@ Move goes where the preceding Compute said (one edge, or nowhere for a stay).
 from __future__ import annotations
 
 import json
-from math import gcd
 from pathlib import Path
+
+from tests.oracle import visible_by_lattice_walk as _visible
 
 _NEXT = {"look": "compute", "compute": "move", "move": "look"}
 _DELTA = {"left": (-1, 0), "right": (1, 0), "up": (0, 1), "down": (0, -1), None: (0, 0)}
-
-
-def _visible(points: list[tuple[int, int]], i: int) -> list[int]:
-    occupied = set(points)
-    x0, y0 = points[i]
-    out = []
-    for j, (x1, y1) in enumerate(points):
-        if j == i:
-            continue
-        dx, dy = x1 - x0, y1 - y0
-        g = gcd(abs(dx), abs(dy))
-        if all((x0 + t * dx // g, y0 + t * dy // g) not in occupied for t in range(1, g)):
-            out.append(j)
-    return out
 
 
 def check_trace(path: Path) -> dict:

@@ -4,7 +4,7 @@ Robot ``r`` sees robot ``q`` iff no robot lies strictly inside the segment r–q
 On the lattice the only grid points inside that segment are ``r + t·(dx, dy)/g`` for ``t = 1..g−1``,
 ``g = gcd(|dx|, |dy|)``. So ``q`` is visible iff it is the *nearest* robot along its primitive direction
 ``(dx, dy)/g``: one Look costs one pass over the k robots (:func:`visible_from`), not a walk over lattice
-points (:func:`visible_from_naive`, kept as the test oracle).
+points (tests/oracle.py walks them: the tests' oracle).
 """
 
 from __future__ import annotations
@@ -13,7 +13,6 @@ import functools
 import math
 from collections.abc import Iterable, Sequence
 from enum import Enum
-from math import gcd
 
 import numpy as np
 
@@ -210,18 +209,3 @@ def hiders(points: Sequence[Point], i: int) -> dict[int, int]:
         if direction not in nearest or g < nearest[direction][0]:
             nearest[direction] = (g, j)
     return {j: nearest[d][1] for j, (d, g) in by_robot.items() if nearest[d][1] != j}
-
-
-def visible_from_naive(points: list[Point], i: int) -> list[int]:
-    """Oracle: walk every interior lattice point of every segment (O(k · span)); tests only."""
-    occupied = set(points)
-    x0, y0 = points[i]
-    seen = []
-    for j, (x1, y1) in enumerate(points):
-        if j == i:
-            continue
-        dx, dy = x1 - x0, y1 - y0
-        g = gcd(abs(dx), abs(dy))
-        if all((x0 + t * dx // g, y0 + t * dy // g) not in occupied for t in range(1, g)):
-            seen.append(j)
-    return seen

@@ -15,7 +15,7 @@ import numpy as np
 from apf_viz.core.grid import Direction, Point
 
 if TYPE_CHECKING:
-    from apf_viz.core.engine import EngineState
+    from apf_viz.core.engine_state import EngineState
 
 EventPhase = Literal["look", "compute", "move"]
 

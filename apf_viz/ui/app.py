@@ -32,7 +32,6 @@ from apf_viz.lecture import find_lecture
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
-from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.scene import (
     NARROW_ASPECT,
     Bounds,
@@ -44,6 +43,7 @@ from apf_viz.ui.scene import (
     scene_detail,
 )
 from apf_viz.ui.session import Session
+from apf_viz.ui.view_model import SessionView
 
 FPS = 30
 LABEL_ROOM = 4.0  # cells right of two runs compared, for the labels of the one on the right

@@ -8,13 +8,36 @@ from __future__ import annotations
 import re
 from collections import Counter
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
+from apf_viz.core.engine import Engine
 from apf_viz.lecture import MAX_EVENT, Expect, Lecture, Stop, Until, panel_words
-from apf_viz.ui.presenter import SessionView, stage_of
+from apf_viz.ui.screen_state import SharedScreen
+from apf_viz.ui.view_model import SessionView, stage_of
+from apf_viz.ui.view_model.run_source import RunSource
 
-if TYPE_CHECKING:  # the session holds its lecturer
-    from apf_viz.ui.session import Session
+
+class Lectern(Protocol):
+    """What a lecture drives: a session (ui/session.py), which holds its lecturer."""
+
+    selected: int | None
+
+    @property
+    def engine(self) -> Engine: ...
+
+    @property
+    def run(self) -> RunSource: ...
+
+    @property
+    def screen(self) -> SharedScreen: ...
+
+    def load_scenario(self, name: str) -> str: ...
+
+    def compare_with(self, algorithm: str | None) -> None: ...
+
+    def step(self) -> bool: ...
+
+    def view(self) -> SessionView: ...
 
 
 @dataclass(frozen=True)
@@ -37,7 +60,7 @@ class Reached:
 class Lecturer:
     """One lecture on one session, and the stop it stands at (−1: before the first)."""
 
-    def __init__(self, session: Session, lecture: Lecture, limit: int = MAX_EVENT) -> None:
+    def __init__(self, session: Lectern, lecture: Lecture, limit: int = MAX_EVENT) -> None:
         self.session, self.lecture, self.limit = session, lecture, limit
         self.position = -1
         self.reached: Reached | None = None

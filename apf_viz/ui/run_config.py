@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
-from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory, get_algorithm
 from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.grid import Point
@@ -19,7 +19,7 @@ class RunConfig:
     robots: tuple[Point, ...]
     y_up: tuple[bool, ...]
     pattern: tuple[Point, ...]
-    algorithm: str = "apf-opaque-grid"
+    algorithm: str = DEFAULT_ALGORITHM
     light_semantics: LightSemantics = "compute"
     scheduler: str = "async"
     seed: int = 1

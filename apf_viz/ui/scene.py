@@ -23,8 +23,8 @@ import numpy as np
 
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS, region_color
-from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.presenter.legend import canvas_symbol
+from apf_viz.ui.view_model import SessionView
+from apf_viz.ui.view_model.legend import canvas_symbol
 
 ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least

@@ -1,6 +1,7 @@
 """The state of the screen apart from the run: what every browser shares (the mode, the drafts, the
 numbers, a Demo note, Compare) and what each browser has of its own (its selection, whether it follows
-the presenter's, its camera). :class:`~apf_viz.ui.session.Session` changes them; the presenter reads them."""
+the presenter's, its camera). :class:`~apf_viz.ui.session.Session` changes them; the view model
+(ui/view_model) reads them."""
 
 from __future__ import annotations
 

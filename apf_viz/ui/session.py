@@ -1,5 +1,5 @@
 """The visualiser's commands: one shared run, the drafts being drawn, the mode, and each connected
-browser's own state (its selection). What the screen shows is the presenter's (:mod:`apf_viz.ui.presenter`):
+browser's own state (its selection). What the screen shows is the view model's (:mod:`apf_viz.ui.view_model`):
 :meth:`Session.view` asks it, for one browser, under the run's lock.
 
 No viser here, and no particular algorithm. The work is split by job:
@@ -17,7 +17,7 @@ from typing import Literal
 
 import numpy as np
 
-from apf_viz.algorithms import Factory
+from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
 from apf_viz.core import shapes
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
@@ -39,11 +39,11 @@ from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor, draft_of
 from apf_viz.ui.lecturer import Lecturer, Reached
 from apf_viz.ui.library import PatternLibrary
-from apf_viz.ui.presenter import SessionView, for_browser, present, present_run, stage_of
-from apf_viz.ui.presenter.story import MAX_TRAIL
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, LectureStop, Mode, SharedScreen
+from apf_viz.ui.view_model import SessionView, for_browser, present, present_run, stage_of
+from apf_viz.ui.view_model.story import MAX_TRAIL
 
 SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
 """The UI's dropdown: each scheduler's label, and the name it stands for (core/schedulers)."""
@@ -65,7 +65,7 @@ class Session:
         pattern: Sequence[Point],
         *,
         y_up: Sequence[bool] | None = None,
-        algorithm: str = "apf-opaque-grid",
+        algorithm: str = DEFAULT_ALGORITHM,
         scheduler: str = "async",
         seed: int = 1,
         light_semantics: str = "compute",

@@ -1,7 +1,7 @@
 """The adversaries: who acts next. They choose among robots; the engine decides what an activation does.
 
 One file per scheduler, and one registration: :data:`REGISTRY` below. The CLI's choices, the UI's
-dropdown, the presenter's sentences and the tests all read it (docs/ARCHITECTURE.md, "Extending").
+dropdown, the view model's sentences and the tests all read it (docs/ARCHITECTURE.md, "Extending").
 """
 
 from __future__ import annotations

@@ -4,9 +4,9 @@ next for what, and Verify (every schedule of a small start)."""
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, tell
-from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.session import SCHEDULER_LABELS
 from apf_viz.ui.verifier import MAX_K
+from apf_viz.ui.view_model import SessionView
 
 
 def scheduler_label(name: str) -> str:

@@ -5,8 +5,8 @@ browser's own; Shift erases) while the Box tool is chosen in an edit mode."""
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, tell
-from apf_viz.ui.presenter import SessionView
 from apf_viz.ui.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
+from apf_viz.ui.view_model import SessionView
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}

@@ -12,10 +12,10 @@ from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.lecture_export import LectureExport
 from apf_viz.ui.panels.context import PanelContext, tell
-from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.presenter.legend import slide_caption, slide_legend
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.slide import compose
+from apf_viz.ui.view_model import SessionView
+from apf_viz.ui.view_model.legend import slide_caption, slide_legend
 
 
 def load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:

@@ -13,9 +13,9 @@ from __future__ import annotations
 import zlib
 
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.presenter import SessionView
-from apf_viz.ui.presenter.legend import lecture_html
 from apf_viz.ui.recorder import canvas_size
+from apf_viz.ui.view_model import SessionView
+from apf_viz.ui.view_model.legend import lecture_html
 
 # The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
 # that room free (ui/app.py), so the caption never covers the run.

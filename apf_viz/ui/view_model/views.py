@@ -1,5 +1,5 @@
 """What the screen shows, as plain data: the scene draws a :class:`SessionView` and the panels put its
-sentences in place. Built by :func:`apf_viz.ui.presenter.present`."""
+sentences in place. Built by :func:`apf_viz.ui.view_model.present`."""
 
 from __future__ import annotations
 

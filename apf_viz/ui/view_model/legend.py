@@ -13,7 +13,7 @@ from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
 from apf_viz.ui.slide import Entry
 
 if TYPE_CHECKING:
-    from apf_viz.ui.presenter.views import SessionView
+    from apf_viz.ui.view_model.views import SessionView
 
 # H_L^O → H<sub>L</sub><sup>O</sup>; L_I → L<sub>I</sub>; the paper's symbols as a reader knows them.
 SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")

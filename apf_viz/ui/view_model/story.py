@@ -9,8 +9,8 @@ from collections.abc import Mapping, Sequence
 from apf_viz.core.engine import Engine, Phase
 from apf_viz.core.grid import Point
 from apf_viz.core.schedulers import SYNCHRONOUS
-from apf_viz.ui.presenter.legend import symbol_html
-from apf_viz.ui.presenter.staleness import SeenRobot, changes
+from apf_viz.ui.view_model.legend import symbol_html
+from apf_viz.ui.view_model.staleness import SeenRobot, changes
 
 MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
 # Symbols, not emoji: a fresh machine's browser may have no colour-emoji font (Debian's Chromium with

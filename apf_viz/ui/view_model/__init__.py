@@ -1,4 +1,4 @@
-"""The presenter: turns the run (engine, history, config), the shared screen and *one browser's* state
+"""The view model: turns the run (engine, history, config), the shared screen and *one browser's* state
 into the :class:`SessionView` that browser's scene and panels draw, sentences included. Pure: no viser,
 no locks (the session holds its lock while calling), no particular algorithm (what is drawn over the run
 and why a robot acted come from the algorithm's own description, core/portrayal.py).
@@ -28,13 +28,13 @@ from apf_viz.core.portrayal import (
     title_of,
 )
 from apf_viz.core.portrayal import stage_of as algorithm_stage
-from apf_viz.ui.presenter import story
-from apf_viz.ui.presenter.paper import paper_html
-from apf_viz.ui.presenter.staleness import hidden_from, seen_robots, stale_holders
-from apf_viz.ui.presenter.views import Ghost, RobotView, SessionView, WhyView
-from apf_viz.ui.presenter.why import why_markdown, why_view
-from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
+from apf_viz.ui.view_model import story
+from apf_viz.ui.view_model.paper import paper_html
+from apf_viz.ui.view_model.run_source import RunSource
+from apf_viz.ui.view_model.staleness import hidden_from, seen_robots, stale_holders
+from apf_viz.ui.view_model.views import Ghost, RobotView, SessionView, WhyView
+from apf_viz.ui.view_model.why import why_markdown, why_view
 
 __all__ = ["RobotView", "SessionView", "WhyView", "for_browser", "present", "present_run"]
 
@@ -47,13 +47,13 @@ _COMPUTED = int(Phase.COMPUTED)
 
 
 def present(
-    run: RunController, screen: SharedScreen, browser: BrowserState, presenter: BrowserState
+    run: RunSource, screen: SharedScreen, browser: BrowserState, presenter: BrowserState
 ) -> SessionView:
     """The whole view of one browser (``presenter``: whose selection a following browser shows)."""
     return for_browser(present_run(run, screen), run, screen, browser, presenter)
 
 
-def present_run(run: RunController, screen: SharedScreen) -> SessionView:
+def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
     """What every browser shows alike: the run, its story and the shared screen; nothing selected."""
     e = run.engine
     st = e.state
@@ -145,7 +145,7 @@ def lecture_words(stop: LectureStop | None, event: int, playing: bool) -> tuple[
     )
 
 
-def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> dict:
+def _over_time(run: RunSource, screen: SharedScreen, pts: list[Point]) -> dict:
     """What the run's history adds to its picture: trails, the stale marks, the timeline's marks."""
     e = run.engine
     stale = stale_holders(e, pts) if e.k <= SIGHT_MARKS_UP_TO else []
@@ -161,13 +161,13 @@ def _over_time(run: RunController, screen: SharedScreen, pts: list[Point]) -> di
     }
 
 
-def _trail_moves(run: RunController, screen: SharedScreen) -> int:
+def _trail_moves(run: RunSource, screen: SharedScreen) -> int:
     """The moves of each robot's trail: the person's choice; a trace of a walk that never ends (a
     livelock, an escape) shows its walkers' paths in any case."""
     return max(screen.trails, story.LOOP_TRAIL if _walks(run) else 0)
 
 
-def _walks(run: RunController) -> bool:
+def _walks(run: RunSource) -> bool:
     """The run follows a trace of a walk that never ends."""
     return run.following and run.trace_options.get("verdict") in story.ENDLESS
 
@@ -196,7 +196,7 @@ def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool
 
 def for_browser(
     view: SessionView,
-    run: RunController,
+    run: RunSource,
     screen: SharedScreen,
     browser: BrowserState,
     presenter: BrowserState,
@@ -287,7 +287,7 @@ def run_numbers(e: Engine, overlays: Overlays) -> dict:
     }
 
 
-def stage_of(run: RunController, screen: SharedScreen) -> str:
+def stage_of(run: RunSource, screen: SharedScreen) -> str:
     """The algorithm's stage now (Next stage and a lecture's stops ask after every step): in Run by the
     algorithm's own stage name, which draws no marks (core/portrayal.py ``stage_of``)."""
     e = run.engine
@@ -296,7 +296,7 @@ def stage_of(run: RunController, screen: SharedScreen) -> str:
     return algorithm_stage(e.algorithm, _configuration(run, e.current_points(), e.state.lights))
 
 
-def _configuration(run: RunController, pts: list[Point], lights: list[str]) -> Configuration:
+def _configuration(run: RunSource, pts: list[Point], lights: list[str]) -> Configuration:
     """The run at one moment as the algorithm's portrayal reads it (global frame, for the screen only)."""
     return Configuration(tuple(pts), tuple(lights), run.config.pattern, run.config.robots)
 
@@ -315,7 +315,7 @@ def _targets(overlays: Overlays) -> tuple[Point, ...]:
     return next((m.points for m in overlays.marks if isinstance(m, Cells)), ())
 
 
-def _overlays(run: RunController, screen: SharedScreen, pts: list[Point], lights: list[str]) -> Overlays:
+def _overlays(run: RunSource, screen: SharedScreen, pts: list[Point], lights: list[str]) -> Overlays:
     """The algorithm's marks over the run; while a pattern is drawn, that pattern's cells instead, and
     while robots are placed, the pattern they will be given (the draft's, not the run's)."""
     if screen.mode == "edit-pattern":
@@ -331,7 +331,7 @@ def _overlays(run: RunController, screen: SharedScreen, pts: list[Point], lights
     return overlays_of(run.engine.algorithm, _configuration(run, pts, lights))
 
 
-def _twin_view(run: RunController, screen: SharedScreen) -> SessionView:
+def _twin_view(run: RunSource, screen: SharedScreen) -> SessionView:
     """Compare's second run as the scene draws it: robots, the algorithm's overlays, its outcome."""
     assert screen.twin is not None
     t = screen.twin.follow(run.engine, run.config)

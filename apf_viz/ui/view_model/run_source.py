@@ -1,0 +1,38 @@
+"""What the view model reads of a run: a protocol, so that it depends on no controller (the
+shared run's :class:`~apf_viz.ui.run_controller.RunController` provides it; so may a browser's own run)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Protocol
+
+from apf_viz.core.engine import Engine
+from apf_viz.core.history import StepRecord
+from apf_viz.ui.move_series import MoveSeries
+from apf_viz.ui.run_config import RunConfig
+from apf_viz.ui.stage_log import StageLog
+
+
+class RunSource(Protocol):
+    """One run as the screen shows it: the engine, how it was configured, and how it is being played."""
+
+    engine: Engine
+    config: RunConfig
+    following: bool  # a trace is followed step by step
+    following_what: str  # "the trace", or what else is followed
+    set_aside: tuple[int, list[StepRecord]] | None  # the steps a branch dropped (where, what)
+
+    @property
+    def trace_options(self) -> Mapping[str, object]: ...
+
+    @property
+    def playing(self) -> bool: ...
+
+    @property
+    def series(self) -> MoveSeries: ...
+
+    @property
+    def stages(self) -> StageLog: ...
+
+    @property
+    def trace_position(self) -> tuple[int, int] | None: ...
