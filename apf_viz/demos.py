@@ -12,6 +12,8 @@ from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
+from apf_viz.core.grid import as_point
+
 _PACKAGE = Path(__file__).resolve().parent
 
 
@@ -80,7 +82,7 @@ def pattern_of_size(k: int) -> tuple[str, list[tuple[int, int]]] | None:
     for name, path in demo_files().items():
         points = json.loads(path.read_text()).get("points", [])
         if len(points) == k:
-            return name, [tuple(p) for p in points]
+            return name, [as_point(p) for p in points]
     return None
 
 

@@ -38,6 +38,7 @@ from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import MARKER, AtWork, MergedLights, split_name
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import ordered
 from apf_viz.progress import show_progress
 
@@ -268,22 +269,25 @@ def random_cells(variants: Sequence[str], runs: int) -> list:
             if kind == 0 or not demos:
                 cells.append(Cell(RANDOM_KS[n % len(RANDOM_KS)], seed, scheduler, variant, "compute"))
                 continue
+            robots: Sequence[Point]
+            pattern: Sequence[Point]
+            flips: Sequence[bool]
             if kind == 1:
                 k = RANDOM_SYMMETRIC_KS[n % len(RANDOM_SYMMETRIC_KS)]
                 robots, pattern, flips = symmetric_start(k, seed)
                 name = f"symmetric k={k}"
             else:
-                name, robots, pattern, y_up = demos[n % len(demos)]
+                name, start, pattern, y_up = demos[n % len(demos)]
                 scale = DEMO_SCALES[(n // len(demos)) % len(DEMO_SCALES)]
-                robots = tuple((x * scale, y * scale) for x, y in robots)
+                robots = tuple((x * scale, y * scale) for x, y in start)
                 name = f"{name} ×{scale}" if scale > 1 else name
                 flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
-            shape = (tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(flips))
+            shape = (tuple(map(as_point, robots)), tuple(map(as_point, pattern)), tuple(flips))
             cells.append(Cell(len(robots), seed, scheduler, variant, "compute", name, *shape))
     return cells
 
 
-def demo_starts() -> list[tuple[str, tuple, tuple, list[bool] | None]]:
+def demo_starts() -> list[tuple[str, tuple[Point, ...], tuple[Point, ...], list[bool] | None]]:
     """(name, robots, pattern, flips or None) of every Demo scenario with a solvable start."""
     from apf_viz.core.formats import load_pattern, load_robots
     from apf_viz.core.symmetry import unsolvable_axis
@@ -295,10 +299,10 @@ def demo_starts() -> list[tuple[str, tuple, tuple, list[bool] | None]]:
         if "robots" not in files:
             continue
         robots = load_robots(files["robots"])
-        points = tuple(tuple(p) for p in robots.robots)
+        points = tuple(as_point(p) for p in robots.robots)
         if unsolvable_axis(points) is None:
-            pattern = tuple(tuple(p) for p in load_pattern(files["pattern"]).points)
-            out.append((scenario.robots, points, pattern, robots.y_up))
+            pattern = tuple(as_point(p) for p in load_pattern(files["pattern"]).points)
+            out.append((scenario.robots or "", points, pattern, robots.y_up))
     return out
 
 
@@ -591,7 +595,8 @@ def story(trace: Path) -> str:
         first = f"every robot starts {hidden}, which shows {shown}"
     elif at is not None:
         ev = events[at - 1]
-        first = f"at event {at} robot {ev.robot} turns {_meant(ev.rule)} ({ev.rule_id}) and shows {ev.light}"
+        turns = _meant(ev.rule or "")
+        first = f"at event {at} robot {ev.robot} turns {turns} ({ev.rule_id}) and shows {ev.light}"
     else:
         first = f"no robot shows {hidden} in these events"
     verdict = header.options.get("verdict", engine.outcome or "")

@@ -23,6 +23,7 @@ from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import AtWork, MergedLights
 from apf_viz.core.formats import InputError, check_writable, replace_atomically, write_atomic
+from apf_viz.core.grid import as_point
 from apf_viz.progress import show_progress
 
 COLUMNS = (
@@ -157,8 +158,8 @@ def start_pairs(folder: Path) -> list[tuple[str, list, list, list[bool]]]:
             raise InputError(f"{robots_file}: no {pattern_file.name} beside it")
         robots, pattern = load_robots(robots_file), load_pattern(pattern_file)
         check_sizes(robots, pattern, str(pattern_file))
-        points = [tuple(p) for p in robots.robots]
-        pairs.append((name, points, [tuple(p) for p in pattern.points], robots.flips(1)))
+        points = [as_point(p) for p in robots.robots]
+        pairs.append((name, points, [as_point(p) for p in pattern.points], robots.flips(1)))
     if not pairs:
         raise InputError(f"--starts {folder}: no NAME.robots.json / NAME.pattern.json pairs")
     return pairs

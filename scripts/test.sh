@@ -18,4 +18,5 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install -q -e '.[test,sweep,fast]'
 .venv/bin/python -m ruff check .
+.venv/bin/python -m mypy  # the package, as configured in pyproject.toml
 .venv/bin/python -m pytest "$@"

@@ -12,6 +12,7 @@ import importlib
 import inspect
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
+from typing import cast
 
 from apf_viz.algorithms.apf_opaque_grid import ApfOpaqueGrid
 from apf_viz.algorithms.examples import CompactLeft, Stay
@@ -78,7 +79,8 @@ def load_plugin(spec: str) -> dict[str, Factory]:
         raise ValueError(f"cannot load algorithm {spec!r}: {type(e).__name__}: {e}") from None
     if not isinstance(algo, Algorithm):
         raise ValueError(f"{spec!r} is not an algorithm (needs name, lights and decide())")
-    return {spec: factory, str(algo.name): factory}
+    made = cast(Factory, factory)  # checked above: a class or function that made an Algorithm
+    return {spec: made, str(algo.name): made}
 
 
 def algorithm_from_command_line(name: str) -> tuple[Algorithm, dict[str, Factory]]:

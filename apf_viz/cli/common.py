@@ -20,8 +20,10 @@ from apf_viz.core.formats import (
     load_robots,
     write_atomic,
 )
+from apf_viz.core.grid import as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary
+from apf_viz.core.schedulers import REGISTRY
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
@@ -129,8 +131,8 @@ def problem(args: argparse.Namespace, output: Path | None):
     algorithm, _ = algorithm_from_command_line(args.algorithm)
     if output:
         check_writable(output)  # before the work, not after minutes of it
-    points = [tuple(p) for p in robots.robots]
-    targets = [tuple(p) for p in pattern.points]
+    points = [as_point(p) for p in robots.robots]
+    targets = [as_point(p) for p in pattern.points]
     if not args.force:
         refuse_unsolvable(args.robots, points, targets, args.json)
     return robots, points, targets, algorithm
@@ -196,7 +198,9 @@ def add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str], defau
         "--scheduler",
         default="async" if defaults else None,
         choices=list(schedulers),
-        help="the adversary" + ("" if defaults else " (default: async)"),
+        help="the adversary: "
+        + "; ".join(f"{kind.name}, {kind.summary}" for kind in REGISTRY if kind.name in schedulers)
+        + ("" if defaults else " (default: async)"),
     )
     p.add_argument(
         "--seed",

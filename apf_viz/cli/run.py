@@ -16,7 +16,7 @@ from apf_viz.cli.common import (
     problem,
 )
 from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
-from apf_viz.core.engine import Engine
+from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.formats import (
     RobotsFile,
     check_writable,
@@ -47,7 +47,7 @@ def _schedule_adversary(args: argparse.Namespace, robots: RobotsFile, schedule: 
     y_up, warning = adversary_flips(schedule, robots.y_up, args.flips, str(args.schedule), str(args.robots))
     if warning:
         print(f"apf-viz: warning: {warning}", file=sys.stderr)
-    semantics = schedule.light_semantics or args.light_semantics or "compute"
+    semantics: LightSemantics = schedule.light_semantics or args.light_semantics or "compute"
     if args.light_semantics and schedule.light_semantics and args.light_semantics != semantics:
         fail(
             f"--light-semantics {args.light_semantics} contradicts {args.schedule}, recorded under "
@@ -153,7 +153,8 @@ def run(args: argparse.Namespace) -> int:
             f"under a scheduler where the schedule ends, give --then {args.scheduler}"
         )
     schedule = load_schedule(args.schedule) if args.schedule else None
-    y_up, semantics = robots.flips(args.seed), args.light_semantics or "compute"
+    y_up = robots.flips(args.seed)
+    semantics: LightSemantics = args.light_semantics or "compute"
     if schedule is not None:
         y_up, semantics = _schedule_adversary(args, robots, schedule)
     then = make_scheduler(args.then) if args.then else None

@@ -103,8 +103,12 @@ class Algorithm(Protocol):
         lights: every light it may set; ``lights[0]`` is every robot's light at the start.
     """
 
-    name: str
-    lights: tuple[str, ...]
+    # Read-only members: a class attribute (``lights = ("off", "done")``) or a property provides them.
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def lights(self) -> tuple[str, ...]: ...
 
     def decide(self, view: Snapshot, pattern: Pattern) -> Decision:
         """Compute: must be deterministic and depend on nothing but its arguments."""

@@ -503,6 +503,7 @@ class Engine:
     ) -> None:
         """Apply n cycles of robot r, from ``here`` by ``gmove`` (global), on this decision (:meth:`walk`
         checked that they repeat)."""
+        assert decision.move is not None  # a walk moves
         st = self.state
         if self.check_walks:
             self._check_walk(r, here, gmove, n, decision)
@@ -629,7 +630,9 @@ class Engine:
     def _move_one(self, r: int, round: int | None) -> list[Event]:
         """The ASYNC case of :meth:`_move`: one robot, so a collision is only a move onto a robot."""
         st = self.state
-        move = st.pending[r].move
+        pending = st.pending[r]
+        assert pending is not None  # computed: it holds its decision
+        move = pending.move
         here = self._views.points[r]
         if move is None:
             self._finish_cycle(r)
@@ -753,9 +756,10 @@ class Engine:
     def _robot_quiescent(self, r: int) -> bool:
         st = self.state
         phase = st.phase[r]
-        if phase == _COMPUTED and st.pending[r].move is not None:
+        pending, snap = st.pending[r], st.snapshot[r]
+        if phase == _COMPUTED and pending is not None and pending.move is not None:
             return False
-        if phase == _LOOKED and not self._decide(r, st.snapshot[r]).is_noop(st.lights[r]):
+        if phase == _LOOKED and snap is not None and not self._decide(r, snap).is_noop(st.lights[r]):
             return False
         version, noop = self._probe[r]
         if version != st.version:

@@ -19,7 +19,7 @@ from typing import Annotated, Any, BinaryIO, Literal
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
 
 from apf_viz.core.frames import random_y_up
-from apf_viz.core.grid import Direction, Point, coordinate_problem
+from apf_viz.core.grid import Direction, Point, as_point, coordinate_problem
 from apf_viz.core.history import Event
 
 TRACE_FORMAT = "apf-viz-trace"
@@ -137,7 +137,7 @@ class TraceEvent(BaseModel):
             light=self.light,
             move=Direction(self.move) if self.move else None,
             rule=self.rule,
-            to=tuple(self.to) if self.to is not None else None,
+            to=as_point(self.to) if self.to is not None else None,
             round=self.round,
             collision=bool(self.collision),
             rule_id=self.rule_id,

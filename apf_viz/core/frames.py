@@ -7,6 +7,7 @@ the global frame (engine, files, scene) and a robot's local frame only through t
 from __future__ import annotations
 
 import random
+from typing import overload
 
 from apf_viz.core.grid import Direction, Point
 
@@ -16,6 +17,12 @@ def to_local(offset: Point, y_up: bool) -> Point:
     return (offset[0], offset[1] if y_up else -offset[1])
 
 
+@overload
+def move_to_global(move: Direction, y_up: bool) -> Direction: ...
+@overload
+def move_to_global(move: None, y_up: bool) -> None: ...
+@overload
+def move_to_global(move: Direction | None, y_up: bool) -> Direction | None: ...
 def move_to_global(move: Direction | None, y_up: bool) -> Direction | None:
     """The global direction of a move the robot computed in its own frame (None = stay)."""
     if move is None or y_up or move in (Direction.LEFT, Direction.RIGHT):

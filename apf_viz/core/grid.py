@@ -26,6 +26,12 @@ offset, gcd and sort key is exact with room to spare: offsets stay below 2^41 pl
 run would need about 4·10^18 moves to reach int64's limit."""
 
 
+def as_point(p: Sequence[int]) -> Point:
+    """A point from any pair (a JSON list, a numpy row, a tuple); not a pair is refused."""
+    x, y = p
+    return (x, y)
+
+
 def short_int(v: int) -> str:
     """An integer for a one-line message: in full below 10^15, else its order of magnitude (never the
     digits of a huge number, which Python even refuses to print beyond 4,300 of them)."""

@@ -96,11 +96,12 @@ class Frame:
 
 @dataclass(frozen=True)
 class Cells:
-    """A set of cells: ``style`` "placed" (final) or "preview" (not yet placed: drawn dimmed)."""
+    """A set of cells: ``style`` "placed" (final), "preview" (not yet placed: drawn dimmed) or "drawing"
+    (a pattern being drawn in the studio)."""
 
     points: tuple[Point, ...]
     label: str
-    style: Literal["placed", "preview"] = "placed"
+    style: Literal["placed", "preview", "drawing"] = "placed"
 
 
 Mark = Line | Band | HalfPlane | Frame | Cells

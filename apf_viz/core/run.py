@@ -12,7 +12,7 @@ from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.budget import paper_D
 from apf_viz.core.engine import Engine, EngineError
 from apf_viz.core.formats import InputError, TraceHeader, event_to_json
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.history import Event, StepRecord
 from apf_viz.core.schedulers import Scheduler, step_rng
 
@@ -96,9 +96,9 @@ def trace_header(
     return TraceHeader(
         format="apf-viz-trace",
         version=1,
-        robots=[list(p) for p in engine.start],
+        robots=list(engine.start),
         y_up=list(engine.y_up),
-        pattern=[list(p) for p in engine.pattern],
+        pattern=list(engine.pattern),
         scheduler=scheduler,
         seed=seed,
         algorithm=engine.algorithm.name,
@@ -112,8 +112,8 @@ def engine_for_trace(header: TraceHeader, algorithm: Algorithm, max_events: int 
     activation: a replay applies recorded steps, and a trace may hold no-op cycles (one written with
     ``--all-activations``, or before skipping existed) that a skipping engine would refuse to run."""
     return Engine(
-        [tuple(p) for p in header.robots],
-        [tuple(p) for p in header.pattern],
+        [as_point(p) for p in header.robots],
+        [as_point(p) for p in header.pattern],
         algorithm,
         y_up=header.y_up,
         light_semantics=header.light_semantics,

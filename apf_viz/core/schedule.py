@@ -24,7 +24,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, model_validator
 
-from apf_viz.core.engine import Engine
+from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.formats import InputError, _parse_json, _validate, header_line, numbered_lines, read_lines
 from apf_viz.core.history import Event, RecordedStep
 from apf_viz.core.run import steps_of_trace
@@ -87,7 +87,7 @@ class Schedule:
     __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "y_up")
 
     def __init__(
-        self, k: int, y_up: Sequence[bool] | None = None, light_semantics: str | None = None
+        self, k: int, y_up: Sequence[bool] | None = None, light_semantics: LightSemantics | None = None
     ) -> None:
         self.k = k
         self.y_up = tuple(y_up) if y_up is not None else None
@@ -139,9 +139,10 @@ def _parse_line(raw: str, where: str, schedule: Schedule, n: int) -> None:
         if phase is not None:
             schedule._add_activation(n, data["robot"], phase)
             return
+    line: Line
     if isinstance(data, dict) and "round" in data:
-        line: Line = _validate(Round, data, where)
-        if len(set(line.round)) != len(line.round):
+        line = round_line = _validate(Round, data, where)
+        if len(set(round_line.round)) != len(round_line.round):
             raise InputError(f"{where}: a robot is listed twice in one round")
     else:
         line = _validate(Activation, data, where)  # only to say what is wrong with it
@@ -241,7 +242,8 @@ def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Itera
             return
         # Checked here, not when the file is read, so that the run up to a bad line is kept.
         robots = (robot,) if robot is not None else what
-        missing = [r for r in robots if not 0 <= r < k]  # type: ignore[union-attr]
+        assert not isinstance(robots, str)  # a line names a robot and its phase, or a round's robots
+        missing = [r for r in robots if not 0 <= r < k]
         if missing:
             raise ScheduleError(f"{where}:{n}: robot {missing[0]} does not exist ({k} robots)")
         if robot is not None:

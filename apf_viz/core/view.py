@@ -94,6 +94,7 @@ class Snapshot:
     def robots(self) -> tuple[Seen, ...]:
         robots = self._robots
         if robots is None:
+            assert self._columns is not None  # a snapshot holds one of the two
             robots = self._robots = tuple(self._columns.entries())
         return robots
 
@@ -102,6 +103,7 @@ class Snapshot:
         columns = self._columns
         if columns is None:
             robots = self._robots
+            assert robots is not None  # a snapshot holds one of the two
             palette = tuple(sorted({s.light for s in robots}))
             index = {name: i for i, name in enumerate(palette)}
             columns = self._columns = Columns(
@@ -114,7 +116,7 @@ class Snapshot:
 
     def __len__(self) -> int:
         """How many robots it sees."""
-        return len(self._robots) if self._robots is not None else int(self._columns.dx.shape[0])
+        return len(self._robots) if self._robots is not None else int(self.columns.dx.shape[0])
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Snapshot):
@@ -139,17 +141,17 @@ class Snapshot:
         robots = self._robots
         if robots is not None:
             return bisect_left(robots, (dx,), lo)
-        return lo + int(np.searchsorted(self._columns.dx[lo:], dx))
+        return lo + int(np.searchsorted(self.columns.dx[lo:], dx))
 
     def dx_at(self, i: int) -> int:
         """The horizontal offset of the i-th robot."""
         robots = self._robots
-        return robots[i].dx if robots is not None else int(self._columns.dx[i])
+        return robots[i].dx if robots is not None else int(self.columns.dx[i])
 
     def between(self, lo: int, hi: int) -> tuple[Seen, ...]:
         """The robots lo..hi (a slice of :attr:`robots`)."""
         robots = self._robots
-        return robots[lo:hi] if robots is not None else tuple(self._columns.entries(lo, hi))
+        return robots[lo:hi] if robots is not None else tuple(self.columns.entries(lo, hi))
 
     def iter_between(self, lo: int, hi: int) -> Iterator[Seen]:
         """The robots lo..hi one by one, made as they are asked for (in chunks): for a scan that usually
@@ -159,13 +161,13 @@ class Snapshot:
             yield from robots[lo:hi]
             return
         for a in range(lo, hi, _CHUNK):
-            yield from self._columns.entries(a, min(a + _CHUNK, hi))
+            yield from self.columns.entries(a, min(a + _CHUNK, hi))
 
     def count(self, light: str) -> int:
         """How many of the robots it sees show this light."""
         if self._robots is not None:
             return sum(1 for s in self._robots if s.light == light)
-        return int(np.count_nonzero(self._columns.showing(light)))
+        return int(np.count_nonzero(self.columns.showing(light)))
 
     def at(self, dx: int, dy: int) -> Seen | None:
         """The visible robot at this offset, if any."""
@@ -181,7 +183,7 @@ class Snapshot:
         """The lights it sees (read off the arrays when the snapshot has them: no tuple is made)."""
         if self._robots is not None:
             return {s.light for s in self._robots}
-        c = self._columns
+        c = self.columns
         if c.present is not None:
             palette, bits = c.palette, c.present
             return {palette[i] for i in range(bits.bit_length()) if bits >> i & 1}

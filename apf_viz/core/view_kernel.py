@@ -49,7 +49,8 @@ _KEY_WIDTH = 1 << 22
 
 # (positions, observer, flip, light codes, reach, *new_tables(k))
 #   → (ids, sx, sy, dx, ly, code, lights present)
-Kernel = Callable[..., tuple[np.ndarray, ...]]
+Built = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, "int | np.integer"]
+Kernel = Callable[..., Built]
 
 
 @functools.cache
@@ -137,7 +138,7 @@ def build_view(
     best_j: np.ndarray,
     entry: np.ndarray,
     calls: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+) -> Built:
     """Robot r's view (numba compiles this; plain Python runs it too, slowly: the tests do).
 
     Args:
@@ -184,7 +185,7 @@ def build_view(
     dx_sorted = np.empty(n, dtype=np.int64)
     ly_sorted = np.empty(n, dtype=np.int64)
     code = np.empty(n, dtype=np.uint8)
-    present = 0
+    present: int | np.integer = 0  # one bit per palette code, or -1 past 62 codes
     for i in range(n):
         o = by_offset[i]
         dx_sorted[i] = sx[o]

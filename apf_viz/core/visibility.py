@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from bisect import bisect_left, insort
 from collections.abc import Sequence
+from typing import cast
 
 import numpy as np
 
@@ -99,10 +100,15 @@ class Views:
         objects."""
         robots = self.robots(r)
         cached = self._cached[r]
+        assert cached is not None  # robots(r) made it
         if cached[1] is None:
             ids = self._ids[r]
-            cached = self._cached[r] = (robots, tuple(ids if ids is not None else self._raw[r][2].tolist()))
-        return cached
+            if ids is None:
+                raw = self._raw[r]
+                assert raw is not None  # a built view keeps its indices in one of the two
+                ids = raw[2].tolist()
+            cached = self._cached[r] = (robots, tuple(ids))
+        return cast("tuple[Columns | tuple[Seen, ...], tuple[int, ...]]", cached)  # its indices now made
 
     def robots(self, r: int) -> Columns | tuple[Seen, ...]:
         """:meth:`view` without the indices: what a decision reads (the indices of 800 robots as a tuple
@@ -112,7 +118,14 @@ class Views:
             if r not in self._built:
                 self._build(r)
             entries = self._entries[r]
-            cached = self._cached[r] = (self._columns[r] if entries is None else tuple(entries), None)
+            columns = self._columns[r]
+            robots: Columns | tuple[Seen, ...]
+            if entries is None:
+                assert columns is not None  # a built view is its arrays or its entries
+                robots = columns
+            else:
+                robots = tuple(entries)
+            cached = self._cached[r] = (robots, None)
         return cached[0]
 
     def prime_seen_bits(self, r: int, ids: tuple[int, ...]) -> None:
@@ -139,19 +152,20 @@ class Views:
         P = self._P
         x0, y0, x1, y1 = self._reach
         reach = max(x1 - x0, y1 - y0)  # no offset is larger
-        if self._kernel is not None and reach < KERNEL_SPAN_LIMIT:
+        if self._kernel is not None and self._tables is not None and reach < KERNEL_SPAN_LIMIT:
             order, sx, sy, dx, ly, codes, present = self._kernel(
                 P, r, self._flip[r], self._code_of, reach, *self._tables
             )
-            columns = Columns(dx, ly, codes, self._palette, present if present >= 0 else None)
+            columns = Columns(dx, ly, codes, self._palette, int(present) if present >= 0 else None)
             self._set_built(r, order, sx, sy, columns)
             return
         if x1 - x0 < TABLE_SPAN and y1 - y0 < TABLE_SPAN:  # a crowd: every offset is in the tables
-            if self._scratch is None:
+            if self._scratch is None or self._flat is None:
                 self._scratch = table_scratch()
                 self._flat = P[:, 0] * TABLE_WIDTH + P[:, 1]
             # The table index of r's offset to each robot, from the robots' own flat indices.
-            at = self._flat - (int(self._flat[r]) - TABLE_CENTRE)
+            flat = self._flat
+            at = flat - (int(flat[r]) - TABLE_CENTRE)
             order = visible_in_crowd(at, r, self._scratch)  # sorted by index
             seen = P[order] - P[r]
             span = TABLE_SPAN
@@ -192,7 +206,9 @@ class Views:
         """Robot r's entries (its view is built), made from its arrays when a patch first needs them."""
         entries = self._entries[r]
         if entries is None:
-            entries = self._entries[r] = self._columns[r].entries()
+            columns = self._columns[r]
+            assert columns is not None  # a built view is its arrays or its entries
+            entries = self._entries[r] = columns.entries()
             self._columns[r] = None
         return entries
 
@@ -200,7 +216,9 @@ class Views:
         """Robot r's nearest robot per primitive direction (r's view is built)."""
         near = self._near[r]
         if near is None:
-            sx, sy, ids = self._raw[r]
+            raw = self._raw[r]
+            assert raw is not None  # kept while the view is built
+            sx, sy, ids = raw
             g = np.gcd(sx, sy)
             near = self._near[r] = dict(
                 zip(
@@ -212,6 +230,12 @@ class Views:
             self._ids[r] = ids.tolist()
             self._raw[r] = None
         return near
+
+    def _ids_of(self, r: int) -> list[int]:
+        """Robot r's sorted indices, once a patch needs them (:meth:`_index` made them)."""
+        ids = self._ids[r]
+        assert ids is not None
+        return ids
 
     # ------------------------------------------------------------------ patching
     def moved(self, movers: Sequence[int], old: Sequence[Point]) -> None:
@@ -308,9 +332,9 @@ class Views:
             if seen_after:
                 insort(entries, Seen(g1 * d1[0], g1 * d1[1] * flip, self._lights[m]))
                 if not seen_before:
-                    insort(self._ids[r], m)
+                    insort(self._ids_of(r), m)
             elif seen_before:
-                ids = self._ids[r]
+                ids = self._ids_of(r)
                 del ids[bisect_left(ids, m)]
             if seen_before or seen_after:
                 self._cached[r] = None
@@ -353,14 +377,14 @@ class Views:
     def _drop(self, r: int, j: int, gx: int, gy: int) -> None:
         entries = self._entries_of(r)
         del entries[bisect_left(entries, (gx, gy * self._flip[r]))]
-        ids = self._ids[r]
+        ids = self._ids_of(r)
         del ids[bisect_left(ids, j)]
         self._cached[r] = None
         self.changed.add(r)
 
     def _add(self, r: int, j: int, gx: int, gy: int) -> None:
         insort(self._entries_of(r), Seen(gx, gy * self._flip[r], self._lights[j]))
-        insort(self._ids[r], j)
+        insort(self._ids_of(r), j)
         self._cached[r] = None
         self.changed.add(r)
 

@@ -151,7 +151,7 @@ def counterexample_text(
     """The explorer's failing schedule replayed by the real engine, as a trace file's text (its header
     says the verdict and, for a livelock, where the loop starts)."""
     e = counterexample_engine(algorithm, robots, pattern, y_up, scheduler, result, light_semantics)
-    options = {"verdict": result.verdict, "detail": result.detail}
+    options: dict[str, object] = {"verdict": result.verdict, "detail": result.detail}
     if result.loop_start is not None:
         options["loop_starts_at_step"] = result.loop_start
     header = trace_header(e, scheduler, None, options)

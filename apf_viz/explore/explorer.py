@@ -27,7 +27,7 @@ from typing import Literal
 
 from apf_viz.core.algorithm import Algorithm, Decision
 from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Seen, Snapshot
 
@@ -125,8 +125,8 @@ class Explorer:
         decisions: Decisions | None = None,
     ) -> None:
         self.algorithm = algorithm
-        self.robots = [tuple(p) for p in robots]
-        self.pattern = tuple(tuple(p) for p in pattern)
+        self.robots = [as_point(p) for p in robots]
+        self.pattern = tuple(as_point(p) for p in pattern)
         self.y_up = tuple(y_up)
         self.k = len(self.robots)
         self.scheduler = scheduler
@@ -416,7 +416,7 @@ class Explorer:
         """Shortest path inside ``members`` ending with an edge satisfying ``want`` (or at ``target``)."""
         if target is not None and src == target:
             return [], src
-        prev = {src: None}
+        prev: dict[int, tuple[int, tuple[int, ...]] | None] = {src: None}  # node → (node before, edge)
         queue = deque([src])
         while queue:
             i = queue.popleft()
@@ -426,16 +426,16 @@ class Explorer:
                 if want is not None and want(robots):
                     steps = [robots]
                     node = i
-                    while prev[node] is not None:
-                        node, rb = prev[node]
+                    while (back := prev[node]) is not None:
+                        node, rb = back
                         steps.append(rb)
                     return steps[::-1], j
                 if j not in prev:
                     prev[j] = (i, robots)
                     if target is not None and j == target:
                         steps, node = [], j
-                        while prev[node] is not None:
-                            node, rb = prev[node]
+                        while (back := prev[node]) is not None:
+                            node, rb = back
                             steps.append(rb)
                         return steps[::-1], j
                     queue.append(j)

@@ -27,6 +27,7 @@ from apf_viz.core.formats import (
     load_robots,
     load_trace,
 )
+from apf_viz.core.grid import as_point
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
 from apf_viz.ui.library import PatternLibrary
@@ -440,8 +441,8 @@ def demo_session(**options) -> Session:
     pattern = load_pattern(DEMO_PATTERN)
     options.setdefault("seed", 1)
     return Session(
-        [tuple(p) for p in robots.robots],
-        [tuple(p) for p in pattern.points],
+        [as_point(p) for p in robots.robots],
+        [as_point(p) for p in pattern.points],
         y_up=robots.flips(options["seed"]),
         **options,
     )
@@ -467,8 +468,8 @@ def session_from_args(args: argparse.Namespace) -> Session:
         )
     check_sizes(robots, pattern, str(args.pattern or DEMO_PATTERN))
     return Session(
-        [tuple(p) for p in robots.robots],
-        [tuple(p) for p in pattern.points],
+        [as_point(p) for p in robots.robots],
+        [as_point(p) for p in pattern.points],
         y_up=robots.flips(args.seed),
         light_semantics=args.light_semantics,
         plugins=plugins,

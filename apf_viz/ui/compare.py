@@ -87,6 +87,6 @@ def _differs(a: Event, b: Event) -> bool:
 def describe(ev: Event) -> str:
     if ev.phase == "compute":
         return f"robot {ev.robot} · Compute → light {ev.light}"
-    if ev.phase == "move":
+    if ev.phase == "move" and ev.to is not None:
         return f"robot {ev.robot} · Move → ({ev.to[0]}, {ev.to[1]})" + (" COLLISION" if ev.collision else "")
     return f"robot {ev.robot} · Look"

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from apf_viz.core.formats import size_problem
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
@@ -25,9 +25,9 @@ class Editor:
     run: the session starts a run from the drafts once :meth:`problem` has nothing to say."""
 
     def __init__(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> None:
-        self.robots: list[Point] = [tuple(p) for p in robots]
+        self.robots: list[Point] = [as_point(p) for p in robots]
         self.y_up: list[bool] = list(y_up)
-        self.pattern: list[Point] = [tuple(p) for p in pattern]
+        self.pattern: list[Point] = [as_point(p) for p in pattern]
         self._undo: list[Draft] = []
         self._redo: list[Draft] = []
 
@@ -74,21 +74,21 @@ class Editor:
     # ------------------------------------------------------------------ changes
     def set_pattern(self, cells: Sequence[Point], said: str) -> str:
         """The pattern becomes ``cells`` (distinct, in drawing order); one Undo brings the old one back."""
-        cells = [tuple(p) for p in dict.fromkeys(cells)]
+        cells = [as_point(p) for p in dict.fromkeys(cells)]
         if cells == self.pattern:
             return f"{said}: nothing changed"
         self._record()
-        self.pattern = cells  # type: ignore[assignment]
+        self.pattern = cells
         return said
 
     def set_robots(self, cells: Sequence[Point], said: str) -> str:
         """The robots stand on ``cells``; a robot that stays keeps its flip, a new one has +y up."""
-        cells = [tuple(p) for p in dict.fromkeys(cells)]
+        cells = [as_point(p) for p in dict.fromkeys(cells)]
         if cells == self.robots:
             return f"{said}: nothing changed"
         flips = dict(zip(self.robots, self.y_up, strict=True))
         self._record()
-        self.robots = cells  # type: ignore[assignment]
+        self.robots = cells
         self.y_up = [flips.get(p, True) for p in cells]
         return said
 

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from apf_viz.core.formats import InputError, load_pattern, pattern_json, write_atomic
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9 _-]{0,59}")
 
@@ -63,4 +63,4 @@ class PatternLibrary:
     def load(self, name: str) -> list[Point]:
         if name not in self.names():
             raise InputError(f"no saved pattern called {name[:60]!r}")
-        return [tuple(p) for p in load_pattern(self.folder / _file_name(name)).points]  # type: ignore[misc]
+        return [as_point(p) for p in load_pattern(self.folder / _file_name(name)).points]

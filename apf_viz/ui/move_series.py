@@ -64,7 +64,7 @@ class MoveSeries:
         for effects in history.effects(done, step):
             before = moves
             for ev in effects:
-                if ev.moved and ev.to != pos[ev.robot]:
+                if ev.moved and ev.to is not None and ev.to != pos[ev.robot]:
                     pos[ev.robot] = ev.to
                     moves += 1
             events += len(effects)

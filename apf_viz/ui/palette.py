@@ -3,6 +3,11 @@ shows the same swatches (an algorithm's lights bring their own colours, core/por
 
 from __future__ import annotations
 
+from typing import Literal
+
+PointShape = Literal["square", "circle", "diamond", "sparkle"]
+"""The shapes viser draws a point cloud's points in."""
+
 Color = tuple[int, int, int]
 
 PHASE_COLORS: dict[str, Color] = {
@@ -57,7 +62,7 @@ def region_color(i: int) -> Color:
 
 
 # The shape each of those marks is drawn in (viser's point shapes), so that shape alone tells them apart.
-MARK_SHAPES: dict[str, str] = {
+MARK_SHAPES: dict[str, PointShape] = {
     "collision": "sparkle",
     "never": "square",
     "selected": "circle",

@@ -148,7 +148,7 @@ class RunController:
     def set_light_semantics(self, semantics: str) -> None:
         if semantics not in ("compute", "lc-atomic"):
             raise InputError(f"light semantics {semantics!r}: choose compute or lc-atomic")
-        self.restart(self.config.but(light_semantics=semantics))  # type: ignore[arg-type]
+        self.restart(self.config.but(light_semantics=semantics))
 
     # ------------------------------------------------------------------ stepping
     def step(self) -> bool:

@@ -22,7 +22,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line
-from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS, region_color
+from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS, TARGET_COLORS, PointShape, region_color
 from apf_viz.ui.view_model import SessionView
 from apf_viz.ui.view_model.legend import canvas_symbol
 
@@ -201,7 +201,7 @@ class SceneRenderer:
         points: np.ndarray,
         color: tuple[int, int, int],
         size: float,
-        shape: Literal["square", "circle", "diamond"] = "square",
+        shape: PointShape = "square",
     ) -> None:
         """Points of one colour and size (world units), flat and unlit: squares (target cells), discs
         (robots, rings) or diamonds."""
@@ -571,16 +571,16 @@ class SceneRenderer:
             labels.append((cells.label, spot))
             taken.append(label_box(cells.label, (spot[0], spot[1], spot[0]), height))
         for i in range(max(len(frames), self._slots.get("frame", 0))):
-            mark = frames[i] if i < len(frames) else None
-            segs = self._frame(mark) if mark else np.zeros((0, 2, 3), np.float32)
+            frame = frames[i] if i < len(frames) else None
+            segs = self._frame(frame) if frame else np.zeros((0, 2, 3), np.float32)
             self._segments(
-                f"/marks/frame{i}", segs, (mark.color if mark else None) or MARK_COLORS["frame"], 3.0
+                f"/marks/frame{i}", segs, (frame.color if frame else None) or MARK_COLORS["frame"], 3.0
             )
-            if mark:
+            if frame:
                 origin = (float(segs[0, 0, 0]), float(segs[0, 0, 1]))
-                spot = frame_label_at(origin, mark.y_sign, robots, mark.label, height, taken)
-                labels.append((mark.label, spot))
-                taken.append(label_box(mark.label, (spot[0], spot[1], spot[0]), height))
+                spot = frame_label_at(origin, frame.y_sign, robots, frame.label, height, taken)
+                labels.append((frame.label, spot))
+                taken.append(label_box(frame.label, (spot[0], spot[1], spot[0]), height))
         self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
         self._labels("/marks/labels", labels)
 

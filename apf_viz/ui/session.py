@@ -28,7 +28,7 @@ from apf_viz.core.formats import (
     trace_text,
 )
 from apf_viz.core.frames import random_y_up
-from apf_viz.core.grid import COORD_LIMIT, Point, short_int
+from apf_viz.core.grid import COORD_LIMIT, Point, as_point, short_int
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.core.schedulers import REGISTRY as SCHEDULER_REGISTRY
@@ -77,9 +77,9 @@ class Session:
             raise InputError(problem)
         flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
         config = RunConfig(
-            tuple(map(tuple, robots)),
+            tuple(map(as_point, robots)),
             flips,
-            tuple(map(tuple, pattern)),
+            tuple(map(as_point, pattern)),
             algorithm,
             light_semantics,  # type: ignore[arg-type]
             scheduler,
@@ -520,7 +520,7 @@ class Session:
     def load_pattern(self, filename: str, content: bytes) -> str | None:
         """A pattern file; if its size fits the robots the run restarts with it, otherwise it becomes the
         pattern being drawn (Edit pattern), so nothing is lost; then what to do is returned."""
-        points = tuple(tuple(p) for p in loader.pattern_upload(filename, content).points)
+        points = tuple(as_point(p) for p in loader.pattern_upload(filename, content).points)
         with self.lock:
             if len(points) == len(self.config.robots):
                 self._start(self.config.but(pattern=points))
@@ -539,7 +539,7 @@ class Session:
         opens in Edit robots with its axis shown. Returns what to tell the person, if anything."""
         parsed = loader.robots_upload(filename, content)
         with self.lock:
-            points = tuple(tuple(p) for p in parsed.robots)
+            points = tuple(as_point(p) for p in parsed.robots)
             y_up = tuple(parsed.flips(self.seed))  # the same rule as every other way in (RobotsFile.flips)
             pattern, note = self.config.pattern, None
             if len(pattern) != len(points):
@@ -575,9 +575,9 @@ class Session:
         pattern = loader.pattern_upload(files["pattern"].name, files["pattern"].read_bytes())
         robots = loader.robots_upload(files["robots"].name, files["robots"].read_bytes())
         with self.lock:
-            points = tuple(tuple(p) for p in robots.robots)
+            points = tuple(as_point(p) for p in robots.robots)
             y_up = tuple(robots.flips(self.seed))
-            targets = tuple(tuple(p) for p in pattern.points)
+            targets = tuple(as_point(p) for p in pattern.points)
             # A new run even on an unsolvable start, so that nothing of the previous run (a trace being
             # followed, an outcome) shows while its robots are edited; it is never stepped in Edit robots.
             config = self.config.but(robots=points, y_up=y_up, pattern=targets, algorithm=scenario.algorithm)

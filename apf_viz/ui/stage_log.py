@@ -88,7 +88,7 @@ class StageLog:
                 if ev.light is not None and ev.light != lights[ev.robot]:
                     lights[ev.robot] = ev.light
                     changed = True
-                elif ev.moved and ev.to != pos[ev.robot]:
+                elif ev.moved and ev.to is not None and ev.to != pos[ev.robot]:
                     pos[ev.robot] = ev.to
                     changed |= read_moves
             if changed:

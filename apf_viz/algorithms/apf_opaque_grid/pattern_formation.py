@@ -188,7 +188,7 @@ def robots_between(view: Snapshot, frame: LeaderFrame, ev: Evidence = NO_EVIDENC
     dy = view.columns.dy
     value = box is not None and bool(((box[2] <= dy) & (dy <= box[3])).any())
     if ev.active:
-        if box is not None:
+        if box is not None and box[2] is not None and box[3] is not None:  # rows bounded both ways
             ev.region(Band("y", box[2], box[3], "H_B^O(r) ∩ H_U^O(r₀)"))
         ev.test("H_B^O(r) ∩ H_U^O(r₀) ≠ ∅", value, "a robot strictly between my row and the leader's")
     return value

@@ -140,8 +140,11 @@ def phase1_symmetric(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENC
     """Algorithm 1, r.light = symmetric (lines 25–31)."""
     partner = column_neighbour_with(view, {"symmetric", "decider"})
     vertical_line(view, ev)
-    if not ev.test(
-        "a symmetric/decider robot r′ on L_V", partner is not None, "my partner on my vertical line"
+    if (
+        not ev.test(
+            "a symmetric/decider robot r′ on L_V", partner is not None, "my partner on my vertical line"
+        )
+        or partner is None
     ):
         return stay(
             view, "Phase 1 (symmetric): no symmetric/decider robot on L_V → wait", "A1.symmetric.wait"

@@ -55,7 +55,8 @@ def phase2_decider(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
             "off", None, "Phase 2 (decider): a leader1 on R_I or L_V → off", "A2.decider.leader1-off"
         )
     partner = column_neighbour_with(view, {"decider"})
-    if ev.test("the other decider r′ on L_V", partner is not None, "my partner is on my vertical line"):
+    found = ev.test("the other decider r′ on L_V", partner is not None, "my partner is on my vertical line")
+    if found and partner is not None:
         k2 = k2_of(partner)
         if robot_on_K(r_i, k2, ev) is None:
             if is_symmetric_wrt_K(r_i, k2, ev):

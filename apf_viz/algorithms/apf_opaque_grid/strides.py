@@ -56,6 +56,7 @@ def vertical_stride(decision: Decision, view: Snapshot) -> Decision:
     """A vertical walk repeats until a visible robot's row: until then every robot stays above or below
     the walker (the extreme-row tests, SD's sides of R_I), and the columns (L_I, L_V, R_I) do not change.
     A robot on the walker's own row changes side at once."""
+    assert decision.move is not None  # a walk's stride: the decision moves
     dy = view.columns.dy
     my = decision.move.delta[1]
     ahead = np.abs(dy[dy * my >= 0])

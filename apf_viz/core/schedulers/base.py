@@ -16,7 +16,7 @@ eligible, and the choices are exactly those of a scheduler that never skips.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
@@ -40,13 +40,15 @@ class Scheduler(Protocol):
 
 
 class SchedulerKind(Protocol):
-    """A scheduler's class as the registry reads it (``schedulers/__init__.py``)."""
+    """A scheduler's class as the registry reads it (``schedulers/__init__.py``): its class attributes,
+    and calling it makes a scheduler."""
 
-    name: ClassVar[str]
-    label: ClassVar[str]  # in the UI's dropdown
-    summary: ClassVar[str]  # one line for ``--help`` and the docs
-    synchronous: ClassVar[bool]  # a round numbers its events: Looks, Computes, Moves of a group at once
-    automatic: ClassVar[bool]  # chooses by itself (Manual waits for the caller's picks)
+    name: str
+    label: str  # in the UI's dropdown
+    summary: str  # what it does, in a few words (--scheduler's help)
+    synchronous: bool  # a round numbers its events: Looks, Computes, Moves of a group at once
+    automatic: bool  # chooses by itself (Manual waits for the caller's picks)
+    forced_when_alone: bool  # see Scheduler
 
     def __call__(self) -> Scheduler: ...
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING
 
 from apf_viz.core.history import StepRecord
 from apf_viz.core.schedulers.base import Scheduler, StepRandom
@@ -18,12 +18,13 @@ class ManualScheduler:
     With nothing queued it falls back to ``fallback`` (None: refuse)."""
 
     fallback: Scheduler | None = None
-    name: ClassVar[str] = "manual"
-    label: ClassVar[str] = "Manual"
-    summary: ClassVar[str] = "you pick the robot whose next phase runs"
-    synchronous: ClassVar[bool] = False
-    automatic: ClassVar[bool] = False
-    forced_when_alone: ClassVar[bool] = False  # the caller picks
+    # Class attributes, not fields (no annotation): the registry reads them off the class.
+    name = "manual"
+    label = "Manual"
+    summary = "you pick the robot whose next phase runs"
+    synchronous = False
+    automatic = False
+    forced_when_alone = False  # the caller picks
 
     def __post_init__(self) -> None:
         self._queue: list[int] = []

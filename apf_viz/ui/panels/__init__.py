@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Hashable
+from typing import Protocol
 
 from apf_viz.ui.panels.adversary import AdversaryFolder
 from apf_viz.ui.panels.algorithm import AlgorithmFolder
@@ -50,6 +51,12 @@ FOLDERS = (
 )
 
 
+class Folder(Protocol):
+    """A part of the panel: it shows what the browser's view says."""
+
+    def refresh(self, view: SessionView) -> None: ...
+
+
 # While playing, the Paper's pseudocode (re-highlighted as the actor changes), the History (timeline, log,
 # stats) and the Moves chart are re-laid out and repainted by the page for each change, about a tenth of
 # a software-rendered page's frame each (docs/PERFORMANCE.md): at most four times a second they follow.
@@ -81,7 +88,7 @@ class Panels:
         if cell_at is not None:
             self.ctx.cell_at = cell_at
         self.presentation = Presentation(owner.gui, self.ctx)
-        self.folders = [folder(owner.gui, self.ctx) for folder in FOLDERS]
+        self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
         self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
 

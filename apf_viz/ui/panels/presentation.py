@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import zlib
 
+import viser
+
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.ui.view_model import SessionView
@@ -40,8 +42,8 @@ FIT = (
 class Presentation:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.gui, self.ctx = gui, ctx
-        self.panel = None
-        self.html = None
+        self.panel: viser.PanelHandle | None = None
+        self.html: viser.GuiHtmlHandle | None = None
         self._placed: tuple[int, int] | None = None  # the caption's (width, height) last sent
         command = gui.add_command(
             "Presentation mode", description="collapse the panel; a large caption on the canvas", hotkey="P"
@@ -76,13 +78,14 @@ class Presentation:
             return
         if on:
             self.gui.main_panel.minimize()
-            self.panel = self.gui.add_panel()
-            with self.panel.add_tab("Caption"):
+            self.panel = panel = self.gui.add_panel()
+            with panel.add_tab("Caption"):
                 self.html = self.gui.add_html("")
             self._placed = None
             self.fit(client)
         else:
-            self.panel.remove()
+            if self.panel is not None:
+                self.panel.remove()
             self.panel = self.html = None
             self.gui.main_panel.expand()
         if client is not None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 from itertools import repeat
+from typing import Any
 
 import numpy as np
 
@@ -172,7 +173,7 @@ def _walks(run: RunSource) -> bool:
     return run.following and run.trace_options.get("verdict") in story.ENDLESS
 
 
-def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool = False) -> dict[str, str]:
+def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool = False) -> dict[str, Any]:
     """The panels' sentences about the run, from the facts of its view."""
     why = view.fatal[0] or view.waits
     out = {
@@ -220,7 +221,7 @@ def for_browser(
     hidden = hidden_from(e, sel, pts) if e.k <= SIGHT_MARKS_UP_TO else {}
     why = why_view(e, sel, pts)
     decided = why.explanation.decision.rule_id if why.explanation is not None else ""
-    paper = (
+    paper: dict[str, Any] = (
         {
             "paper_decision": (sel, decided),
             "paper_text": paper_html(pseudocode_of(e.algorithm), (sel, decided), view.algorithm),
@@ -250,8 +251,9 @@ def robot_views(e: Engine, pts: list[Point]) -> list[RobotView]:
     phases = st.phase.tolist()
     pending: list[Point | None] = [None] * e.k
     for r in np.flatnonzero(st.phase == _COMPUTED).tolist():
-        if st.pending[r].move is not None:
-            dx, dy = move_to_global(st.pending[r].move, e.y_up[r]).delta
+        decision = st.pending[r]
+        if decision is not None and decision.move is not None:
+            dx, dy = move_to_global(decision.move, e.y_up[r]).delta
             pending[r] = (pts[r][0] + dx, pts[r][1] + dy)
     # tuple.__new__ mapped in C: a thousand robots a frame, and a NamedTuple's __new__ is Python.
     return list(

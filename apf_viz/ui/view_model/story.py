@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 from apf_viz.core.engine import Engine, Phase
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import SYNCHRONOUS
 from apf_viz.ui.view_model.legend import symbol_html
 from apf_viz.ui.view_model.staleness import SeenRobot, changes
@@ -64,12 +64,13 @@ def last_events(e: Engine, n: int = 8) -> tuple[str, ...]:
         for ev in reversed(step.events):
             stays, was = False, None
             r = ev.robot
-            if ev.phase == "move" and r not in latest_seen and st.decided[r] is not None:
+            decided = st.decided[r]
+            if ev.phase == "move" and r not in latest_seen and decided is not None:
                 # Its latest event: the decision it moved on is the one on its latest decided snapshot.
-                stays = e.decide(st.decided[r]).move is None
+                stays = e.decide(decided).move is None
             if ev.phase == "compute":
-                if r not in computed and st.decided[r] is not None:
-                    was = st.decided[r].light
+                if r not in computed and decided is not None:
+                    was = decided.light
                 computed.add(r)
             latest_seen.add(r)
             out.append(describe_event(ev, stays, was, bool(e.y_up[r])))
@@ -91,16 +92,16 @@ def trails(e: Engine, moves: int, now: Sequence[Point]) -> tuple[tuple[Point, ..
     until its next one, so the distinct landings, newest first, are the path reversed."""
     if moves <= 0:
         return ()
-    paths: list[list[Point]] = [[tuple(p)] for p in now]  # type: ignore[misc]
+    paths: list[list[Point]] = [[as_point(p)] for p in now]
     open_ = set(range(e.k))
     steps = e.history.steps
     first = max(0, e.step_index - TRAIL_STEPS)
     for i in range(e.step_index - 1, first - 1, -1):
         for ev in reversed(steps[i].events):
-            if ev.phase == "move" and not ev.collision and ev.robot in open_:
+            if ev.phase == "move" and not ev.collision and ev.robot in open_ and ev.to is not None:
                 path = paths[ev.robot]
-                if tuple(ev.to) != path[-1]:
-                    path.append(tuple(ev.to))  # type: ignore[arg-type]
+                if ev.to != path[-1]:
+                    path.append(ev.to)
                     if len(path) > moves:
                         open_.discard(ev.robot)
         if not open_:
@@ -137,10 +138,13 @@ def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tupl
     if e.step_index == 0:
         return None
     st = e.state
-    movers = [ev for ev in e.history.steps[e.step_index - 1].events if ev.collision]
+    movers = [ev for ev in e.history.steps[e.step_index - 1].events if ev.collision and ev.to is not None]
     where = {p: i for i, p in enumerate(pts)}
-    words, cells, robots = [], [], []
+    words: list[str] = []
+    cells: list[Point] = []
+    robots: list[int] = []
     for ev in movers:
+        assert ev.to is not None  # a move's landing
         other = where.get(ev.to)
         onto = f"onto robot {other}" if other is not None and other != ev.robot else "into another mover"
         words.append(
