@@ -12,7 +12,7 @@ The visualiser knows no particular algorithm. It draws what the algorithm descri
 
 All three are optional: :func:`legend_of`, :func:`overlays_of` and :func:`explain` give every algorithm
 defaults (a palette, no marks, a bare decision). Marks are plain frozen data, so the core stays free of
-viser; ``ui/scene.py`` draws them.
+viser; ``ui/scene/`` draws them.
 """
 
 from __future__ import annotations

@@ -1,0 +1,116 @@
+"""Where text goes on the canvas: a label keeps its size on screen, so it is laid out in cells for
+the framed zoom, clear of robots, their numbers and other labels."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from apf_viz.ui.scene.style import (
+    STALE_MARK,
+    Bounds,
+)
+
+
+def number_labels(
+    pts: list[list[float]], numbers: bool, stale: tuple[int, ...]
+) -> list[tuple[str, tuple[float, float, float]]]:
+    """Each robot's number at its upper right, "stale" joined to it for a robot holding a stale snapshot
+    (one label per robot: it cannot be read as a neighbour's, nor pile onto another); without numbers,
+    "stale" alone in the same place."""
+    holding = set(stale)
+    return [
+        (
+            f"{i} {STALE_MARK}" if numbers and i in holding else str(i) if numbers else STALE_MARK,
+            (x + 0.25, y + 0.3, 0.7),
+        )
+        for i, (x, y) in enumerate(pts)
+        if numbers or i in holding
+    ]
+
+
+LABEL_TEXT_PX = 15.0  # a label's height on screen, padding included (viser's labels keep a screen size)
+TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for (1400×900 and 1024×768 windows)
+TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)
+
+Spot = tuple[float, float, float]  # (x, y, x where the text ends), in scene units
+
+
+def text_cells(visible_height: float) -> float:
+    """A label's height in grid cells when the canvas shows ``visible_height`` cells: a label keeps its
+    size on screen, so zoomed out over a large run it is several cells tall."""
+    return max(TEXT_CELLS_MIN, LABEL_TEXT_PX * visible_height / TYPICAL_CANVAS_PX)
+
+
+def label_box(text: str, spot: Spot, height: float) -> Bounds:
+    """The rectangle (x0, y0, x1, y1) a label's text covers, drawn from ``spot`` (its lower left)."""
+    x, y, x_end = spot
+    return (x, y - 0.25, max(x_end, x + 0.55 * height * len(text)), y - 0.25 + max(0.5, height))
+
+
+def _overlaps(a: Bounds, b: Bounds) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def free_label_spot(
+    spots: list[Spot],
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[Bounds] | None = None,
+) -> tuple[float, float, float]:
+    """The first of ``spots`` where the text covers no robot, no robot's number (upper right of its
+    disc) and no label already placed (``taken``: their :func:`label_box`); else the first that covers
+    no label (a label over a robot still reads, two labels over each other do not); else the first."""
+    taken = taken or []
+    clear_of_labels = []
+    for spot in spots:
+        box = label_box(text, spot, height)
+        if any(_overlaps(box, t) for t in taken):
+            continue
+        clear_of_labels.append(spot)
+        covered = (
+            (robots[:, 1] - 0.4 < box[3])
+            & (robots[:, 1] + 0.7 > box[1])
+            & (robots[:, 0] - 0.5 < box[2])
+            & (robots[:, 0] + 0.7 > box[0])
+        )
+        if not covered.any():
+            return (spot[0], spot[1], 0.1)
+    x, y, _ = (clear_of_labels or spots)[0]
+    return (x, y, 0.1)
+
+
+def cells_label_at(
+    cells: np.ndarray, robots: np.ndarray, text: str = "", height: float = TEXT_CELLS_MIN
+) -> tuple[float, float, float]:
+    """Where a set of cells' label goes: just above their top row; when a robot stands where the text
+    would be (a pattern drawn among the robots, as the Unsolvable box demo's is), just below their bottom
+    row, else to the right of their top row. So the label does not cover a robot."""
+    left, right = float(cells[:, 0].min()) - 0.4, float(cells[:, 0].max())
+    top, bottom = float(cells[:, 1].max()), float(cells[:, 1].min())
+    below = bottom - 0.55 - height  # its text ends just under the bottom row, however tall it is
+    return free_label_spot(
+        [(left, top + 0.6, right + 0.5), (left, below, right + 0.5), (right + 0.7, top, right + 3.7)],
+        robots,
+        text,
+        height,
+    )
+
+
+def frame_label_at(
+    origin: tuple[float, float],
+    y_sign: int,
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[Bounds] | None = None,
+) -> tuple[float, float, float]:
+    """Where a frame's label goes: under its origin (on the side away from its +y arm), else beyond the
+    end of its x arm, else past the tip of its y arm; not over a robot or its number where one of these
+    is free (the leader's neighbours crowd its row), never over another label (``taken``) where one is
+    free of labels, and under the origin when none is."""
+    ox, oy = origin
+    away = oy + 0.6 if y_sign < 0 else oy - 0.25 - height
+    tip = oy + 2.6 if y_sign > 0 else oy - 2.25 - height
+    under, beyond_x = (ox, away, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
+    return free_label_spot([under, beyond_x, (ox - 0.4, tip, ox + 2.6)], robots, text, height, taken)

@@ -1,0 +1,76 @@
+"""A frame of the scene: each layer drawn in its order."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from apf_viz.core.portrayal import Line
+from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
+from apf_viz.ui.scene.framing import Framing
+from apf_viz.ui.scene.grid import GridLayer
+from apf_viz.ui.scene.labels import (
+    number_labels,
+)
+from apf_viz.ui.scene.marks import MarksLayer
+from apf_viz.ui.scene.robots import RobotsLayer
+from apf_viz.ui.scene.selection import SelectionLayer
+from apf_viz.ui.scene.style import (
+    DENSE,
+    LAYER,
+    xyz,
+)
+from apf_viz.ui.view_model import SessionView
+
+
+class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing):
+    """Draws session views into one scene: the server's (every browser) or one browser's.
+
+    ``layer``: ``run`` draws what every browser shares (robots, rings, targets, the algorithm's marks);
+    ``selection`` what belongs to one browser's selection (its ring, rays, ghosts, Why's regions), in
+    that browser's own scene, placed by the ``base`` renderer's origin; ``all`` both (one browser)."""
+
+    # ------------------------------------------------------------------ drawing
+    def render(self, view: SessionView, title: str | None = None) -> None:
+        """Draw one frame; the caller wraps it in ``server.atomic()``. ``title``: a label above the run
+        (Compare names each side)."""
+        if self.layer == "selection":
+            assert self.base is not None
+            self.origin, self.bounds = self.base.origin, self.base.bounds
+            self._selection(view)
+            return
+        editing_robots = view.mode == "edit-robots"
+        grid_pts = np.array([r.position for r in view.robots], dtype=np.int64).reshape(-1, 2)
+        self._place_origin(grid_pts, view)
+        pts = self._local(grid_pts)
+        self._update_bounds(pts, view)
+        if title:  # Compare's titles stand above each run: keep them in view too
+            x0, y0, x1, y1 = self.bounds
+            self.bounds = (x0, y0, x1, y1 + 3.0)
+        self._grid()
+        dense = len(pts) > DENSE
+        self._robots(view, pts)
+        self._rings(view, pts)
+        self._labels("/numbers", number_labels(pts.tolist(), view.numbers, view.stale_holders))
+        split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
+        self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
+        here = [("diverges here", (float(x) + 0.45, float(y) - 0.2, 0.7)) for x, y in split.tolist()]
+        self._labels("/diverged_label", here)
+        crash = self._local(view.collision[1]) if view.collision else pts[:0]
+        self._points("/collision", xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"])
+        self._targets(view)
+        self._trails(view)
+        # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
+        # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
+        pending = self._pending(view)
+        self._segments("/pending", pending[:0] if dense else pending, MARK_COLORS["pending"], 3.0)
+        destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
+        self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
+        axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
+        self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
+        self._marks(view, pts)
+        self._anchor(view)
+        x0, _, _, y1 = self.bounds
+        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
+        self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
+        if self.layer == "all":
+            self._selection(view)

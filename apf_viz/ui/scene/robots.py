@@ -1,0 +1,100 @@
+"""The robots: discs in their light's colour, y-axis diamonds, rings, trails and an edit tool's anchor."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS
+from apf_viz.ui.scene.camera import (
+    scene_detail,
+)
+from apf_viz.ui.scene.canvas import Canvas
+from apf_viz.ui.scene.style import (
+    LAYER,
+    NOSE_CELLS,
+    RIM_CROWD,
+    SIZE,
+    Z,
+    light_colors,
+    xyz,
+)
+from apf_viz.ui.view_model import SessionView
+
+
+class RobotsLayer(Canvas):
+    """Draws the run's robots."""
+
+    def _robots(self, view: SessionView, pts: np.ndarray) -> None:
+        """Each robot a flat disc in its light's colour on a dark outline (so a pale light shows on the
+        white grid), one point cloud per light: a light change moves a point between clouds instead of
+        recolouring one (viser rebuilds a point cloud's material, and the browser its shader, when its
+        colours change); a crowd playing, framed whole, without the outlines (``RIM_CROWD``). The
+        y-axis is a small dark diamond on the robot's +y side."""
+        robots = view.robots[: len(pts)]
+        lights = np.array([r.light for r in robots], dtype=object)
+        palette = light_colors(view)
+        noses, rims = scene_detail(self.view_cells if self.view_cells is not None else self._visible_height())
+        rimmed = pts if rims or not view.playing or len(pts) < RIM_CROWD else pts[:0]
+        self._points(
+            "/robots/outline",
+            xyz(rimmed, LAYER["outline"]),
+            MARK_COLORS["outline"],
+            SIZE["outline"],
+            "circle",
+        )
+        for light in set(self._sprite_lights) | set(lights.tolist()):
+            self._sprite_lights.add(light)
+            color = palette.get(light, (0, 0, 0))
+            self._points(f"/robots/{light}", xyz(pts[lights == light], Z), color, SIZE["robot"], "circle")
+        shown = pts if noses else pts[:0]
+        sign = np.array([1.0 if r.y_up else -1.0 for r in robots[: len(shown)]], dtype=np.float32)
+        nose = xyz(shown, LAYER["nose"])
+        nose[:, 1] += 0.2 * sign
+        self._points("/robots/y_axes", nose, (40, 40, 40), NOSE_CELLS, "diamond")
+
+    def _rings(self, view: SessionView, pts: np.ndarray) -> None:
+        """Rings under the robots, widest at the bottom: will never act (a grey square, a deadlock),
+        acted last (brown), and the phase (yellow: looked, orange: computed; none when idle). The
+        selected robot's (black) is its browser's own (:meth:`_selection`)."""
+        phases = np.array([r.phase if view.phase_rings else "idle" for r in view.robots])
+        for phase in ("looked", "computed"):
+            at = pts[phases == phase] if len(phases) else pts[:0]
+            self._points(
+                f"/phase/{phase}", xyz(at, LAYER["phase"]), PHASE_COLORS[phase], SIZE["phase"], "circle"
+            )
+        robot = view.last_actor
+        at = pts[robot : robot + 1] if robot is not None and robot < len(pts) else pts[:0]
+        self._points("/ring/last", xyz(at, LAYER["last"]), MARK_COLORS["last"], SIZE["last"], "circle")
+        never = pts[[r for r in view.never_act if r < len(pts)]] if view.never_act else pts[:0]
+        self._points(
+            "/ring/never",
+            xyz(never, LAYER["never"]),
+            MARK_COLORS["never"],
+            SIZE["never"],
+            MARK_SHAPES["never"],
+        )
+
+    def _trails(self, view: SessionView) -> None:
+        """Each robot's recent path as segments in its light's colour, under the robots, one line set
+        per light (as robots are one point cloud per light)."""
+        palette = light_colors(view)
+        by_light: dict[str, list[np.ndarray]] = {}
+        for robot, path in zip(view.robots, view.trails, strict=False):
+            if len(path) > 1:
+                at = xyz(self._local(path), 0.04)
+                by_light.setdefault(robot.light, []).append(np.stack([at[:-1], at[1:]], axis=1))
+        for light in set(self._trail_lights) | set(by_light):
+            self._trail_lights.add(light)
+            parts = by_light.get(light, [])
+            segs = np.concatenate(parts) if parts else np.zeros((0, 2, 3), dtype=np.float32)
+            self._segments(f"/trails/{light}", segs, palette.get(light, (0, 0, 0)), 4.0)
+
+    def _anchor(self, view: SessionView) -> None:
+        """Edit: the first click of a two-click tool, marked until the second (a diamond and a word), so
+        the drawing is seen to wait for it."""
+        at = self._local([view.anchor]) if view.anchor is not None else np.zeros((0, 2), np.float32)
+        self._points("/anchor", xyz(at, LAYER["anchor"]), MARK_COLORS["anchor"], 1.5, MARK_SHAPES["anchor"])
+        said = [
+            ("first click: now the second", (float(x) + 0.5, float(y) + 0.35, 0.1)) for x, y in at.tolist()
+        ]
+        self._labels("/anchor_label", said)

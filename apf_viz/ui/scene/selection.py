@@ -1,0 +1,176 @@
+"""One browser's selection: its ring, rays to what it saw, ghosts, the robots it cannot see and the
+regions Why tested."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from apf_viz.core.portrayal import Band, HalfPlane, Line
+from apf_viz.ui.palette import MARK_COLORS, region_color
+from apf_viz.ui.scene.canvas import Canvas
+from apf_viz.ui.scene.style import (
+    GHOST_BADGE_OFFSET,
+    LAYER,
+    REGION_OPACITY,
+    SIZE,
+    Z,
+    light_colors,
+    xyz,
+)
+from apf_viz.ui.view_model import SessionView
+
+
+class SelectionLayer(Canvas):
+    """Draws a browser's selection, in that browser's own scene."""
+
+    def _selection(self, view: SessionView) -> None:
+        """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested."""
+        sel = view.selected
+        at = self._local([view.robots[sel].position] if sel is not None and sel < len(view.robots) else [])
+        self._points(
+            "/ring/selected",
+            xyz(at, LAYER["selected"]),
+            MARK_COLORS["selected"],
+            SIZE["selected"],
+            "circle",
+        )
+        self._ghosts(view)
+        self._hidden(view)
+        self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
+        self._why_regions(view)
+
+    def _ghosts(self, view: SessionView) -> None:
+        """Where the selected robot saw robots that have moved or changed light since: a disc in the light
+        it saw, on a grey outline, numbered with the robot's number and a prime ("3′": robot 3, then). A
+        robot that only changed light is still where it was seen: its ghost is a small badge at the
+        robot's upper left, so that the robot does not cover it."""
+        places = self._local([g.at for g in view.ghosts])
+        badge = np.array([g.light_only for g in view.ghosts], dtype=bool)
+        places[badge] += np.array(GHOST_BADGE_OFFSET, dtype=np.float32)
+        lights = np.array([g.light for g in view.ghosts], dtype=object)
+        palette = light_colors(view)
+        for kind, which, size in (("full", ~badge, 1.0), ("badge", badge, 0.6)):
+            self._points(
+                f"/ghosts/{kind}/outline",
+                xyz(places[which], LAYER["ghost_outline"] + (0.06 if kind == "badge" else 0)),
+                MARK_COLORS["ghost"],
+                0.62 * size,
+                "circle",
+            )
+            for light in set(self._ghost_lights) | set(lights.tolist()):
+                self._ghost_lights.add(light)
+                pick = which & (lights == light) if len(lights) else which
+                self._points(
+                    f"/ghosts/{kind}/{light}",
+                    xyz(places[pick], LAYER["ghost"] + (0.06 if kind == "badge" else 0)),
+                    palette.get(light, (0, 0, 0)),
+                    0.44 * size,
+                    "circle",
+                )
+        numbers = [
+            (f"{g.robot}′", (float(x) + 0.2, float(y) + 0.22, 0.7))
+            for g, (x, y) in zip(view.ghosts, places.tolist(), strict=True)
+        ]
+        self._labels("/ghosts/numbers", numbers)
+
+    def _hidden(self, view: SessionView) -> None:
+        """The robots the selected robot cannot see, greyed (a pale disc over their light), and on each
+        robot that hides one a small dark square with a thin grey line on to what it hides."""
+        where = {i: r.position for i, r in enumerate(view.robots)}
+        hidden = self._local([where[j] for j in view.hidden if j in where])
+        self._points("/hidden", xyz(hidden, LAYER["fog"]), MARK_COLORS["hidden"], 0.42, "circle")
+        pairs = [(where[h], where[j]) for h, j in view.hiders if h in where and j in where]
+        hiders = self._local(sorted({a for a, _ in pairs}))
+        self._points("/hiders", xyz(hiders, LAYER["fog"]), MARK_COLORS["hider"], 0.2, "square")
+        segs = np.zeros((len(pairs), 2, 3), dtype=np.float32)
+        if pairs:
+            segs[:, 0, :] = xyz(self._local([a for a, _ in pairs]), 0.03)
+            segs[:, 1, :] = xyz(self._local([b for _, b in pairs]), 0.03)
+        self._segments("/hides", segs, MARK_COLORS["hidden_line"], 1.5)
+
+    def _rays(self, view: SessionView) -> np.ndarray:
+        if not view.rays:
+            return np.zeros((0, 2, 3))
+        a = self._local(np.array(view.rays, dtype=np.int64).reshape(-1, 2)).reshape(-1, 2, 2)
+        return np.concatenate([a, np.full((len(a), 2, 1), Z - 0.01, dtype=np.float32)], axis=2)
+
+    # ------------------------------------------------------------------ why: the regions a rule tested
+    def _why_regions(self, view: SessionView) -> None:
+        """The selected robot's regions, translucent so robots stay visible: half planes and bands as
+        flat quads, lines as segments, each in its own colour and labelled with the number the Why panel
+        gives it. Re-made only when they change (a selection or a decision), so a playing run pays
+        nothing for them."""
+        regions = view.why.regions if view.why is not None else ()
+        if self._last.get("/why") == (regions, None, None):
+            return
+        self._last["/why"] = (regions, None, None)
+        for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line"))]:
+            self._handles.pop(name).remove()  # type: ignore[attr-defined]
+        labels = []
+        for i, mark in enumerate(regions):
+            at = self._why_line(i, mark) if isinstance(mark, Line) else None
+            if isinstance(mark, HalfPlane | Band):
+                at = self._why_area(i, mark)
+            if at is not None:
+                labels.append((f"{i + 1} · {mark.label}", at))
+        self._labels("/why/labels", labels)
+
+    def _why_line(self, i: int, mark: Line) -> tuple[float, float, float]:
+        """A tested line as a segment; its label's place, inside the framed run (the line runs on)."""
+        _, _, x1, y1 = self.bounds
+        seg = self._line(mark)
+        self._handles[f"/why/line{i}"] = self.scene.add_line_segments(
+            f"{self.prefix}/why/line{i}",
+            seg[:1].astype(np.float32),
+            region_color(i),
+            thickness=3.0,
+            thickness_units="screen",
+        )
+        if mark.axis == "y":
+            return (x1 - 3.0, float(seg[0, 1, 1]) + 0.15, 0.1)
+        return (float(seg[0, 1, 0]) + 0.2, y1, 0.1)
+
+    def _why_area(self, i: int, mark: HalfPlane | Band) -> tuple[float, float, float] | None:
+        """A tested half plane or band as a translucent quad clipped a little beyond the run; its
+        label's place inside the run's bounds, which the camera frames (None: nothing of it shows)."""
+        x0, y0, x1, y1 = self.bounds
+        box = (x0 - 3, y0 - 3, x1 + 3, y1 + 3)
+        lo, hi = self._extent(mark)
+        rect = (lo, box[1], hi, box[3]) if mark.axis == "x" else (box[0], lo, box[2], hi)
+        rect = (max(rect[0], box[0]), max(rect[1], box[1]), min(rect[2], box[2]), min(rect[3], box[3]))
+        if rect[0] >= rect[2] or rect[1] >= rect[3]:
+            return None
+        corners = [(rect[0], rect[1]), (rect[2], rect[1]), (rect[2], rect[3]), (rect[0], rect[3])]
+        self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
+            f"{self.prefix}/why/area{i}",
+            np.array([(x, y, 0.02) for x, y in corners], dtype=np.float32),
+            np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
+            color=region_color(i),
+            opacity=REGION_OPACITY,
+            side="double",
+            cast_shadow=False,
+            receive_shadow=False,
+        )
+        inner = (max(rect[0], x0), max(rect[1], y0), min(rect[2], x1), min(rect[3], y1))
+        inside = inner[0] < inner[2] and inner[1] < inner[3]
+        return self._region_label_at(mark, inner if inside else rect)
+
+    def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:
+        """The region's span on its axis, in scene units (a half plane reaches far; the caller clips)."""
+        shift = self.origin[0] if mark.axis == "x" else self.origin[1]
+        far = 1e6
+        if isinstance(mark, Band):
+            return mark.lo - shift - 0.5, mark.hi - shift + 0.5
+        edge = mark.at - shift + (0.5 if mark.closed else -0.5) * mark.side * -1
+        # closed: the boundary row/column is inside (the area starts half a cell beyond it); open: not
+        return (edge, far) if mark.side > 0 else (-far, edge)
+
+    @staticmethod
+    def _region_label_at(mark: HalfPlane | Band, rect: tuple[float, ...]) -> tuple[float, float, float]:
+        """Near the region's boundary on the robot's side, where a reader looks."""
+        x0, y0, x1, y1 = rect
+        if mark.axis == "x":
+            x = x1 - 1.6 if isinstance(mark, HalfPlane) and mark.side < 0 else x0 + 0.2
+            return (x, y1 - 0.3, 0.1)
+        y = y1 - 0.3 if isinstance(mark, HalfPlane) and mark.side < 0 else y0 + 0.3
+        return (x0 + 0.2, y, 0.1)
