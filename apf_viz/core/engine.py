@@ -24,20 +24,16 @@ import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.engine_state import NEXT_EVENT, EngineState, Outcome, Phase
+from apf_viz.core.events import Events
 from apf_viz.core.fast_forward import (
-    WalkMismatch,
     check_walks_requested,
-    hidden_only_on_line,
-    shifted,
-    steps_in_same_sight,
-    walk_mismatch,
 )
-from apf_viz.core.frames import move_to_global
-from apf_viz.core.grid import COORD_LIMIT, Direction, Point, coordinate_problem
-from apf_viz.core.history import Event, History, StepRecord, Walk
+from apf_viz.core.grid import Point, coordinate_problem
+from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
+from apf_viz.core.walking import Walking
 from apf_viz.core.watches import Watches
 
 LightSemantics = Literal["compute", "lc-atomic"]
@@ -50,10 +46,6 @@ _DECISION_CACHE_ROBOTS = 400_000
 _MEMO_MAX_ROBOTS = 24
 
 
-_MAX_WALK_WAIT = 63  # cycles between two tries of a walk that did not go (see Engine.walk)
-# Cycles of a crowd's walker looked ahead for watches at once (Engine._forced_cycles): its decision
-# usually changes sooner, and a look further ahead costs no more.
-_FORCED_HORIZON = 256
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
 _IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
@@ -65,7 +57,7 @@ class EngineError(ValueError):
     """A request the engine cannot carry out (bad robot index, mixed phases in one step, run over)."""
 
 
-class Engine:
+class Engine(Events, Walking):
     """One run of an algorithm from a start configuration towards a pattern.
 
     Args:
@@ -133,13 +125,7 @@ class Engine:
         self.use_watches = use_watches
         self.fast_forward = fast_forward and skip_noops
         self.check_walks = check_walks_requested() if check_walks is None else check_walks
-        self.walks = 0  # macro-steps applied by walk(), for benchmarks and tests
-        self.broken_strides = 0  # strides whose last cycle decided otherwise (not walked), for tests
-        self.forced_walks = 0  # runs of forced cycles applied by walk() (each cycle its own steps)
-        # Per robot, cycles to let pass before trying a walk again, and the last such wait: in a crowd its
-        # sight changes every few steps, and trying at every cycle would cost more than the walks save.
-        self._walk_wait = [0] * k
-        self._walk_backoff = [0] * k
+        self._start_walking(k)
         self._decisions: dict[Snapshot, Decision] = {}
         self._memo_robots = 0  # robots listed by the views in self._decisions
         self.decide_calls = 0  # algorithm invocations (cache misses), for benchmarks and tests
@@ -341,346 +327,12 @@ class Engine:
         self._update_outcome(phase == _COMPUTED or st.version != version)
         return events
 
-    def walk(self, max_steps: int | None = None) -> int:
-        """Apply the cycles of a lone robot at once: when it is the only robot whose next event can
-        change anything (so a scheduler that serves the eligible robots has no choice), every other robot
-        is watched, and its decision is a move that keeps its light. Where the decision promises a
-        ``stride`` and the robot's sight stays the same, the cycles are one macro-step; else (a crowd)
-        they are forced cycles, each Looked and decided anew (:meth:`_forced_cycles`). Either stops
-        short of anything the other robots' watches, the budgets or ``max_steps`` would change
-        (:mod:`apf_viz.core.fast_forward`). Returns the steps applied (0: none; the caller steps as
-        usual)."""
-        st = self.state
-        if not self.fast_forward or st.outcome is not None or self.history.length != st.steps:
-            return 0
-        eligible = self.eligible()
-        if np.count_nonzero(eligible) != 1 or self._watches.count != self.k - 1:
-            return 0
-        r = int(eligible.nonzero()[0][0])
-        if st.phase[r] != _IDLE:
-            return 0
-        if self._walk_wait[r]:
-            self._walk_wait[r] -= 1
-            return 0
-        snap, ids = self._observe(r)
-        decision = self._decide(r, snap)
-        if decision.move is None or decision.light != st.lights[r]:
-            return 0
-        per = 2 if self.light_semantics == "lc-atomic" else 3
-        gmove = move_to_global(decision.move, self.y_up[r])
-        delta = gmove.delta
-        here = self._views.points[r]
-        # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
-        # (grid.COORD_LIMIT); beyond them the run goes on step by step.
-        n = COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1])
-        if self.max_events is not None:
-            n = min(n, (self.max_events - st.events - 1) // 3)
-        if self.max_moves is not None:
-            n = min(n, self.max_moves - st.moves - 1)
-        if max_steps is not None:
-            n = min(n, max_steps // per)
-        if n < 2:
-            return 0  # a budget or the caller's limit: no reason to wait before the next try
-        same = 0  # cycles that repeat this very decision on the same robots in sight
-        if decision.stride >= 2 and hidden_only_on_line(st.positions, r, delta, snap.columns):
-            same = steps_in_same_sight(snap.columns, decision.move, min(n, decision.stride))
-            # The stride is the algorithm's promise; its last cycle is decided for real (one decision
-            # on the view the walker will hold there), and a promise that fails there is not walked:
-            # the cycles are then forced ones, each decided for real.
-            if same >= 2 and self.decide(shifted(snap, decision.move, same - 1)) != decision:
-                self.broken_strides += 1
-                if self.check_walks:
-                    raise WalkMismatch(
-                        f"fast-forward: robot {r}'s stride of {decision.stride} on {decision.rule_id!r} is "
-                        f"broken: its cycle {same} decides otherwise"
-                    )
-                same = 0
-        # Else, in a crowd, cycles the scheduler cannot interleave, each Looked and decided anew.
-        reach = same if same >= 2 else (min(n, _FORCED_HORIZON) if per == 3 else 0)
-        if reach >= 2:
-            reach = self._watches.quiet_steps(r, here, delta, reach)
-        if reach < 2:
-            self._walk_wait[r] = self._walk_backoff[r] = min(2 * self._walk_backoff[r] + 1, _MAX_WALK_WAIT)
-            return 0
-        self._walk_backoff[r] = 0
-        if same >= 2:
-            self._walk(r, here, gmove, snap, ids, decision, reach, per)
-            return reach * per
-        return self._forced_cycles(r, here, gmove, reach)
-
-    def _forced_cycles(self, r: int, here: Point, gmove: Direction, n: int) -> int:
-        """Apply up to n whole cycles of robot r, each Look, Compute and Move recorded as its own step
-        exactly as the scheduler's forced choices would be, while its decision keeps its light and its
-        move (``gmove``, global): :meth:`walk` checked that those n moves concern no watcher and leave
-        every budget, so r stays the only eligible robot and no outcome can fall inside. Other robots'
-        watches are told of the whole way once at the end. Returns the steps applied (0: none)."""
-        st = self.state
-        start = st.steps
-        dx, dy = gmove.delta
-        occupied = self._views.occupied
-        light = st.lights[r]
-        record = _new(StepRecord, ((r,), None))
-        at = here
-        cycles = 0
-        while cycles < n:
-            if cycles:
-                decision = self._decide(r, self._observe(r)[0])
-                if decision.light != light or move_to_global(decision.move, self.y_up[r]) != gmove:
-                    break
-            to = (at[0] + dx, at[1] + dy)
-            if to in occupied:
-                break  # a collision: stepped as usual
-            self._forced_step(record, self._look(r, None))
-            self._forced_step(record, self._compute(r, None))
-            self._forced_step(record, self._move_quietly(r, at, to, None))
-            at = to
-            cycles += 1
-        if not cycles:
-            return 0
-        if self.check_walks:
-            self._check_walk(r, here, gmove, cycles, None)
-        self.forced_walks += 1
-        self._dirty.update(self._watches.moved((here,), (at,), (r,), occupied))
-        self._dirty.add(r)
-        self._update_outcome()
-        self._checkpoint_after(start)
-        return 3 * cycles
-
-    def _check_walk(self, r: int, here: Point, gmove: Direction, n: int, decision: Decision | None) -> None:
-        """``check_walks``: the n cycles of robot r from ``here`` are those the step-by-step run makes
-        (:func:`~apf_viz.core.fast_forward.walk_mismatch`), or the run stops with the difference."""
-        positions = self.state.positions.copy()
-        positions[r] = here
-        problem = walk_mismatch(
-            positions, self.state.lights, self.y_up, r, gmove.delta, n, decision, self._decide_afresh
-        )
-        if problem:
-            raise WalkMismatch(f"fast-forward is not the step-by-step run: {problem}")
-
-    def _decide_afresh(self, view: Snapshot) -> Decision:
-        """The algorithm's decision, asked directly (no memo): the walk check's independent witness."""
-        return self.algorithm.decide(view, self.pattern)
-
-    def _forced_step(self, record: StepRecord, event: Event) -> None:
-        """The bookkeeping :meth:`apply` does around a step, for one of :meth:`_forced_cycles`' events
-        (the robot already acted): the others skipped, its last act, the counts, the history."""
-        st = self.state
-        st.skipped += self.k - 1
-        st.last_act[event.robot] = st.steps + 1
-        st.steps += 1
-        st.events += 1
-        self.history.record(st.steps - 1, record, [event])
-
     def _checkpoint_after(self, position: int) -> None:
         """A checkpoint of the state after the steps from ``position`` when they crossed a multiple of
         ``checkpoint_every``; taken once the outcome is settled, so that a seek there restores it."""
         st = self.state
         if position // self.checkpoint_every != st.steps // self.checkpoint_every:
             self.history.checkpoint(st.steps, st.copy())
-
-    def _move_quietly(self, r: int, here: Point, to: Point, round: int | None) -> Event:
-        """Robot r's pending move from ``here`` to ``to``, a free point, without telling the watches
-        (:meth:`_move_one` tells them of this move; :meth:`_forced_cycles` of the whole way, at its
-        end)."""
-        st = self.state
-        st.positions[r] = to
-        self._views.moved((r,), (here,))
-        st.moves += 1
-        st.version += 1
-        self._finish_cycle(r)
-        return _new(Event, (r, "move", None, None, None, None, to, round, False, None))
-
-    def _walk(
-        self,
-        r: int,
-        here: Point,
-        gmove: Direction,
-        snap: Snapshot,
-        ids: tuple[int, ...],
-        decision: Decision,
-        n: int,
-        per: int,
-    ) -> None:
-        """Apply n cycles of robot r, from ``here`` by ``gmove`` (global), on this decision (:meth:`walk`
-        checked that they repeat)."""
-        assert decision.move is not None  # a walk moves
-        st = self.state
-        if self.check_walks:
-            self._check_walk(r, here, gmove, n, decision)
-        dx, dy = gmove.delta
-        to = (here[0] + n * dx, here[1] + n * dy)
-        position = st.steps
-        st.positions[r] = to
-        self._views.moved((r,), (here,))
-        self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
-        self._dirty.add(r)
-        st.steps += n * per
-        st.events += 3 * n
-        st.moves += n
-        st.cycles += n
-        st.version += n
-        st.skipped += (self.k - 1) * n * per
-        last_look = st.steps - per + 1  # the step of the last cycle's Look (steps count from 1)
-        st.look_step[r] = st.decided_look[r] = last_look
-        st.look_version[r] = st.version - 1
-        st.decided[r] = shifted(snap, decision.move, n - 1)
-        st.decided_seen[r] = ids
-        st.last_act[r] = st.last_cycle_end[r] = st.steps
-        self.walks += 1
-        look = _new(Event, (r, "look", ids, None, None, None, None, None, False, None))
-        rule_id = decision.rule_id or None
-        compute = _new(
-            Event,
-            (r, "compute", None, decision.light, gmove, decision.rule or None, None, None, False, rule_id),
-        )
-        self.history.record_walk(position, Walk.of(r, n * per, per, look, compute, here, (dx, dy)))
-        self._update_outcome()
-        self._checkpoint_after(position)
-
-    def _look(self, r: int, round: int | None) -> Event:
-        st = self.state
-        snap, ids = self._observe(r)
-        self._views.prime_seen_bits(r, ids)
-        st.snapshot[r] = snap
-        st.seen[r] = ids
-        st.look_step[r] = st.steps + 1
-        st.look_version[r] = st.version
-        st.phase[r] = _LOOKED
-        return _new(Event, (r, "look", ids, None, None, None, None, round, False, None))
-
-    def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
-        """Robot r's snapshot and the sorted indices of the robots in it, read off the patched views."""
-        snap = self._snapshot(r)
-        return snap, self._views.view(r)[1]
-
-    def _snapshot(self, r: int) -> Snapshot:
-        """Robot r's snapshot (entries sorted by offset in r's own frame: a canonical, identity-free
-        order); the same object while its view and light are unchanged."""
-        robots = self._views.robots(r)
-        light = self.state.lights[r]
-        held = self._snaps[r]
-        if held is not None and held[0] is robots and held[1].light == light:
-            return held[1]
-        snap = Snapshot(light, robots) if isinstance(robots, tuple) else Snapshot(light, columns=robots)
-        self._snaps[r] = (robots, snap)
-        return snap
-
-    def _compute(self, r: int, round: int | None) -> Event:
-        st = self.state
-        snap = st.snapshot[r]
-        assert snap is not None
-        decision = self._decide(r, snap)
-        st.pending[r] = decision
-        st.decided[r] = snap
-        st.decided_seen[r] = st.seen[r]
-        st.decided_look[r] = st.look_step[r]
-        st.phase[r] = _COMPUTED
-        if decision.light != st.lights[r]:
-            st.lights[r] = decision.light
-            st.lights_used.add(decision.light)
-            st.version += 1
-            self._views.relit(r)
-            # Always told, watched or not: it keeps every robot's light bit for later reveals.
-            self._dirty.update(self._watches.relit(r, decision.light))
-        gmove = move_to_global(decision.move, self.y_up[r])
-        rule_id = decision.rule_id or None
-        return _new(
-            Event,
-            (r, "compute", None, decision.light, gmove, decision.rule or None, None, round, False, rule_id),
-        )
-
-    def _move(self, robots: tuple[int, ...], round: int | None) -> list[Event]:
-        """Simultaneous moves of several robots (FSYNC/SSYNC); one robot goes to :meth:`_move_one`."""
-        st = self.state
-        targets: dict[int, Point] = {}
-        for r in robots:
-            decision = st.pending[r]
-            assert decision is not None
-            gmove = move_to_global(decision.move, self.y_up[r])
-            x, y = st.positions[r].tolist()
-            if gmove is None:
-                targets[r] = (x, y)
-            else:
-                dx, dy = gmove.delta
-                targets[r] = (x + dx, y + dy)
-        collided = self._collisions(targets)
-        events = [
-            Event(robot=r, phase="move", to=targets[r], round=round, collision=r in collided) for r in robots
-        ]
-        if collided:
-            st.outcome = "collision"
-            return events
-        here = {r: tuple(st.positions[r].tolist()) for r in robots}
-        movers = [r for r in robots if targets[r] != here[r]]
-        for r in movers:
-            st.positions[r] = targets[r]
-        if movers:
-            self._views.moved(movers, [here[r] for r in movers])
-            self._dirty.update(
-                self._watches.moved(
-                    [here[r] for r in movers], [targets[r] for r in movers], movers, self._views.occupied
-                )
-            )
-            st.moves += len(movers)
-            st.version += 1
-        for r in robots:
-            self._finish_cycle(r)
-        return events
-
-    def _move_one(self, r: int, round: int | None) -> list[Event]:
-        """The ASYNC case of :meth:`_move`: one robot, so a collision is only a move onto a robot."""
-        st = self.state
-        pending = st.pending[r]
-        assert pending is not None  # computed: it holds its decision
-        move = pending.move
-        here = self._views.points[r]
-        if move is None:
-            self._finish_cycle(r)
-            return [_new(Event, (r, "move", None, None, None, None, here, round, False, None))]
-        dx, dy = move_to_global(move, self.y_up[r]).delta
-        to = (here[0] + dx, here[1] + dy)
-        if to in self._views.occupied:
-            st.outcome = "collision"
-            return [_new(Event, (r, "move", None, None, None, None, to, round, True, None))]
-        event = self._move_quietly(r, here, to, round)
-        self._dirty.update(self._watches.moved((here,), (to,), (r,), self._views.occupied))
-        return [event]
-
-    def _collisions(self, targets: dict[int, Point]) -> set[int]:
-        """Robots whose simultaneous moves collide: shared target, a swap, or onto a robot that stays."""
-        st = self.state
-        bad: set[int] = set()
-        by_target: dict[Point, int] = {}
-        for r, t in targets.items():
-            if t in by_target:
-                bad.update((r, by_target[t]))
-            by_target[t] = r
-        for r, t in targets.items():
-            here = (int(st.positions[r][0]), int(st.positions[r][1]))
-            if t == here:
-                continue
-            other = self._views.occupied.get(t)
-            if other is None:
-                continue
-            if other not in targets or targets[other] == t:
-                bad.update((r, other))  # onto a robot that is not leaving
-            elif targets[other] == here:
-                bad.update((r, other))  # swap across an edge
-        return bad
-
-    def _finish_cycle(self, r: int) -> None:
-        st = self.state
-        decision = st.pending[r]
-        assert decision is not None
-        # A cycle that changed nothing on a still-current view proves this robot quiescent for now.
-        if decision.move is None and st.look_version[r] == st.version:
-            self._probe[r] = (st.version, True)
-        st.phase[r] = _IDLE
-        st.pending[r] = None
-        st.snapshot[r] = None
-        st.seen[r] = None
-        st.cycles += 1
-        st.last_cycle_end[r] = st.steps + 1
 
     # ------------------------------------------------------------------ outcomes
     def settle_outcome(self) -> None:
