@@ -273,7 +273,7 @@ def test_a_frames_label_goes_under_its_origin_unless_a_robot_or_its_number_is_th
 
 
 def test_a_camera_reframed_for_a_growing_run_leaves_room_beyond_the_sides_it_grew():
-    from apf_viz.ui.app import _inside
+    from apf_viz.ui.browser_screen import inside as _inside
     from apf_viz.ui.scene import grown_box
 
     framed = (0.0, 0.0, 10.0, 5.0)
@@ -383,7 +383,7 @@ class _ViserLikeCamera:
 def test_a_framing_equal_to_a_late_report_is_still_sent():
     """Sent pose B; the page's late report says it is at A; framing A again must reach the page (it is
     on its way to B). Viser drops a value equal to the one it holds: the framing goes a hair off it."""
-    from apf_viz.ui.app import _same_pose
+    from apf_viz.ui.browser_screen import _same_pose
 
     renderer = SceneRenderer(viser.ViserServer(port=free_port(), verbose=False))
     try:

@@ -22,7 +22,8 @@ from PIL import Image, ImageSequence
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import shapes
 from apf_viz.core.formats import load_trace
-from apf_viz.ui.app import App, _inside, demo_session, free_port
+from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.browser_screen import inside as _inside
 from apf_viz.ui.session import Session
 
 playwright = pytest.importorskip("playwright.sync_api")

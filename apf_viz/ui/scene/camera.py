@@ -24,7 +24,8 @@ def _unskipped(held, wanted):
     a value equal to the one it holds, and what it holds may be the browser's late report while the page
     is still on its way to an earlier pose (sent B, reported A, sent A: dropped, and the page came to
     rest at B). The hair is 1e-4 of the last coordinate (the camera's height; a scalar's size), past
-    viser's 1e-5 and far inside what counts as the same pose (``app._same_pose``, 1e-3 of the height)."""
+    viser's 1e-5 and far inside what counts as the same pose (``browser_screen._same_pose``, 1e-3 of
+    the height)."""
     held_, wanted_ = np.asarray(held, dtype=float), np.array(wanted, dtype=float)
     if not np.allclose(held_, wanted_):
         return wanted

@@ -1,0 +1,113 @@
+"""One connected browser: its panel, its selection layer, and its camera (framed on the run, or left
+where the hand moved it)."""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from apf_viz.ui.panels import Panels, SharedVerifier
+from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, camera_cells, scene_detail
+from apf_viz.ui.session import Session
+
+
+class Host(Protocol):
+    """What a browser's screen is given by the app that serves it (ui/app.py)."""
+
+    session: Session
+    renderer: SceneRenderer
+    verifier: SharedVerifier
+
+    def request_render(self) -> None: ...
+    def frame_client(self, client) -> None: ...
+    def frame_all(self) -> None: ...
+    def cell_at(self, client, screen: tuple[float, float]) -> tuple[int, int] | None: ...
+
+
+class BrowserScreen:
+    """One connected browser: its panel, its selection layer in its own scene, and its state."""
+
+    def __init__(self, app: Host, client) -> None:
+        self.client = client
+        self.state = app.session.join(client.client_id)
+        self.selection = SceneRenderer(client, layer="selection", base=app.renderer)
+        self.panels = Panels(
+            client,
+            app.session,
+            app.request_render,
+            app.frame_client,
+            browser=client.client_id,
+            verifier=app.verifier,
+            frame_all=app.frame_all,
+            cell_at=app.cell_at,
+        )
+        self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
+        self._renderer = app.renderer
+        self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
+        self._reported: np.ndarray | None = None  # the camera position it last reported
+        self.cells: float | None = None  # how many cells tall its camera shows (scene.camera_cells)
+        self._request_render = app.request_render
+        client.camera.on_update(self._camera_moved)
+
+    def _camera_moved(self, camera) -> None:
+        """A camera that leaves the pose it was last framed to was moved by hand: it is left there while
+        the run grows, until a new run starts or Frame run is pressed. Reports are matched against the
+        poses sent: the browser reports each, possibly late (a loaded machine, a page still loading), and
+        until it has reported the latest, what it reports may predate that framing (a drag still in
+        flight when Frame run was pressed): not the hand's."""
+        try:
+            position = np.asarray(camera.position, dtype=float)
+        except (AssertionError, TypeError, ValueError):
+            return
+        cells, self.cells = self.cells, camera_cells(camera)
+        if self.cells is not None and (cells is None or scene_detail(cells) != scene_detail(self.cells)):
+            self._request_render()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
+        hand = self._acknowledged and not any(_same_pose(position, p) for p in self._sent)
+        self._reported = position
+        if hand:
+            self.state.camera = "moved"
+            return
+        if self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
+            # The canvas changed shape (the panel docked, a window resized, a first report): the framing
+            # was fitted to another width.
+            self.frame(self._renderer)
+
+    @property
+    def _acknowledged(self) -> bool:
+        """The page's camera is where it was last sent, by its own last report. Derived from the two, not
+        kept: a pose sent again, or sent back to where the page already is, moves no camera and brings
+        no report, and the page's last report still says it is there."""
+        last = self._reported
+        return last is not None and bool(self._sent) and _same_pose(last, self._sent[-1])
+
+    def _sending(self, position) -> None:
+        self._sent = [*self._sent[-7:], np.asarray(position, dtype=float)]
+
+    def starts_framed(self, renderer: SceneRenderer) -> None:
+        self._framed_aspect = NARROW_ASPECT  # the initial camera's
+        self._sending(renderer.framed_pose[0])
+        self.state.camera = "framed"
+        self.state.framed_bounds = renderer.bounds
+
+    def frame(self, renderer: SceneRenderer, bounds: Bounds | None = None) -> None:
+        """Frame its camera on the run, or on ``bounds`` (the run with room to grow)."""
+        room = CAPTION_ROOM if self.panels.presenting else 0.0
+        self.panels.presentation.fit(self.client)  # the caption across the canvas as it is now
+        position, self._framed_aspect = renderer.frame_camera(self.client.camera, room, bounds)
+        if position is not None:
+            self._sending(position)
+        self.state.camera = "framed"
+        self.state.framed_bounds = renderer.bounds if bounds is None else bounds
+
+
+def _same_pose(position: np.ndarray, sent: np.ndarray) -> bool:
+    return bool(np.abs(position - sent).max() <= 1e-3 * max(1.0, abs(sent[2])))
+
+
+def inside(box: tuple[float, float, float, float], framed: tuple[float, float, float, float] | None) -> bool:
+    """Whether ``box`` lies inside the ``framed`` one (whose camera shows it whole, with a margin)."""
+    if framed is None:
+        return False
+    return box[0] >= framed[0] and box[1] >= framed[1] and box[2] <= framed[2] and box[3] <= framed[3]
