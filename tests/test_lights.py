@@ -84,7 +84,7 @@ def test_a_merge_at_work_that_breaks_nowhere_survives_with_its_coverage(tmp_path
 
 
 def test_a_random_run_breaks_a_merge_only_where_the_base_algorithm_forms():
-    row = lights._row(lights.Merge("a", "x", "y"), (1,), "untested", "explorer", "", t0=0.0)
+    row = lights.verdict_row(lights.Merge("a", "x", "y"), (1,), "untested", "explorer", "", t0=0.0)
     run = {"algorithm": "a+merge(x=y)", "scheduler": "async", "start": "", "error": "", "trace": "",
            "light_semantics": "compute", "hidden": 3}  # fmt: skip
     stuck = dict(run, seed=1, k=7, outcome="stuck", events=90, start="sym-call-7", scheduler="stale-first",

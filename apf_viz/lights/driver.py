@@ -1,0 +1,171 @@
+"""Driving the lab on Dask: every stage for every merge not already in the table, with progress and
+Ctrl+C keeping what finished."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from apf_viz.core.formats import check_writable, write_atomic
+from apf_viz.lights.merges import (
+    KEY,
+    Merge,
+    ks_label,
+    starts_for,
+)
+from apf_viz.lights.stages import (
+    explore_merge,
+    fold_random,
+    random_cells,
+    verdict_row,
+    verify_start,
+)
+from apf_viz.lights.table import read_lights, write_lights
+from apf_viz.progress import show_progress
+
+
+def run_lab(
+    chosen: Sequence[Merge],
+    ks: Sequence[int],
+    out: Path,
+    *,
+    random_runs: int = 0,
+    traces: Path | None = None,
+    workers: int | None = None,
+    cluster: str | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> list[dict]:
+    """Every stage for every merge not already in ``out``; returns every row of the file."""
+    from apf_viz import sweep
+
+    check_writable(out)
+    rows = read_lights(out)
+    traces = traces or out.with_name(out.stem + "-traces")
+    traces.mkdir(parents=True, exist_ok=True)
+    ks_text = ks_label(ks)
+    done = {tuple(r[c] for c in KEY) for r in rows}
+    todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]
+    if todo:
+        starts = base_verified_starts(todo[0].algorithm, ks, base_path(out), workers, cluster, progress)
+        rows += _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress)
+    if random_runs:
+        mine = {(m.algorithm, m.name) for m in chosen}
+        survivors = [
+            Merge.of(r)
+            for r in rows
+            if r["verdict"] in ("survives", "untested")
+            and r["ks"] == ks_text
+            and (r["algorithm"], r["merge"]) in mine
+        ]
+        if survivors:
+            variants = [survivors[0].algorithm] + [m.variant for m in survivors]
+            runs = sweep.run_sweep(
+                random_cells(variants, random_runs),
+                out.with_name(out.stem + "-random.parquet"),
+                traces=traces,
+                workers=workers,
+                cluster=cluster,
+                progress=sweep.report_progress if progress else None,
+            )
+            rows = [
+                fold_random(r, runs) if r["ks"] == ks_text and Merge.of(r) in survivors else r for r in rows
+            ]
+            write_lights(out, rows)
+    return rows
+
+
+def base_path(out: Path) -> Path:
+    """Where stage 0's verdicts on the base algorithm are kept beside the table (JSON)."""
+    return out.with_name(out.stem + "-base.json")
+
+
+def base_verified_starts(
+    algorithm: str, ks: Sequence[int], path: Path, workers, cluster, progress
+) -> list[tuple[str, list]]:
+    """Stage 0: the base algorithm explored on every start of :func:`starts_for` (kept in ``path`` and
+    reused when it covers them); the starts it verifies on, in order."""
+    from apf_viz.sweep import by_the_second, dask_client, shut_down
+
+    starts = starts_for(ks)
+    known: dict[str, dict] = {}
+    if path.is_file():
+        data = json.loads(path.read_text(encoding="utf-8"))
+        if data.get("algorithm") == algorithm:
+            known = {r["start"]: r for r in data["starts"]}
+    todo = [(name, start) for name, start in starts if name not in known]
+    if todo:
+        client, local = dask_client(cluster, workers)
+        futures = {
+            client.submit(verify_start, algorithm, name, start, pure=False): name for name, start in todo
+        }
+        t0 = time.monotonic()
+        try:
+            for finished, _ in by_the_second(futures):
+                for fut in finished:
+                    r = fut.result()
+                    known[r["start"]] = r
+                if progress:
+                    left = len(starts) - len(known)
+                    progress(f"apf-viz lights: the base algorithm on {len(known)}/{len(starts)} starts, "
+                             f"{time.monotonic() - t0:.0f} s{', ETA done' if not left else ''}")  # fmt: skip
+        finally:
+            write_atomic(path, _base_json(algorithm, known))
+            shut_down(futures, client, local)
+    return [(name, start) for name, start in starts if known[name]["verdict"] == "verified"]
+
+
+def _base_json(algorithm: str, known: dict[str, dict]) -> str:
+    rows = sorted(known.values(), key=lambda r: r["start"])
+    return json.dumps({"algorithm": algorithm, "starts": rows}, indent=1) + "\n"
+
+
+def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress) -> list[dict]:
+    from apf_viz.sweep import by_the_second, dask_client, shut_down
+
+    client, local = dask_client(cluster, workers)
+    shared = client.scatter(list(starts), broadcast=True)
+    futures = {client.submit(explore_merge, m, tuple(ks), str(traces), shared, pure=False): m for m in todo}
+    new: list[dict] = []
+    t0 = time.monotonic()
+    try:
+        for finished, _ in by_the_second(futures):
+            for fut in finished:
+                new.append(_result(fut, futures[fut], ks))
+            if finished:
+                write_lights(out, rows + new)
+            if progress:
+                progress(_progress_line(new, len(todo), time.monotonic() - t0))
+    except KeyboardInterrupt:
+        write_lights(out, rows + new)
+        print("\napf-viz lights: interrupted; keeping the merges that finished", file=sys.stderr)
+        shut_down(futures, client, local)
+        raise
+    shut_down(futures, client, local)
+    return new
+
+
+def _result(fut, merge: Merge, ks) -> dict:
+    try:
+        return fut.result()
+    except Exception as e:  # the merge's search raised, or its worker died
+        return verdict_row(
+            merge, ks, "error", "explorer", "", t0=time.perf_counter(), error=f"{type(e).__name__}: {e}"[:500]
+        )
+
+
+def _progress_line(new: list[dict], total: int, seconds: float) -> str:
+    from apf_viz.sweep import duration
+
+    broken = sum(r["verdict"] == "breaks" for r in new)
+    left = total - len(new)
+    # Merges that break stop early and the rest run to the end: the average so far is a rough guide.
+    eta = "done" if not left else duration(seconds / len(new) * left) if new else "…"
+    done = f"{len(new)}/{total} merges explored, {broken} broken"
+    return f"apf-viz lights: {done}, {duration(seconds)}, ETA {eta}"
+
+
+def report_progress(line: str) -> None:
+    show_progress(line, last=line.endswith("ETA done"))
