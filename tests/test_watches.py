@@ -17,11 +17,13 @@ from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solv
 from apf_viz.algorithms.apf_opaque_grid.watches import LATER_LIGHTS, PHASE1_LIGHTS
 from apf_viz.core.algorithm import Watch
 from apf_viz.core.engine import Engine
+from apf_viz.core.quiet_steps import WalkPath
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.view import Snapshot
 from apf_viz.core.visibility import Views
-from apf_viz.core.watches import Watches, _global_box, _Path
+from apf_viz.core.watch_geometry import global_box, robots_in
+from apf_viz.core.watches import Watches
 
 
 def case(k: int, seed: int):
@@ -369,9 +371,9 @@ def test_an_occupied_box_counts_the_robots_in_it_whichever_bounds_are_open():
         x0, y0 = rng.randint(-8, 8), rng.randint(-8, 8)
         local = (x0, x0 + rng.randint(0, 4), y0, y0 + rng.randint(0, 4))
         local = tuple(None if rng.random() < 0.3 else v for v in local)
-        gx0, gx1, gy0, gy1 = _global_box(*points[r], 1 if y_up[r] else -1, local)
+        gx0, gx1, gy0, gy1 = global_box(*points[r], 1 if y_up[r] else -1, local)
         inside = [j for j, (x, y) in enumerate(points) if j != r and gx0 <= x <= gx1 and gy0 <= y <= gy1]
-        assert w._robots_in((gx0, gx1, gy0, gy1), r) == len(inside)
+        assert robots_in(P, (gx0, gx1, gy0, gy1), r) == len(inside)
 
 
 def test_the_watched_lights_are_those_of_some_registered_watch():
@@ -393,13 +395,13 @@ def test_the_watched_lights_are_those_of_some_registered_watch():
 
 @pytest.mark.parametrize("scale", [5, 10**11])
 def test_the_first_point_between_a_robot_and_its_watchers_is_found_at_once_as_one_by_one(scale):
-    """_Path.first_between (one numpy pass over the watchers; Python integers when the offsets are too
-    large for int64 products) against _Path.between and first_in for each watcher."""
+    """WalkPath.first_between (one numpy pass over the watchers; Python integers when the offsets are too
+    large for int64 products) against WalkPath.between and first_in for each watcher."""
     rng = random.Random(scale)
     for _ in range(400):
         start = (rng.randint(-scale, scale), rng.randint(-scale, scale))
         delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
-        path = _Path(start, delta)
+        path = WalkPath(start, delta)
 
         def near_line(start: tuple[int, int], horizontal: bool) -> tuple[int, int]:
             # Often on the walk's line, or a few cells off it, so that segments cross it at lattice points.
@@ -423,7 +425,7 @@ def _random_box(rng: random.Random) -> tuple:
     return (side(True), side(False), side(True), side(False))
 
 
-def _old_quiet_occupied(w: Watches, path: _Path, n: int) -> int:
+def _old_quiet_occupied(w: Watches, path: WalkPath, n: int) -> int:
     """The bound as it was before the count test came first (before eea1ada): the reference."""
     quiet = n
     for boxes, counts in w._occupied.values():
@@ -465,7 +467,7 @@ def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(se
         start = points[walker]
         delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
         n = rng.randint(1, 12)
-        path = _Path(start, delta)
+        path = WalkPath(start, delta)
         assert w._quiet_occupied(path, n) == _old_quiet_occupied(w, path, n)
         quiet = w.quiet_steps(walker, start, delta, n)
         robot_at = {p: i for i, p in enumerate(points)}

@@ -21,13 +21,23 @@ the configuration's span allows it, else every robot watching a light is asked a
 
 from __future__ import annotations
 
-from collections.abc import Container, Iterable, Mapping, Sequence
+from collections.abc import Container, Mapping, Sequence
 from math import gcd
 
 import numpy as np
 
-from apf_viz.core.algorithm import Box, Watch
+from apf_viz.core.algorithm import Watch
 from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, visible_from
+from apf_viz.core.quiet_steps import QuietSteps
+from apf_viz.core.watch_geometry import (
+    BIG,
+    global_box,
+    inside,
+    lattice_points,
+    nearest_along,
+    robots_in,
+    touches,
+)
 
 BOXES = 2  # per robot; a watch with more regions is not registered (the robot stays fully observed)
 SEGMENTS = 2
@@ -36,19 +46,9 @@ FEW_REGIONS = 16  # up to this many robots with boxes or long segments, they are
 WALK = 32  # lattice points walked, looking for a robot, before one numpy pass over every robot
 FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked for from each of them
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
-_BIG = 1 << 62
-_VECTOR_SPAN = 1 << 30  # offsets below this: products of two fit in int64
 
 
-def _lattice_points(x: int, y: int, dx: int, dy: int) -> list[Point]:
-    """The lattice points of the segment from (x, y) to (x + dx, y + dy), without (x, y) itself: nothing
-    moves onto a watching robot."""
-    g = gcd(dx, dy)
-    ux, uy = dx // g, dy // g
-    return [(x + t * ux, y + t * uy) for t in range(1, g + 1)]
-
-
-class Watches:
+class Watches(QuietSteps):
     """The registered watches of idle robots, and the robots an event concerns.
 
     Args:
@@ -81,10 +81,10 @@ class Watches:
         self.bits = np.array([self._bit.get(light, 0) for light in lights], dtype=np.int64)
         self.active = np.zeros(k, dtype=bool)
         # Unused box slots are empty (x0 > x1); unused segment slots have length g = 0, matching no point.
-        self._bx0 = np.full((k, BOXES), _BIG, dtype=np.int64)
-        self._bx1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
-        self._by0 = np.full((k, BOXES), _BIG, dtype=np.int64)
-        self._by1 = np.full((k, BOXES), -_BIG, dtype=np.int64)
+        self._bx0 = np.full((k, BOXES), BIG, dtype=np.int64)
+        self._bx1 = np.full((k, BOXES), -BIG, dtype=np.int64)
+        self._by0 = np.full((k, BOXES), BIG, dtype=np.int64)
+        self._by1 = np.full((k, BOXES), -BIG, dtype=np.int64)
         # Segments of at most SHORT lattice steps are kept point by point (an event looks its points up);
         # longer ones as a direction and a length, tested in one numpy pass.
         self._watchers_at: dict[Point, set[int]] = {}
@@ -128,8 +128,8 @@ class Watches:
         if len(watch.boxes) > BOXES or len(segments) > SEGMENTS or len(watch.occupied) > OCCUPIED:
             return False
         if watch.occupied:
-            occupied = [_global_box(x, y, s, box) for box in watch.occupied]
-            counts = [self._robots_in(box, r) for box in occupied]
+            occupied = [global_box(x, y, s, box) for box in watch.occupied]
+            counts = [robots_in(self._P, box, r) for box in occupied]
             if not any(counts):
                 return False  # the watch is broken already
         if short:
@@ -139,21 +139,21 @@ class Watches:
             for i, dx, dy, g in short:
                 at = (x + dx, y + s * dy)
                 # Most witnesses are chosen to be a single point away (their segment is that point).
-                self._link(r, i, [at] if g == 1 else _lattice_points(x, y, dx, s * dy))
+                self._link(r, i, [at] if g == 1 else lattice_points(x, y, dx, s * dy))
                 j = robot_at.get(at)
                 if j is not None:
                     witnesses[i] = j
                     followed.setdefault(j, set()).add((r, i))
             if watch.within is not None:
-                self._within[r] = _global_box(x, y, s, watch.within)
-        boxes = [_global_box(x, y, s, box) for box in watch.boxes]
+                self._within[r] = global_box(x, y, s, watch.within)
+        boxes = [global_box(x, y, s, box) for box in watch.boxes]
         longs: list[tuple[int, int, int]] = []
         for i, box in enumerate(boxes):
             self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = box
         if watch.occupied:
             for i, (x0, x1, y0, y1) in enumerate(occupied):
                 for edges, edge in zip(self._edges, (x0, x1, y0, y1), strict=True):
-                    if abs(edge) != _BIG:
+                    if abs(edge) != BIG:
                         edges.setdefault(edge, set()).add((r, i))
             self._occupied[r] = (occupied, counts)
         for i, (dx, dy) in enumerate(segments):
@@ -161,7 +161,7 @@ class Watches:
             g = gcd(dx, dy)
             if g <= SHORT:
                 points = self._points_of[r]
-                for p in _lattice_points(x, y, dx, dy):
+                for p in lattice_points(x, y, dx, dy):
                     points.append(p)
                     self._watchers_at.setdefault(p, set()).add(r)
             else:
@@ -193,29 +193,6 @@ class Watches:
             else:
                 self._watched &= ~bit
             mask ^= bit
-
-    def _robots_in(self, box: tuple[int, int, int, int], r: int) -> int:
-        """How many robots other than r stand in this box (global bounds)."""
-        P = self._P
-        x0, x1, y0, y1 = box
-        # Only the finite bounds are compared: a watch's boxes are mostly rows, strips and half-planes.
-        axes = [(P[:, 0], x0, x1), (P[:, 1], y0, y1)]
-        inside = None
-        for column, lo, hi in axes:
-            if lo == hi:
-                part = column == lo
-            elif lo != -_BIG and hi != _BIG:
-                part = (lo <= column) & (column <= hi)
-            elif lo != -_BIG:
-                part = column >= lo
-            elif hi != _BIG:
-                part = column <= hi
-            else:
-                continue
-            inside = part if inside is None else inside & part
-        if inside is None:  # the whole plane
-            return P.shape[0] - 1
-        return int(np.count_nonzero(inside)) - bool(inside[r])
 
     def clear(self, r: int) -> None:
         """Robot r is asked again (it acted, or an event touched its watch)."""
@@ -250,17 +227,17 @@ class Watches:
         if occupied is not None:
             for i, box in enumerate(occupied[0]):
                 for edges, edge in zip(self._edges, box, strict=True):
-                    if abs(edge) != _BIG:
+                    if abs(edge) != BIG:
                         slots = edges[edge]
                         slots.discard((r, i))
                         if not slots:
                             del edges[edge]
         boxed = self._boxed.pop(r, None)
         if boxed is not None:
-            self._bx0[r] = _BIG
-            self._bx1[r] = -_BIG
-            self._by0[r] = _BIG
-            self._by1[r] = -_BIG
+            self._bx0[r] = BIG
+            self._bx1[r] = -BIG
+            self._by0[r] = BIG
+            self._by1[r] = -BIG
             self._sg[r] = 0
             self._with_long -= bool(boxed[1])
 
@@ -304,89 +281,6 @@ class Watches:
                         self._revealed_through(p, hit)
         return self._take(hit)
 
-    def quiet_steps(self, r: int, start: Point, delta: Point, n: int) -> int:
-        """How many of robot r's next moves, from ``start`` by ``delta`` (one lattice step along an axis),
-        concern no watcher, up to n. A lower bound (0 when unsure): moving r straight to
-        ``start + n′·delta`` at once then concerns nobody, as none of the n′ single moves would
-        (:mod:`apf_viz.core.fast_forward`)."""
-        if not self.count:
-            return n
-        if int(self.bits[r]) & self._watched:
-            return 0  # a watched light is news wherever it comes into sight
-        path = _Path(start, delta)
-        mine = self._followed.get(r, set())  # segments that follow the walker: taken along, not touched
-        any_at = self._any_at
-        first = min(
-            path.first_of(self._watchers_at, n + 1),
-            path.first_of((p for p in path.on_line(any_at) if not any_at[p] <= mine), n + 1),
-        )  # the first point of the walk (0 … n) that some watched region contains
-        for w, (boxes, longs) in self._boxed.items():
-            for box in boxes:
-                first = min(first, path.first_in(path.box(box), n))
-            wx, wy = int(self._P[w, 0]), int(self._P[w, 1])
-            for ux, uy, g in longs:
-                first = min(first, path.first_in(path.segment(wx, wy, ux, uy, g), n))
-        quiet = first - 1  # the move onto that point, or off it (the start), touches it
-        if mine:
-            quiet = min(quiet, self._quiet_witness(r, mine, path, quiet))
-        if self._occupied:
-            quiet = min(quiet, self._quiet_occupied(path, n))
-        if self._watched:
-            quiet = min(quiet, self._quiet_reveals(r, path, n))
-        return max(0, quiet)
-
-    def _quiet_witness(self, r: int, mine: set[tuple[int, int]], path: _Path, n: int) -> int:
-        """Moves during which every watcher following the walker keeps a witness in sight: another
-        witness (whose segment the walk does not touch, see :meth:`quiet_steps`), or the walker itself,
-        in sight and inside the watch's ``within``. (Within those moves the engine may drop and re-pick
-        the walker's segment; the watcher's answer stays "same light, stay" either way.)"""
-        quiet = n
-        P = self._P
-        touched: dict[int, set[int]] = {}  # watcher → its witnesses the walk touches
-        for w, i in mine:
-            touched.setdefault(w, set()).add(i)
-        for w, used in touched.items():
-            if self._intact[w] - used:
-                continue
-            within = self._within[w]
-            if within is not None:
-                lo, hi = path.box(within)
-                if not lo <= 1 <= hi:
-                    return 0
-                quiet = min(quiet, hi)
-            quiet = min(quiet, path.first_hidden(P, w, r, quiet + 1) - 1)
-        return max(quiet, 0)
-
-    def _quiet_occupied(self, path: _Path, n: int) -> int:
-        """Moves before the walker is the last robot to leave some watch's occupied boxes."""
-        quiet = n
-        x, y = path.x, path.y  # where the walker stands
-        for boxes, counts in self._occupied.values():
-            # Another robot keeps a box occupied whatever the walker does: a box counting two robots, or one
-            # that is not the walker. (Tested before the spans: most watches are skipped here.)
-            if any(
-                count > 1 or (count and not (x0 <= x <= x1 and y0 <= y <= y1))
-                for count, (x0, x1, y0, y1) in zip(counts, boxes, strict=True)
-            ):
-                continue
-            spans = [path.box(box) for box in boxes]
-            for t in [1] + [hi + 1 for _, hi in spans]:
-                if 1 <= t <= quiet and not any(lo <= t <= hi for lo, hi in spans):
-                    quiet = t - 1
-        return quiet
-
-    def _quiet_reveals(self, r: int, path: _Path, n: int) -> int:
-        """Moves before the walker leaves a point between a robot of a watched light and a watcher of
-        that light (it may be revealed to the watcher then)."""
-        quiet = n
-        P = self._P
-        for q in (self.bits & self._watched).nonzero()[0].tolist():
-            watchers = self.active & ((self._mask & self.bits[q]) != 0)
-            watchers[q] = False
-            if watchers.any():
-                quiet = min(quiet, path.first_between(P[q], P[watchers], n - 1))
-        return quiet
-
     def relit(self, m: int, light: str) -> list[int]:
         """Watched robots robot m's new light concerns."""
         self.bits[m] = self._bit.get(light, 0)
@@ -419,9 +313,9 @@ class Watches:
             if i not in intact:
                 continue
             x, y = int(P[r, 0]), int(P[r, 1])
-            points = _lattice_points(x, y, p[0] - x, p[1] - y)
+            points = lattice_points(x, y, p[0] - x, p[1] - y)
             within = self._within[r]
-            if len(points) <= SHORT and not any(q in robot_at for q in points[:-1]) and _inside(p, within):
+            if len(points) <= SHORT and not any(q in robot_at for q in points[:-1]) and inside(p, within):
                 self._link(r, i, points)
                 continue
             slots.discard((r, i))
@@ -504,7 +398,7 @@ class Watches:
             return hit
         if len(self._boxed) <= FEW_REGIONS:
             for r, (boxes, longs) in self._boxed.items():
-                if _touches(P, r, boxes, longs, points):
+                if touches(P, r, boxes, longs, points):
                     hit[r] = True
             return hit
         xs = np.array([p[0] for p in points], dtype=np.int64)
@@ -554,7 +448,7 @@ class Watches:
                     walked = True
                     break
         if not walked:
-            r, d = _nearest_along(P, q, ux, uy)
+            r, d = nearest_along(P, q, ux, uy)
             if d < g:
                 return  # q did not see p
         if r != -1 and self._mask[r] & self.bits[q] and (qx, qy) not in self._seen_at[r]:
@@ -588,210 +482,3 @@ class Watches:
         for r, q in zip(a[news].tolist(), b[news].tolist(), strict=True):
             if (int(points[q, 0]), int(points[q, 1])) not in self._seen_at[r]:
                 hit[r] = True
-
-
-def _nearest_along(P: np.ndarray, q: int, ux: int, uy: int) -> tuple[int, int]:
-    """The robot nearest to robot q along the primitive direction (ux, uy), and its distance in lattice
-    steps; (−1, 0) if there is none. Products of a direction and a gcd only: nothing can overflow."""
-    ox = P[:, 0] - P[q, 0]
-    oy = P[:, 1] - P[q, 1]
-    g = np.gcd(ox, oy)
-    on = ((ox == ux * g) & (oy == uy * g) & (g > 0)).nonzero()[0]
-    if not on.size:
-        return -1, 0
-    i = int(on[np.argmin(g[on])])
-    return i, int(g[i])
-
-
-def _touches(
-    P: np.ndarray,
-    r: int,
-    boxes: list[tuple[int, int, int, int]],
-    longs: list[tuple[int, int, int]],
-    points: Sequence[Point],
-) -> bool:
-    """Whether one of these points lies in one of robot r's boxes or long segments (global frame)."""
-    for px, py in points:
-        for x0, x1, y0, y1 in boxes:
-            if x0 <= px <= x1 and y0 <= py <= y1:
-                return True
-        if longs:
-            dx, dy = px - int(P[r, 0]), py - int(P[r, 1])
-            g = gcd(dx, dy)
-            if g and any(dx == ux * g and dy == uy * g and g <= length for ux, uy, length in longs):
-                return True
-    return False
-
-
-class _Path:
-    """The points start + t·delta of a walk along an axis, as their t: a point is (along, across), the
-    walk being across = 0."""
-
-    def __init__(self, start: Point, delta: Point) -> None:
-        self.x, self.y = start
-        self.ex, self.ey = delta
-
-    def _rel(self, px: int, py: int) -> tuple[int, int]:
-        if self.ey == 0:
-            return (px - self.x) * self.ex, py - self.y
-        return (py - self.y) * self.ey, px - self.x
-
-    def box(self, box: tuple[int, int, int, int]) -> tuple[int, int]:
-        """The t of the walk's line inside a closed box (global bounds), as (lo, hi); lo > hi if none."""
-        x0, x1, y0, y1 = box
-        if self.ey == 0:
-            if not y0 <= self.y <= y1:
-                return 1, 0
-            lo, hi = (x0 - self.x, x1 - self.x) if self.ex == 1 else (self.x - x1, self.x - x0)
-        else:
-            if not x0 <= self.x <= x1:
-                return 1, 0
-            lo, hi = (y0 - self.y, y1 - self.y) if self.ey == 1 else (self.y - y1, self.y - y0)
-        return lo, hi
-
-    def segment(self, wx: int, wy: int, ux: int, uy: int, g: int) -> tuple[int, int]:
-        """The t of the walk's line on the segment w + s·(ux, uy), 1 ≤ s ≤ g."""
-        a0, b0 = self._rel(wx, wy)
-        a1, b1 = self._rel(wx + ux, wy + uy)
-        da, db = a1 - a0, b1 - b0
-        if db == 0:
-            if b0 != 0:
-                return 1, 0
-            ends = (a0 + da, a0 + g * da)
-            return min(ends), max(ends)
-        if b0 % db or not 1 <= -b0 // db <= g:
-            return 1, 0
-        t = a0 - b0 // db * da
-        return t, t
-
-    def between(self, q: Point, w: Point) -> tuple[int, int]:
-        """The t of the walk's line strictly between q and w."""
-        aq, bq = self._rel(*q)
-        aw, bw = self._rel(*w)
-        if bq == 0 and bw == 0:
-            return min(aq, aw) + 1, max(aq, aw) - 1
-        if bq * bw >= 0:
-            return 1, 0  # both on one side (or one on the line: an end, not between)
-        num, den = aq * (bw - bq) - (aw - aq) * bq, bw - bq  # a where the segment crosses b = 0
-        if num % den:
-            return 1, 0
-        return num // den, num // den
-
-    def first_between(self, q: np.ndarray, W: np.ndarray, n: int) -> int:
-        """``min(first_in(between(q, w), n) for w in W)``: vectorised where the products below fit in
-        int64 (offsets from the walk's start under 2^30), else in Python integers."""
-        span = max(int(np.abs(W - (self.x, self.y)).max()), abs(int(q[0]) - self.x), abs(int(q[1]) - self.y))
-        if span >= _VECTOR_SPAN:
-            qp = (int(q[0]), int(q[1]))
-            return min(
-                (self.first_in(self.between(qp, (int(x), int(y))), n) for x, y in W.tolist()), default=n + 2
-            )
-        if self.ey == 0:
-            aq, bq = (int(q[0]) - self.x) * self.ex, int(q[1]) - self.y
-            aw, bw = (W[:, 0] - self.x) * self.ex, W[:, 1] - self.y
-        else:
-            aq, bq = (int(q[1]) - self.y) * self.ey, int(q[0]) - self.x
-            aw, bw = (W[:, 1] - self.y) * self.ey, W[:, 0] - self.x
-        first = n + 2
-        if bq == 0:  # q on the walk's line: the points strictly between q and the watchers on it
-            on = bw == 0
-            if on.any():
-                lo = np.minimum(aw[on], aq) + 1
-                hi = np.maximum(aw[on], aq) - 1
-                lo = np.maximum(lo, 0)
-                hit = lo[lo <= np.minimum(hi, n)]
-                if hit.size:
-                    first = int(hit.min())
-            return first
-        cross = bw * bq < 0  # on the other side: the segment crosses the line once
-        if not cross.any():
-            return first
-        aw, bw = aw[cross], bw[cross]
-        den = bw - bq
-        num = aq * den - (aw - aq) * bq
-        exact = num % den == 0
-        t = num[exact] // den[exact]
-        t = t[(t >= 0) & (t <= n)]
-        return int(t.min()) if t.size else first
-
-    def on_line(self, points: Iterable[Point]) -> list[Point]:
-        """Those of these points on the walk's line (either way from its start)."""
-        if self.ey == 0:
-            y = self.y
-            return [p for p in points if p[1] == y]
-        x = self.x
-        return [p for p in points if p[0] == x]
-
-    def first_of(self, points: Iterable[Point], limit: int) -> int:
-        """The least t (0 ≤ t < limit) of these points on the walk; ``limit`` if none is."""
-        x, y, ex, ey = self.x, self.y, self.ex, self.ey
-        if ey == 0:
-            ts = [(px - x) * ex for px, py in points if py == y]
-        else:
-            ts = [(py - y) * ey for px, py in points if px == x]
-        return min((t for t in ts if 0 <= t < limit), default=limit)
-
-    def first_hidden(self, P: np.ndarray, w: int, r: int, limit: int) -> int:
-        """The least t (1 ≤ t < limit) at which some robot (not r) stands between robot w and the
-        walk's point; ``limit`` if none does. Vectorised where products of offsets fit in int64."""
-        wx, wy = int(P[w, 0]), int(P[w, 1])
-        span = int(np.abs(P - P[w]).max()) + abs(self.x - wx) + abs(self.y - wy)
-        if span >= 1 << 31:
-            points = [(int(x), int(y)) for x, y in P.tolist()]
-            return min(
-                (
-                    self.first_in(self.behind((wx, wy), q), limit)
-                    for i, q in enumerate(points)
-                    if i not in (r, w)
-                ),
-                default=limit,
-            )
-        if self.ey == 0:
-            a, b = (P[:, 0] - self.x) * self.ex, P[:, 1] - self.y
-        else:
-            a, b = (P[:, 1] - self.y) * self.ey, P[:, 0] - self.x
-        aw, bw = int(a[w]), int(b[w])
-        d = b - bw
-        ok = (d != 0) & (bw * d < 0) & (np.abs(d) < abs(bw))  # the ray from w through q crosses the line
-        ok[[r, w]] = False
-        if not ok.any():
-            return limit
-        d, num = d[ok], aw * d[ok] - (a[ok] - aw) * bw  # …at a = num / d
-        t = num[num % d == 0] // d[num % d == 0]
-        t = t[(t >= 1) & (t < limit)]
-        return int(t.min()) if t.size else limit
-
-    def behind(self, w: Point, q: Point) -> tuple[int, int]:
-        """The t of the walk's line that q hides from w (q strictly between w and the point)."""
-        aw, bw = self._rel(*w)
-        aq, bq = self._rel(*q)
-        if bq == bw or bw * (bq - bw) >= 0 or abs(bq - bw) >= abs(bw):
-            return 1, 0  # the ray from w through q runs parallel, away, or crosses the line before q
-        num, den = aw * (bq - bw) - (aq - aw) * bw, bq - bw  # a where that ray crosses b = 0
-        if num % den:
-            return 1, 0
-        return num // den, num // den
-
-    @staticmethod
-    def first_in(span: tuple[int, int], n: int) -> int:
-        """The least t of ``span`` within 0 … n; n + 2 if none (beyond every bound a caller takes)."""
-        lo, hi = span
-        lo = max(lo, 0)
-        return lo if lo <= min(hi, n) else n + 2
-
-
-def _inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:
-    return box is None or (box[0] <= p[0] <= box[1] and box[2] <= p[1] <= box[3])
-
-
-def _global_box(x: int, y: int, s: int, box: Box) -> tuple[int, int, int, int]:
-    """A box of the robot at (x, y) whose local +y is the global s·y, as global bounds (±2^62 for None)."""
-    x0, x1, y0, y1 = box
-    if s == -1:  # the robot's +y is the global −y: its box flips about its own row
-        y0, y1 = (None if y1 is None else -y1), (None if y0 is None else -y0)
-    return (
-        -_BIG if x0 is None else x + x0,
-        _BIG if x1 is None else x + x1,
-        -_BIG if y0 is None else y + y0,
-        _BIG if y1 is None else y + y1,
-    )
