@@ -18,7 +18,7 @@ from apf_viz.ui.view_model.run_source import RunSource
 
 
 class Lectern(Protocol):
-    """What a lecture drives: a session (ui/session.py), which holds its lecturer."""
+    """What a lecture drives: a session (ui/session/), which holds its lecturer."""
 
     selected: int | None
 

@@ -1,0 +1,238 @@
+"""The visualiser's commands: one shared run, the drafts being drawn, the mode, and each connected
+browser's own state (its selection). What the screen shows is the view model's (:mod:`apf_viz.ui.view_model`):
+:meth:`Session.view` asks it, for one browser, under the run's lock.
+
+No viser here, and no particular algorithm. The work is split by job:
+:class:`~apf_viz.ui.run_controller.RunController` (engine, adversary, play),
+:class:`~apf_viz.ui.editor.Editor` (drafts), :mod:`apf_viz.ui.loader` (files in),
+:mod:`apf_viz.ui.screen_state` (the screen's state, shared and per browser). Every call is serialised by
+the run's lock, so all connected browsers drive the same run safely.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Mapping, Sequence
+
+from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
+from apf_viz.core.formats import (
+    InputError,
+    size_problem,
+)
+from apf_viz.core.frames import random_y_up
+from apf_viz.core.grid import Point, as_point
+from apf_viz.core.schedulers import REGISTRY as SCHEDULER_REGISTRY
+from apf_viz.ui.compare import Twin
+from apf_viz.ui.editor import Editor, draft_of
+from apf_viz.ui.lecturer import Lecturer
+from apf_viz.ui.library import PatternLibrary
+from apf_viz.ui.run_config import RunConfig
+from apf_viz.ui.run_controller import RunController
+from apf_viz.ui.screen_state import BrowserState, SharedScreen
+from apf_viz.ui.view_model import SessionView, for_browser, present, present_run
+
+SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
+"""The UI's dropdown: each scheduler's label, and the name it stands for (core/schedulers)."""
+
+
+def _screen_field(name: str) -> property:
+    """A Session attribute that is the shared screen's field ``name`` (read and written)."""
+    return property(
+        lambda self: getattr(self.screen, name), lambda self, value: setattr(self.screen, name, value)
+    )
+
+
+class SessionCore:
+    """What every browser sees and drives: the run, the drafts, the mode and the selection; the
+    commands are grouped by what they act on (:class:`~apf_viz.ui.session.Session`)."""
+
+    def __init__(
+        self,
+        robots: Sequence[Point],
+        pattern: Sequence[Point],
+        *,
+        y_up: Sequence[bool] | None = None,
+        algorithm: str = DEFAULT_ALGORITHM,
+        scheduler: str = "async",
+        seed: int = 1,
+        light_semantics: str = "compute",
+        max_events: int = 5_000_000,
+        plugins: Mapping[str, Factory] | None = None,
+    ) -> None:
+        problem = size_problem(len(pattern), len(robots))
+        if problem:
+            raise InputError(problem)
+        flips = tuple(y_up) if y_up is not None else tuple(random_y_up(len(robots), seed))
+        config = RunConfig(
+            tuple(map(as_point, robots)),
+            flips,
+            tuple(map(as_point, pattern)),
+            algorithm,
+            light_semantics,  # type: ignore[arg-type]
+            scheduler,
+            seed,
+            max_events,
+        )
+        self.run = RunController(config, plugins)
+        self.lock = self.run.lock
+        self.screen = SharedScreen(Editor(config.robots, config.y_up, config.pattern))
+        self.kept_drafts = False  # a load replaced drafts never run (:meth:`take_kept_drafts_note`)
+        # The presenter's browser state: the first browser to connect holds it (the projector), and so
+        # do the calls made without a browser (scripts, tests). Other browsers get their own.
+        self.presenter = BrowserState()
+        self._browsers: dict[Hashable, BrowserState] = {}
+        self._presenter_of: Hashable | None = None
+        self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
+        self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
+        self.saved = self.library.names()  # their names, read once and after each save
+
+    # ------------------------------------------------------------------ browsers
+    def join(self, browser: Hashable) -> BrowserState:
+        """A browser connects: the first one (or the first after the presenter left) presents."""
+        with self.lock:
+            if self._presenter_of is None:
+                self._presenter_of = browser
+                state = self.presenter
+            else:
+                state = BrowserState()
+            self._browsers[browser] = state
+            return state
+
+    def leave(self, browser: Hashable) -> None:
+        with self.lock:
+            self._browsers.pop(browser, None)
+            if browser == self._presenter_of:
+                self._presenter_of = None  # the next browser to connect presents (a reloaded projector)
+
+    def browser(self, browser: Hashable | None) -> BrowserState:
+        """That browser's state (the presenter's for None or an unknown browser)."""
+        return self._browsers.get(browser, self.presenter) if browser is not None else self.presenter
+
+    def is_presenter(self, browser: Hashable | None) -> bool:
+        return self.browser(browser) is self.presenter
+
+    def _clear_selections(self) -> None:
+        self.presenter.selected = None
+        for state in self._browsers.values():
+            state.selected = None
+
+    # ------------------------------------------------------------------ the screen, shared
+    editor = _screen_field("editor")
+    mode = _screen_field("mode")
+    scenario_note = _screen_field("scenario_note")
+    twin = _screen_field("twin")
+    click_advances = _screen_field("click_advances")
+    numbers = _screen_field("numbers")
+
+    @property
+    def selected(self) -> int | None:
+        """The presenter's selected robot (scripts and tests select through it)."""
+        return self.presenter.selected
+
+    @selected.setter
+    def selected(self, robot: int | None) -> None:
+        self.presenter.selected = robot
+
+    # ------------------------------------------------------------------ the run, read-only
+    @property
+    def engine(self):
+        return self.run.engine
+
+    @property
+    def config(self) -> RunConfig:
+        return self.run.config
+
+    @property
+    def playing(self) -> bool:
+        return self.run.playing
+
+    @property
+    def speed(self) -> float:
+        return self.run.speed
+
+    @property
+    def scheduler_name(self) -> str:
+        return self.run.config.scheduler
+
+    @property
+    def seed(self) -> int:
+        return self.run.config.seed
+
+    @property
+    def algorithm_name(self) -> str:
+        return self.run.config.algorithm
+
+    @property
+    def robots(self) -> list[Point]:
+        return list(self.run.config.robots)
+
+    @property
+    def pattern(self) -> list[Point]:
+        return list(self.run.config.pattern)
+
+    @property
+    def y_up(self) -> list[bool]:
+        return list(self.run.config.y_up)
+
+    # ------------------------------------------------------------------ what to show
+    def view(self, browser: Hashable | None = None) -> SessionView:
+        """What that browser shows (the presenter's view for None)."""
+        with self.lock:
+            return present(self.run, self.screen, self.browser(browser), self.presenter)
+
+    def views(self, browsers: Sequence[Hashable]) -> tuple[SessionView, dict[Hashable, SessionView]]:
+        """The run's view (what every browser shares) and each browser's, made at one instant: the
+        run's part once, each browser's selection laid over it."""
+        with self.lock:
+            shared = present_run(self.run, self.screen)
+            own = {
+                b: for_browser(shared, self.run, self.screen, self.browser(b), self.presenter)
+                for b in browsers
+            }
+            return shared, own
+
+    def set_follow(self, browser: Hashable | None, follow: bool) -> None:
+        """That browser shows the presenter's selection (True) or its own (False)."""
+        with self.lock:
+            self.browser(browser).follow = bool(follow)
+
+    def compare_with(self, algorithm: str | None) -> None:
+        """Compare: draw the same run (start, pattern, flips, adversary) under ``algorithm`` beside it,
+        stepping with it; None stops comparing."""
+        with self.lock:
+            self.screen.twin = Twin(algorithm, self.run.plugins) if algorithm else None
+
+    def branch_here(self) -> None:
+        """Stop following a loaded trace: from this event on, the chosen scheduler runs."""
+        self.run.branch_here()
+
+    def return_to_set_aside(self) -> None:
+        """Back to the recorded steps the last branch dropped; Step then follows them."""
+        self.run.return_to_set_aside()
+
+    # ------------------------------------------------------------------ building runs
+
+    # ------------------------------------------------------------------ building runs
+    def _start(self, config: RunConfig) -> None:
+        """A new run from ``config``; the drafts follow it and the selection is cleared."""
+        self._drafts_follow(config)
+        self.run.restart(config)
+        self._clear_selections()
+        self.mode = "run"
+        self.scenario_note = ""  # what a Demo scenario shows no longer applies
+
+    def _drafts_follow(self, config: RunConfig) -> None:
+        """The drafts become ``config``'s start and pattern, the old ones kept for Undo; drafts that the
+        run did not have (drawn, not yet run) are noted in :attr:`kept_drafts` for the browser to be
+        told."""
+        e, now = self.editor, self.run.config
+        unrun = e.draft != draft_of(now.robots, now.y_up, now.pattern)
+        # No change when the run starts from the drafts themselves (Mode back to Run).
+        if e.start_from(config.robots, config.y_up, config.pattern):
+            self.kept_drafts = self.kept_drafts or unrun
+
+    def take_kept_drafts_note(self) -> str | None:
+        """Once, after a load replaced drafts that had not been run: how to get them back."""
+        kept, self.kept_drafts = self.kept_drafts, False
+        if not kept:
+            return None
+        return "what you drew in Edit is kept: in the Edit folder, Undo brings it back"
