@@ -219,53 +219,79 @@ def pattern_formation_off(
     ev.test("the leader in sight", True, "I see the robot with light leader")
     leader = c.seen(int(leaders[0]))  # the first in the view's order
     targets = embedded_targets(pattern)
-    n = len(targets)
     frame = follower_frame(view, leader)
     _frame_region(ev, frame)
     x, y = frame.me
     if ev.active:
         ev.test("my place in the leader's frame", f"({x}, {y})", "the line is row −1, L_H1 is row 0")
     if y > -1:
-        # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
-        leftmost = leftmost_on_own_row(view, ev)
-        if leftmost and not robots_between(view, frame, ev):
-            # Row −1 of the leader's frame is the leader's own row, and frame x is dx − the leader's dx.
-            on_row = c.dy == leader.dy
-            on_row[leaders[0]] = False
-            line = c.dx[on_row] - leader.dx  # sorted: the view is sorted by dx
-            i = int(line.size)
-            ev.test("robots on the line", i, "robots I see on row −1 of the leader's frame")
-            if i == 0:
-                done_seen = bool(c.showing("done").any())
-                ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
-                if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
-                    first = _to_target(
-                        frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
-                    )
-                    return clear_rows_stride(first, view, frame.s)
-                return _compose(line_move(frame, 1, "off"), "A3.off.start-line")
-            growing = bool(line[0] == 1 and line[-1] == i)  # distinct and sorted: exactly 1..i
-            if ev.test("the line is (1..i, −1)", growing, "the line is still growing"):
-                return _compose(line_move(frame, i + 1, "off"), "A3.off.grow-line")
-            emptying = bool(line[0] == n - i and line[-1] == n - 1)
-            if ev.test(f"the line is ({n - i}..{n - 1}, −1)", emptying, "it is emptying"):
-                following = _to_target(
-                    frame, n - i - 2, targets, f"{i} robots left on the line", "A3.off.next-target"
+        return _off_above_the_line(view, res, ev, frame, leader, int(leaders[0]), targets)
+    return _off_on_the_line(view, res, ev, frame, leader)
+
+
+def _off_above_the_line(
+    view: Snapshot,
+    res: Resolutions,
+    ev: Evidence,
+    frame: LeaderFrame,
+    leader: Seen,
+    leader_at: int,
+    targets: tuple[Point, ...],
+) -> Decision:
+    """Algorithm 3, r.light = off, above the line (y > −1 in the leader's frame): the robot whose turn it
+    is joins the line (growing) or goes to its target (the line emptying)."""
+    c = view.columns
+    n = len(targets)
+    # Line 5: the leader below (r₀ ∈ H_B^O(r) holds as y > −1), r leftmost on L_H(r), none between.
+    leftmost = leftmost_on_own_row(view, ev)
+    if leftmost and not robots_between(view, frame, ev):
+        # Row −1 of the leader's frame is the leader's own row, and frame x is dx − the leader's dx.
+        on_row = c.dy == leader.dy
+        on_row[leader_at] = False
+        line = c.dx[on_row] - leader.dx  # sorted: the view is sorted by dx
+        i = int(line.size)
+        ev.test("robots on the line", i, "robots I see on row −1 of the leader's frame")
+        if i == 0:
+            done_seen = bool(c.showing("done").any())
+            ev.test("a done robot in sight", done_seen, "the line has already emptied into targets")
+            if done_seen or (N2 in res and deviation(ev, N2, n == 2)):
+                first = _to_target(
+                    frame, n - 2, targets, "line empty, a done robot in sight", "A3.off.first-target"
                 )
-                return clear_rows_stride(following, view, frame.s)
-            return stay(
-                view,
-                "Phase 3 (off): the line is neither growing nor shrinking as expected → wait",
-                "A3.off.line-unexpected",
+                return clear_rows_stride(first, view, frame.s)
+            return _compose(line_move(frame, 1, "off"), "A3.off.start-line")
+        growing = bool(line[0] == 1 and line[-1] == i)  # distinct and sorted: exactly 1..i
+        if ev.test("the line is (1..i, −1)", growing, "the line is still growing"):
+            return _compose(line_move(frame, i + 1, "off"), "A3.off.grow-line")
+        emptying = bool(line[0] == n - i and line[-1] == n - 1)
+        if ev.test(f"the line is ({n - i}..{n - 1}, −1)", emptying, "it is emptying"):
+            following = _to_target(
+                frame, n - i - 2, targets, f"{i} robots left on the line", "A3.off.next-target"
             )
+            return clear_rows_stride(following, view, frame.s)
         return stay(
             view,
-            "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
-            "A3.off.not-my-turn",
-            watches.not_my_turn(view, leader, _between_rows(frame)),
+            "Phase 3 (off): the line is neither growing nor shrinking as expected → wait",
+            "A3.off.line-unexpected",
         )
-    # On the line (y = −1): the frame puts the leader's row at −1 and every other robot on or above it
-    # (follower_frame: y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen.
+    return stay(
+        view,
+        "Phase 3 (off): not the leftmost of the lowest row above the line → wait",
+        "A3.off.not-my-turn",
+        watches.not_my_turn(view, leader, _between_rows(frame)),
+    )
+
+
+def _off_on_the_line(
+    view: Snapshot, res: Resolutions, ev: Evidence, frame: LeaderFrame, leader: Seen
+) -> Decision:
+    """Algorithm 3, r.light = off, on the line (y = −1): its left end leaves for row 0 once no robot
+    above is still on its way.
+
+    The frame puts the leader's row at −1 and every other robot on or above it (follower_frame:
+    y = |ly| − 1 ≥ 0 off the leader's row, −1 on it), so y < −1 cannot happen."""
+    c = view.columns
+    x = frame.me[0]
     p3 = P3 in res
     # Frame y > −1 is s·(dy − the leader's dy) ≥ 1 (frame y = s·(dy − ly) − 1): off the leader's row.
     side, ly = frame.s, leader.dy

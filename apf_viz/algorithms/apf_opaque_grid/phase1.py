@@ -23,7 +23,7 @@ from apf_viz.algorithms.apf_opaque_grid.resolutions import E2, Resolutions, devi
 from apf_viz.core.algorithm import Decision, Watch
 from apf_viz.core.grid import Direction
 from apf_viz.core.portrayal import NO_EVIDENCE, Evidence
-from apf_viz.core.view import Snapshot
+from apf_viz.core.view import Seen, Snapshot
 
 
 def stay(view: Snapshot, rule: str, rule_id: str = "", watch: Watch | None = None) -> Decision:
@@ -76,40 +76,7 @@ def phase1_terminal1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENC
     ev.test("another terminal1 on L_V", partner is not None, "my vertical line holds the other terminal1 r′")
     r_i = right_neighbour_line(view, ev)
     if partner is not None:
-        k2 = k2_of(partner)
-        on_k = robot_on_K(r_i, k2, ev)
-        if on_k is None:
-            if is_symmetric_wrt_K(r_i, k2, ev):
-                return Decision(
-                    "symmetric",
-                    None,
-                    "Phase 1 (terminal1): K ∩ R_I empty, R_I symmetric → symmetric",
-                    "A1.terminal1.symmetric",
-                )
-            if in_dominant_half(view, k2, ev):
-                return Decision(
-                    "leader1",
-                    None,
-                    "Phase 1 (terminal1): R_I asymmetric, I am in the dominant half → leader1",
-                    "A1.terminal1.dominant",
-                )
-            return stay(
-                view,
-                "Phase 1 (terminal1): R_I asymmetric, I am not in the dominant half → wait",
-                "A1.terminal1.not-dominant",
-            )
-        if ev.test("the robot on K ∩ R_I is leader1", on_k.light == "leader1", "it has elected itself"):
-            return Decision(
-                "off",
-                None,
-                "Phase 1 (terminal1): the robot on K ∩ R_I is leader1 → off",
-                "A1.terminal1.K-is-leader1",
-            )
-        return stay(
-            view,
-            "Phase 1 (terminal1): a robot is on K ∩ R_I → wait for it to become leader1",
-            "A1.terminal1.K-wait",
-        )
+        return _terminal1_pair(view, r_i, k2_of(partner), ev)
     column = lights_of(vertical_line(view, ev))
     if ev.test("a symmetric robot on L_V", "symmetric" in column, "my vertical line shows symmetric"):
         return Decision(
@@ -134,6 +101,45 @@ def phase1_terminal1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENC
             "A1.terminal1.alone",
         )
     return stay(view, "Phase 1 (terminal1): waiting for the other terminal1", "A1.terminal1.wait")
+
+
+def _terminal1_pair(view: Snapshot, r_i: list[Seen], k2: int, ev: Evidence) -> Decision:
+    """Algorithm 1, a terminal1 whose partner r′ is on L_V (``k2``: twice K's row): K ∩ R_I empty, R_I
+    symmetric → symmetric, asymmetric → the dominant half's robot elects itself; a robot on K ∩ R_I →
+    wait for it to become leader1, then off."""
+    on_k = robot_on_K(r_i, k2, ev)
+    if on_k is None:
+        if is_symmetric_wrt_K(r_i, k2, ev):
+            return Decision(
+                "symmetric",
+                None,
+                "Phase 1 (terminal1): K ∩ R_I empty, R_I symmetric → symmetric",
+                "A1.terminal1.symmetric",
+            )
+        if in_dominant_half(view, k2, ev):
+            return Decision(
+                "leader1",
+                None,
+                "Phase 1 (terminal1): R_I asymmetric, I am in the dominant half → leader1",
+                "A1.terminal1.dominant",
+            )
+        return stay(
+            view,
+            "Phase 1 (terminal1): R_I asymmetric, I am not in the dominant half → wait",
+            "A1.terminal1.not-dominant",
+        )
+    if ev.test("the robot on K ∩ R_I is leader1", on_k.light == "leader1", "it has elected itself"):
+        return Decision(
+            "off",
+            None,
+            "Phase 1 (terminal1): the robot on K ∩ R_I is leader1 → off",
+            "A1.terminal1.K-is-leader1",
+        )
+    return stay(
+        view,
+        "Phase 1 (terminal1): a robot is on K ∩ R_I → wait for it to become leader1",
+        "A1.terminal1.K-wait",
+    )
 
 
 def phase1_symmetric(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE) -> Decision:

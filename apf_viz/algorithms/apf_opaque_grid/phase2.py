@@ -57,33 +57,9 @@ def phase2_decider(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
     partner = column_neighbour_with(view, {"decider"})
     found = ev.test("the other decider r′ on L_V", partner is not None, "my partner is on my vertical line")
     if found and partner is not None:
-        k2 = k2_of(partner)
-        if robot_on_K(r_i, k2, ev) is None:
-            if is_symmetric_wrt_K(r_i, k2, ev):
-                if ev.test("all of R_I call", all(s.light == "call" for s in r_i), "R_I has answered"):
-                    return Decision(
-                        "decider",
-                        Direction.RIGHT,
-                        "Phase 2 (decider): R_I symmetric and all call → move right",
-                        "A2.decider.all-call",
-                    )
-                return stay(
-                    view,
-                    "Phase 2 (decider): R_I symmetric → wait until all of R_I is call",
-                    "A2.decider.wait-call",
-                )
-            if in_dominant_half(view, k2, ev):
-                return Decision(
-                    "leader1",
-                    None,
-                    "Phase 2 (decider): R_I asymmetric, I am in the dominant half → leader1",
-                    "A2.decider.dominant",
-                )
-            return stay(
-                view,
-                "Phase 2 (decider): R_I asymmetric, the other decider is dominant → wait",
-                "A2.decider.not-dominant",
-            )
+        decided = _decider_and_partner(view, r_i, k2_of(partner), ev)
+        if decided is not None:
+            return decided
     if ev.test("the other decider on R_I", "decider" in lights_of(r_i), "my partner moved right already"):
         return Decision(
             "decider",
@@ -292,3 +268,36 @@ def _leader1_acts(view: Snapshot, r_i: list[Seen], res: Resolutions, ev: Evidenc
         stride=FOREVER,
     )
     return vertical_stride(up, view)
+
+
+def _decider_and_partner(view: Snapshot, r_i: list[Seen], k2: int, ev: Evidence) -> Decision | None:
+    """Algorithm 2, a decider whose partner r′ is on L_V (``k2``: twice K's row): with K ∩ R_I empty,
+    R_I symmetric about K waits for every robot of R_I to call, then moves right; R_I asymmetric, the
+    dominant half's decider elects itself. None: a robot stands on K ∩ R_I."""
+    if robot_on_K(r_i, k2, ev) is not None:
+        return None
+    if is_symmetric_wrt_K(r_i, k2, ev):
+        if ev.test("all of R_I call", all(s.light == "call" for s in r_i), "R_I has answered"):
+            return Decision(
+                "decider",
+                Direction.RIGHT,
+                "Phase 2 (decider): R_I symmetric and all call → move right",
+                "A2.decider.all-call",
+            )
+        return stay(
+            view,
+            "Phase 2 (decider): R_I symmetric → wait until all of R_I is call",
+            "A2.decider.wait-call",
+        )
+    if in_dominant_half(view, k2, ev):
+        return Decision(
+            "leader1",
+            None,
+            "Phase 2 (decider): R_I asymmetric, I am in the dominant half → leader1",
+            "A2.decider.dominant",
+        )
+    return stay(
+        view,
+        "Phase 2 (decider): R_I asymmetric, the other decider is dominant → wait",
+        "A2.decider.not-dominant",
+    )
