@@ -74,6 +74,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--pattern", required=True, type=Path, help='pattern file: {"name": ..., "points": [[x, y], ...]}'
     )
     add_run_options(p, list(AUTOMATIC), defaults=False)
+    _add_limits(p)
+    p.add_argument(
+        "--json",
+        action="store_true",
+        help="print one JSON object: outcome, final, k, D, moves, events, cycles, skipped, "
+        "moves_per_kD, max_moves, max_events, lights_used",
+    )
+    p.add_argument("--trace", type=Path, help="write every event to this JSON Lines file (atomically)")
+    _add_schedule_options(p)
+    p.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
+
+
+def _add_limits(p: argparse.ArgumentParser) -> None:
+    """The run's caps, and how its events are applied."""
     p.add_argument(
         "--max-events",
         type=positive,
@@ -106,13 +120,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="re-decide every step a walk skips, on views built from scratch, and stop with exit code 5 "
         "on a difference (slow: a check of fast-forward; also APF_VIZ_CHECK_WALKS=1)",
     )
-    p.add_argument(
-        "--json",
-        action="store_true",
-        help="print one JSON object: outcome, final, k, D, moves, events, cycles, skipped, "
-        "moves_per_kD, max_moves, max_events, lights_used",
-    )
-    p.add_argument("--trace", type=Path, help="write every event to this JSON Lines file (atomically)")
+
+
+def _add_schedule_options(p: argparse.ArgumentParser) -> None:
+    """A schedule to follow instead of a scheduler, and the run's own schedule to write."""
     p.add_argument(
         "--schedule",
         type=Path,
@@ -136,7 +147,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         type=Path,
         help="write the run's schedule (who acted, the flips, the light semantics) to this file (atomically)",
     )
-    p.add_argument("--force", action="store_true", help="run an unsolvable start anyway")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -57,6 +57,26 @@ class EngineError(ValueError):
     """A request the engine cannot carry out (bad robot index, mixed phases in one step, run over)."""
 
 
+def _checked_start(
+    robots: Sequence[Point], pattern: Sequence[Point], y_up: Sequence[bool] | None
+) -> tuple[tuple[Point, ...], Pattern, tuple[bool, ...]]:
+    """The start, the pattern and the flips as the engine keeps them, or an :class:`EngineError`: no
+    robot, two on one point, a coordinate out of range, flips of another length."""
+    k = len(robots)
+    if k == 0:
+        raise EngineError("a run needs at least one robot")
+    if len({tuple(p) for p in robots}) != k:
+        raise EngineError("two robots start on the same point")
+    problem = coordinate_problem(robots, "robot") or coordinate_problem(pattern, "pattern point")
+    if problem:
+        raise EngineError(problem)
+    flips = tuple(bool(b) for b in y_up) if y_up is not None else (True,) * k
+    if len(flips) != k:
+        raise EngineError(f"y_up has {len(flips)} entries for {k} robots")
+    start = tuple((int(x), int(y)) for x, y in robots)
+    return start, tuple((int(x), int(y)) for x, y in pattern), flips
+
+
 class Engine(Events, Walking):
     """One run of an algorithm from a start configuration towards a pattern.
 
@@ -99,21 +119,9 @@ class Engine(Events, Walking):
         fast_forward: bool = False,
         check_walks: bool | None = None,
     ) -> None:
-        k = len(robots)
-        if k == 0:
-            raise EngineError("a run needs at least one robot")
-        if len({tuple(p) for p in robots}) != k:
-            raise EngineError("two robots start on the same point")
-        problem = coordinate_problem(robots, "robot") or coordinate_problem(pattern, "pattern point")
-        if problem:
-            raise EngineError(problem)
-        self.k = k
-        self.start: tuple[Point, ...] = tuple((int(x), int(y)) for x, y in robots)
-        self.pattern: Pattern = tuple((int(x), int(y)) for x, y in pattern)
+        self.start, self.pattern, self.y_up = _checked_start(robots, pattern, y_up)
+        self.k = k = len(self.start)
         self.algorithm = algorithm
-        self.y_up: tuple[bool, ...] = tuple(bool(b) for b in y_up) if y_up is not None else (True,) * k
-        if len(self.y_up) != k:
-            raise EngineError(f"y_up has {len(self.y_up)} entries for {k} robots")
         self.light_semantics: LightSemantics = light_semantics
         self.max_events = max_events
         # A robot's step makes one event, or two under lc-atomic (its Look and Compute): the run ends where
@@ -133,6 +141,12 @@ class Engine(Events, Walking):
         self.history = History(self.state.copy())
         self._views = self._new_views()
         self._watches = self._new_watches()
+        self._start_skipping(k)
+        if skip_noops and self.state.outcome is None and not self.eligible().any():
+            self._update_outcome()  # a start on which no robot can ever act: stuck (or formed) at once
+
+    def _start_skipping(self, k: int) -> None:
+        """What passing over the robots whose next cycle changes nothing keeps (:meth:`eligible`)."""
         # Each robot's last snapshot and what it was made of, reused while its view is unchanged.
         self._snaps: list[tuple[object, Snapshot] | None] = [None] * k
         self._probe: list[tuple[int, bool]] = [(-1, False)] * k  # (version, decision is a no-op)
@@ -145,8 +159,6 @@ class Engine(Events, Walking):
         # Bumped whenever a robot becomes eligible (and on seek): until then the eligible robots only
         # leave, so a fairness deadline computed over them stays valid (schedulers.base.most_starved).
         self.eligible_gained = 0
-        if skip_noops and self.state.outcome is None and not self.eligible().any():
-            self._update_outcome()  # a start on which no robot can ever act: stuck (or formed) at once
 
     # ------------------------------------------------------------------ read-only views
     @property

@@ -102,15 +102,7 @@ class Walking:
         gmove = move_to_global(decision.move, self.y_up[r])
         delta = gmove.delta
         here = self._views.points[r]
-        # A walk never carries a robot past the coordinates where the sight test's arithmetic is exact
-        # (grid.COORD_LIMIT); beyond them the run goes on step by step.
-        n = COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1])
-        if self.max_events is not None:
-            n = min(n, (self.max_events - st.events - 1) // 3)
-        if self.max_moves is not None:
-            n = min(n, self.max_moves - st.moves - 1)
-        if max_steps is not None:
-            n = min(n, max_steps // per)
+        n = self._cycles_allowed(here, delta, per, max_steps)
         if n < 2:
             return 0  # a budget or the caller's limit: no reason to wait before the next try
         same = 0  # cycles that repeat this very decision on the same robots in sight
@@ -139,6 +131,20 @@ class Walking:
             self._walk(r, here, gmove, snap, ids, decision, reach, per)
             return reach * per
         return self._forced_cycles(r, here, gmove, reach)
+
+    def _cycles_allowed(self, here: Point, delta: Point, per: int, max_steps: int | None) -> int:
+        """The most cycles a walk from ``here`` by ``delta`` may take: within the budgets, the caller's
+        ``max_steps``, and the coordinates where the sight test's arithmetic is exact (grid.COORD_LIMIT;
+        beyond them the run goes on step by step)."""
+        st = self.state
+        n = COORD_LIMIT - (here[0] * delta[0] + here[1] * delta[1])
+        if self.max_events is not None:
+            n = min(n, (self.max_events - st.events - 1) // 3)
+        if self.max_moves is not None:
+            n = min(n, self.max_moves - st.moves - 1)
+        if max_steps is not None:
+            n = min(n, max_steps // per)
+        return n
 
     def _forced_cycles(self, r: int, here: Point, gmove: Direction, n: int) -> int:
         """Apply up to n whole cycles of robot r, each Look, Compute and Move recorded as its own step

@@ -83,31 +83,47 @@ def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
         fatal=story.fatal_decisions(e, crash[2], pts) if crash else ("", None),
         waits=story.wait_for(e) if stuck else "",
         never_act=tuple(range(e.k)) if stuck else (),
-        scenario_note=screen.scenario_note,
         algorithm=run.config.algorithm,
         algorithm_title=title_of(e.algorithm),
         set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
         following_what=run.following_what,
-        click_advances=screen.click_advances,
         compare=_twin_view(run, screen) if screen.twin is not None and running else None,
         divergence=(split := screen.twin.divergence(e) if screen.twin is not None and running else None),
         diverged=split.robot if split is not None else None,
         trace_note=story.trace_note(run.trace_options),
         **_over_time(run, screen, pts) if running else {"trail_setting": screen.trails},
         **numbers,
-        mode=screen.mode,
-        draft_count=len(screen.editor.pattern),  # the pattern drawn (Edit), or the run's
-        robot_count=len(screen.editor.robots) if screen.mode != "run" else e.k,
-        axis=screen.editor.axis() if screen.mode == "edit-robots" else None,
-        anchor=screen.studio.anchor if screen.mode != "run" else None,
+        **_screen_fields(run, screen),
         move_series=run.series.at(e.history, e.step_index),
         scheduler=run.config.scheduler,
         playing=run.playing,
         why_text=why_markdown(None),
         paper_decision=story.last_decision(e),
-        lecture=lecture_words(screen.lecture, st.events, run.playing),
-        lecture_title=screen.lecture.lecture if screen.lecture is not None else "",
     )
+    return _told(view, run, crash[0] if crash else None, stuck)
+
+
+def _screen_fields(run: RunSource, screen: SharedScreen) -> dict[str, Any]:
+    """What the shared screen adds to the run's view: the mode and its drafts, a scenario's note, a
+    lecture's caption."""
+    editing = screen.mode != "run"
+    return {
+        "mode": screen.mode,
+        "draft_count": len(screen.editor.pattern),  # the pattern drawn (Edit), or the run's
+        "robot_count": len(screen.editor.robots) if editing else run.engine.k,
+        "axis": screen.editor.axis() if screen.mode == "edit-robots" else None,
+        "anchor": screen.studio.anchor if editing else None,
+        "click_advances": screen.click_advances,
+        "scenario_note": screen.scenario_note,
+        "lecture": lecture_words(screen.lecture, run.engine.state.events, run.playing),
+        "lecture_title": screen.lecture.lecture if screen.lecture is not None else "",
+    }
+
+
+def _told(view: SessionView, run: RunSource, crash: str | None, stuck: bool) -> SessionView:
+    """The run's view with what is said of it: the Paper panel, the divergence marked in both runs of
+    Compare, a followed trace's end, and the panels' sentences."""
+    e = run.engine
     view = replace(
         view, paper_text=paper_html(pseudocode_of(e.algorithm), view.paper_decision, view.algorithm)
     )
@@ -118,7 +134,7 @@ def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
     if at_end and _walks(run):
         view = replace(view, endless=story.endless_words(run.trace_options))
     mirrored = view.outcome == "formed" and matches_only_mirrored(e.current_points(), run.config.pattern)
-    return replace(view, **_sentences(view, crash[0] if crash else None, stuck, mirrored))
+    return replace(view, **_sentences(view, crash, stuck, mirrored))
 
 
 def lecture_words(stop: LectureStop | None, event: int, playing: bool) -> tuple[str, str, str] | None:
