@@ -139,6 +139,15 @@ _VERDICT_COLOURS = {
 }
 
 
+def _merge_label(r: dict) -> str:
+    """A merge's cell: the violation and the robots of its counterexample, a tick, or the verdict."""
+    if r["verdict"] == "breaks":
+        return f"{r['violation'].split(':')[0]}\nk={r['k']}" + (" (rnd)" if r["stage"] == "random" else "")
+    if r["verdict"] == "survives":
+        return "✓" + (f"\n{r['random_runs']} rnd" if r["random_runs"] else "")
+    return r["verdict"]
+
+
 def plot_lights(rows: Sequence[dict], out: Path) -> Path:
     """The matrix of merges of ``apf-viz lights``: row a, column b is ``merge(a=b)`` (b shown as a);
     red breaks (marked with the violation's initial and the robots of the counterexample), green survives
@@ -165,17 +174,10 @@ def plot_lights(rows: Sequence[dict], out: Path) -> Path:
             r = cell.get((a, b))
             colour = "#333333" if a == b else _VERDICT_COLOURS.get(r["verdict"], "#999") if r else "#e6e6e6"
             ax.add_patch(plt.Rectangle((j, i), 1, 1, facecolor=colour, edgecolor="white", linewidth=2))
-            if r is None or a == b:
-                continue
-            if r["verdict"] == "breaks":
-                label = f"{r['violation'].split(':')[0]}\nk={r['k']}" + (
-                    " (rnd)" if r["stage"] == "random" else ""
+            if r is not None and a != b:
+                ax.text(
+                    j + 0.5, i + 0.5, _merge_label(r), ha="center", va="center", fontsize=7, color="white"
                 )
-            elif r["verdict"] == "survives":
-                label = "✓" + (f"\n{r['random_runs']} rnd" if r["random_runs"] else "")
-            else:
-                label = r["verdict"]
-            ax.text(j + 0.5, i + 0.5, label, ha="center", va="center", fontsize=7, color="white")
     ax.set_xlim(0, n)
     ax.set_ylim(n, 0)
     ax.set_xticks([j + 0.5 for j in range(n)], lights, rotation=40, ha="right", fontsize=8)

@@ -132,3 +132,18 @@ def test_the_view_model_reads_the_run_through_a_protocol_and_imports_nothing_sta
             bad = [m for m in _imports(path, modules) if m.startswith(stateful)]
             assert bad == [], (name, bad)
             assert "import viser" not in path.read_text() and "from viser" not in path.read_text()
+
+
+def test_rooms_of_one_job_no_module_over_500_lines_no_function_over_60():
+    """A module a maintainer can read whole, a function that does one thing (docstring included: a long
+    docstring is a sign of a function doing several)."""
+    long_modules, long_functions = [], []
+    for name, path in _modules().items():
+        text = path.read_text()
+        if len(text.splitlines()) > 500:
+            long_modules.append(name)
+        for node in ast.walk(ast.parse(text)):
+            is_function = isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+            if is_function and node.end_lineno is not None and node.end_lineno - node.lineno + 1 > 60:
+                long_functions.append(f"{name}.{node.name}")
+    assert long_modules == [] and long_functions == []

@@ -105,10 +105,10 @@ def compiled() -> Kernel | None:
 @functools.cache
 def _compile(numba) -> Kernel:
     # build_view calls its helpers as globals: compiled code must find the compiled ones there.
-    global _counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash
-    counting, order, by_table, by_hash = (
+    global _counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash, _in_view_order
+    counting, order, by_table, by_hash, view_order = (
         getattr(f, "py_func", f)
-        for f in (_counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash)
+        for f in (_counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash, _in_view_order)
     )
     try:
         jit = numba.njit(cache=True, nogil=True)
@@ -120,6 +120,7 @@ def _compile(numba) -> Kernel:
     _order_by_offset = jit(order)
     _nearest_by_table = jit(by_table)
     _nearest_by_hash = jit(by_hash)
+    _in_view_order = jit(view_order)  # after _order_by_offset: it calls the compiled one
     return jit(build_view)
 
 
@@ -177,7 +178,16 @@ def build_view(
             sy[i] = P[j, 1] - y0
             span = max(span, abs(sx[i]) + 1, abs(sy[i]) + 1)
             i += 1
-    ly = sy * flip
+    dx_sorted, ly_sorted, code, present = _in_view_order(ids, sx, sy * flip, code_of, span)
+    return ids, sx, sy, dx_sorted, ly_sorted, code, present
+
+
+def _in_view_order(
+    ids: np.ndarray, sx: np.ndarray, ly: np.ndarray, code_of: np.ndarray, span: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, int | np.integer]:
+    """The visible robots sorted by (dx, ly) in the observer's frame: dx, ly, light code, and the codes
+    present as a bit each (−1 past 62 codes). ``span`` bounds |dx| and |ly|."""
+    n = ids.shape[0]
     if span <= _COUNTING_SPAN:
         by_offset = _order_by_offset(sx, ly, span)
     else:
@@ -193,7 +203,7 @@ def build_view(
         c = code_of[ids[o]]
         code[i] = c
         present = present | (np.int64(1) << np.int64(c)) if c < 62 and present >= 0 else -1
-    return ids, sx, sy, dx_sorted, ly_sorted, code, present
+    return dx_sorted, ly_sorted, code, present
 
 
 def _nearest_by_table(

@@ -26,7 +26,7 @@ from math import gcd
 
 import numpy as np
 
-from apf_viz.core.algorithm import Watch
+from apf_viz.core.algorithm import Box, Watch
 from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, visible_from
 from apf_viz.core.quiet_steps import QuietSteps
 from apf_viz.core.watch_geometry import (
@@ -133,21 +133,8 @@ class Watches(QuietSteps):
             if not any(counts):
                 return False  # the watch is broken already
         if short:
-            self._intact[r] = {i for i, *_ in short}
-            witnesses = self._witness_of[r]
-            robot_at, followed = self._robot_at, self._followed
-            for i, dx, dy, g in short:
-                at = (x + dx, y + s * dy)
-                # Most witnesses are chosen to be a single point away (their segment is that point).
-                self._link(r, i, [at] if g == 1 else lattice_points(x, y, dx, s * dy))
-                j = robot_at.get(at)
-                if j is not None:
-                    witnesses[i] = j
-                    followed.setdefault(j, set()).add((r, i))
-            if watch.within is not None:
-                self._within[r] = global_box(x, y, s, watch.within)
+            self._register_witnesses(r, short, watch.within)
         boxes = [global_box(x, y, s, box) for box in watch.boxes]
-        longs: list[tuple[int, int, int]] = []
         for i, box in enumerate(boxes):
             self._bx0[r, i], self._bx1[r, i], self._by0[r, i], self._by1[r, i] = box
         if watch.occupied:
@@ -156,17 +143,7 @@ class Watches(QuietSteps):
                     if abs(edge) != BIG:
                         edges.setdefault(edge, set()).add((r, i))
             self._occupied[r] = (occupied, counts)
-        for i, (dx, dy) in enumerate(segments):
-            dy *= s
-            g = gcd(dx, dy)
-            if g <= SHORT:
-                points = self._points_of[r]
-                for p in lattice_points(x, y, dx, dy):
-                    points.append(p)
-                    self._watchers_at.setdefault(p, set()).add(r)
-            else:
-                self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
-                longs.append((dx // g, dy // g, g))
+        longs = self._register_segments(r, segments)
         mask = 0
         for light in watch.lights:
             mask |= self._bit.get(light, 0)
@@ -180,6 +157,44 @@ class Watches(QuietSteps):
             self._boxed[r] = (boxes, longs)
             self._with_long += bool(longs)
         return True
+
+    def _register_witnesses(self, r: int, short: list[tuple[int, int, int, int]], within: Box | None) -> None:
+        """Robot r's ``any_of`` witnesses (``short``: index, offset in r's frame, lattice length): each
+        segment linked to r, and the robot standing at its end followed (its moves touch the watch)."""
+        x, y = (int(v) for v in self._P[r])
+        s = self._flip[r]
+        self._intact[r] = {i for i, *_ in short}
+        witnesses = self._witness_of[r]
+        robot_at, followed = self._robot_at, self._followed
+        for i, dx, dy, g in short:
+            at = (x + dx, y + s * dy)
+            # Most witnesses are chosen to be a single point away (their segment is that point).
+            self._link(r, i, [at] if g == 1 else lattice_points(x, y, dx, s * dy))
+            j = robot_at.get(at)
+            if j is not None:
+                witnesses[i] = j
+                followed.setdefault(j, set()).add((r, i))
+        if within is not None:
+            self._within[r] = global_box(x, y, s, within)
+
+    def _register_segments(self, r: int, segments: Sequence[Point]) -> list[tuple[int, int, int]]:
+        """Robot r's watched segments (offsets in its frame): a short one as its points, a long one by
+        its direction and length (returned, as (ux, uy, length))."""
+        x, y = (int(v) for v in self._P[r])
+        s = self._flip[r]
+        longs: list[tuple[int, int, int]] = []
+        for i, (dx, dy) in enumerate(segments):
+            dy *= s
+            g = gcd(dx, dy)
+            if g <= SHORT:
+                points = self._points_of[r]
+                for p in lattice_points(x, y, dx, dy):
+                    points.append(p)
+                    self._watchers_at.setdefault(p, set()).add(r)
+            else:
+                self._sdx[r, i], self._sdy[r, i], self._sg[r, i] = dx // g, dy // g, g
+                longs.append((dx // g, dy // g, g))
+        return longs
 
     def _count_watchers(self, mask: int, change: int) -> None:
         """Keep ``_watched``, the lights some watch has, from a count of watchers per light."""

@@ -295,9 +295,47 @@ class Explorer:
 
     # ------------------------------------------------------------------ search
     def run(self) -> Result:
+        """The verdict: every reachable state searched (breadth first), then the terminal states that are
+        not the pattern (deadlocks) and the fair cycles that never become quiescent (livelocks)."""
         t0 = time.perf_counter()
         if matches_pattern(self.robots, self.pattern):  # the engine's rule: formed before anyone acts
             return Result("verified", 1, 0, 0.0, detail="the start is already the pattern: formed at time 0")
+        searched = self._search(t0)
+        if isinstance(searched, Result):
+            return searched  # a collision, an escape, or the state budget
+        states, parent, edges, transitions = searched
+        quiet = [self.quiescent(s) for s in states]
+        for i, s in enumerate(states):
+            if quiet[i] and not matches_pattern(self._absolute(s), self.pattern):
+                return self._fail(
+                    "deadlock",
+                    "a terminal state that is not the pattern",
+                    i,
+                    None,
+                    parent,
+                    len(states),
+                    transitions,
+                    t0,
+                )
+        loop = self._fair_cycle(edges, quiet)
+        seconds = time.perf_counter() - t0
+        if loop is not None:
+            entry, cycle = loop
+            stem = self._path(parent, entry)
+            return Result(
+                "livelock",
+                len(states),
+                transitions,
+                seconds,
+                stem + cycle,
+                loop_start=len(stem),
+                detail="a fair cycle of states that never becomes quiescent",
+            )
+        return Result("verified", len(states), transitions, seconds)
+
+    def _search(self, t0: float) -> Result | tuple[list[State], list, list, int]:
+        """Every state reachable from the start, breadth first: (states, parents, edges, transitions), or
+        the Result that stopped the search (a collision, an escape past the coordinates, the budget)."""
         start = self.initial()
         index: dict[tuple, int] = {start.key(): 0}
         states: list[State] = [start]
@@ -341,34 +379,7 @@ class Explorer:
             edges.append(out)
             if self.progress and len(edges) % 20_000 == 0:
                 self.progress(len(states), len(queue), time.perf_counter() - t0)
-        quiet = [self.quiescent(s) for s in states]
-        for i, s in enumerate(states):
-            if quiet[i] and not matches_pattern(self._absolute(s), self.pattern):
-                return self._fail(
-                    "deadlock",
-                    "a terminal state that is not the pattern",
-                    i,
-                    None,
-                    parent,
-                    len(states),
-                    transitions,
-                    t0,
-                )
-        loop = self._fair_cycle(edges, quiet)
-        seconds = time.perf_counter() - t0
-        if loop is not None:
-            entry, cycle = loop
-            stem = self._path(parent, entry)
-            return Result(
-                "livelock",
-                len(states),
-                transitions,
-                seconds,
-                stem + cycle,
-                loop_start=len(stem),
-                detail="a fair cycle of states that never becomes quiescent",
-            )
-        return Result("verified", len(states), transitions, seconds)
+        return states, parent, edges, transitions
 
     def _absolute(self, s: State) -> list[Point]:
         return [(x + s.origin[0], y + s.origin[1]) for x, y in s.positions]

@@ -177,6 +177,27 @@ def lecture_html(view: SessionView) -> str:
             for light, name in named.items()
         )
     last = html.escape(view.last_events[0]) if view.last_events else "—"
+    outcome = _outcome_html(view)
+    words = ""
+    if view.lecture is not None:  # a guided lecture: its stop's words first, large
+        where, title, say = view.lecture
+        words = (
+            f'<div style="color:#666;font-size:0.85em">{html.escape(where)}</div>'
+            f'<div style="font-size:1.25em;font-weight:bold">{symbol_html(title)}</div>'
+            f'<div style="margin-bottom:6px">{symbol_html(say)}</div>'
+        )
+    # A failure's outcome and its explanation come right after the stop's words: the point of the stop.
+    return (
+        f'<div style="font-size:1.1em;line-height:1.3">{words}{outcome}{compared(view)}'
+        f"<div><b>{symbol_html(view.stage)}</b></div>"
+        f"<div>Event {view.event} · {last}</div>"
+        f'<div style="margin-top:6px">{lights}</div>{KEYS}</div>'
+    )
+
+
+def _outcome_html(view: SessionView) -> str:
+    """The caption's outcome, located and explained (whose stale decision, or who waits on what), or a
+    walk that never ends at the end of its trace; "" while the run goes on."""
     outcome = ""
     if view.outcome:
         where = f"<div>{html.escape(view.collision[0])}</div>" if view.collision else ""
@@ -195,21 +216,7 @@ def lecture_html(view: SessionView) -> str:
             f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(heading)}</div>'
             f'<div style="color:#444;font-size:0.9em">{html.escape(words)}</div>'
         )
-    words = ""
-    if view.lecture is not None:  # a guided lecture: its stop's words first, large
-        where, title, say = view.lecture
-        words = (
-            f'<div style="color:#666;font-size:0.85em">{html.escape(where)}</div>'
-            f'<div style="font-size:1.25em;font-weight:bold">{symbol_html(title)}</div>'
-            f'<div style="margin-bottom:6px">{symbol_html(say)}</div>'
-        )
-    # A failure's outcome and its explanation come right after the stop's words: the point of the stop.
-    return (
-        f'<div style="font-size:1.1em;line-height:1.3">{words}{outcome}{compared(view)}'
-        f"<div><b>{symbol_html(view.stage)}</b></div>"
-        f"<div>Event {view.event} · {last}</div>"
-        f'<div style="margin-top:6px">{lights}</div>{KEYS}</div>'
-    )
+    return outcome
 
 
 # Presentation mode hides the panel and its list of keys: the caption names the ones a lecture needs.
