@@ -23,7 +23,7 @@ from apf_viz.core.formats import (
 from apf_viz.core.grid import as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary
-from apf_viz.core.schedulers import REGISTRY
+from apf_viz.core.schedulers import DEFAULT_SCHEDULER, REGISTRY
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
@@ -196,11 +196,11 @@ def add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str], defau
     None when not given, so that a --schedule can tell them apart from the defaults."""
     p.add_argument(
         "--scheduler",
-        default="async" if defaults else None,
+        default=DEFAULT_SCHEDULER if defaults else None,
         choices=list(schedulers),
         help="the adversary: "
         + "; ".join(f"{kind.name}, {kind.summary}" for kind in REGISTRY if kind.name in schedulers)
-        + ("" if defaults else " (default: async)"),
+        + ("" if defaults else f" (default: {DEFAULT_SCHEDULER})"),
     )
     p.add_argument(
         "--seed",

@@ -34,7 +34,7 @@ from apf_viz.core.schedule import (
     schedule_of_steps,
     schedule_text,
 )
-from apf_viz.core.schedulers import AUTOMATIC, make_scheduler
+from apf_viz.core.schedulers import AUTOMATIC, DEFAULT_SCHEDULER, make_scheduler
 
 NAME = "run"
 HELP = "run an algorithm headless and report the outcome"
@@ -168,7 +168,7 @@ def run(args: argparse.Namespace) -> int:
     if schedule is not None:
         y_up, semantics = _schedule_adversary(args, robots, schedule)
     then = make_scheduler(args.then) if args.then else None
-    scheduler = make_scheduler(args.scheduler or "async")
+    scheduler = make_scheduler(args.scheduler or DEFAULT_SCHEDULER)
     skip = not args.all_activations
     budget = run_budget(points, targets, skip)  # a cap given on the command line replaces its part
     engine = Engine(

@@ -13,9 +13,8 @@ from apf_viz.cli.common import (
     positive_seconds,
     workers,
 )
-from apf_viz.core.formats import (
-    check_writable,
-)
+from apf_viz.core.formats import check_writable
+from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
 NAME = "sweep"
 HELP = "run a grid of runs on Dask into one results table (docs/SWEEPS.md)"
@@ -24,7 +23,7 @@ HELP = "run a grid of runs on Dask into one results table (docs/SWEEPS.md)"
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--ks", default="5,10,20", help="robot counts: a list and/or ranges, e.g. 5,10,20 or 3-6")
     p.add_argument("--seeds", default="1-10", help="seeds: e.g. 1-50 (each seed gives its own start)")
-    p.add_argument("--schedulers", default="async", help="comma-separated schedulers")
+    p.add_argument("--schedulers", default=DEFAULT_SCHEDULER, help="comma-separated schedulers")
     p.add_argument("--algorithms", default=DEFAULT_ALGORITHM, help="comma-separated algorithm names")
     p.add_argument("--light-semantics", default="compute", help="comma-separated: compute, lc-atomic")
     p.add_argument(

@@ -9,6 +9,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory, get_algorithm
 from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.grid import Point
+from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
 
 @dataclass(frozen=True)
@@ -21,7 +22,7 @@ class RunConfig:
     pattern: tuple[Point, ...]
     algorithm: str = DEFAULT_ALGORITHM
     light_semantics: LightSemantics = "compute"
-    scheduler: str = "async"
+    scheduler: str = DEFAULT_SCHEDULER
     seed: int = 1
     max_events: int = 5_000_000  # events a loaded trace may hold
     skip_noops: bool = True  # False: every no-op activation is kept (the All activations box)

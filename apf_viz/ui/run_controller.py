@@ -15,7 +15,7 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
 from apf_viz.core.history import StepRecord
 from apf_viz.core.portrayal import Configuration, stage_of
-from apf_viz.core.schedulers import make_scheduler, step_rng
+from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
 from apf_viz.ui.move_series import MoveSeries
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.stage_log import StageLog
@@ -156,7 +156,7 @@ class RunController:
         with self.lock:
             if self.following:  # the trace decides: its next recorded step, until its end
                 return not self.engine.finished and self.engine.redo() is not None
-            if self.engine.finished or self.config.scheduler == "manual":
+            if self.engine.finished or self.config.scheduler in BY_HAND:
                 return False
             record = make_scheduler(self.config.scheduler).choose(
                 self.engine, step_rng(self.config.seed, self.engine.step_index)

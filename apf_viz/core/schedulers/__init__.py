@@ -34,11 +34,17 @@ REGISTRY: tuple[SchedulerKind, ...] = (
 SCHEDULERS: tuple[str, ...] = tuple(kind.name for kind in REGISTRY)
 AUTOMATIC: tuple[str, ...] = tuple(kind.name for kind in REGISTRY if kind.automatic)
 """The schedulers that choose by themselves: those a batch run (run, sweep, the light lab) may use."""
+BY_HAND: tuple[str, ...] = tuple(kind.name for kind in REGISTRY if not kind.automatic)
+"""The schedulers the person drives (a click or Step picks the robot): Manual."""
+DEFAULT_SCHEDULER = "async"
+"""The adversary of a run nobody chose one for (the command line's default, a new session's)."""
 SYNCHRONOUS: tuple[str, ...] = tuple(kind.name for kind in REGISTRY if kind.synchronous)
 """The schedulers whose rounds number their events (a round is a group's Looks, Computes, Moves)."""
 
 __all__ = [
     "AUTOMATIC",
+    "BY_HAND",
+    "DEFAULT_SCHEDULER",
     "REGISTRY",
     "SCHEDULERS",
     "SYNCHRONOUS",

@@ -3,6 +3,7 @@ next for what, and Verify (every schedule of a small start)."""
 
 from __future__ import annotations
 
+from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.session import SCHEDULER_LABELS
 from apf_viz.ui.verifier import MAX_K
@@ -79,7 +80,7 @@ class AdversaryFolder:
             self.verify_status.content = f"Verify: {v.text}"
         if self.cancel_verify.visible != running:
             self.cancel_verify.visible = running
-        manual = view.scheduler == "manual"
+        manual = view.scheduler in BY_HAND
         if self.click.visible != manual:
             self.click.visible = manual
         click = "advance" if view.click_advances else "select"

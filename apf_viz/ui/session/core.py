@@ -20,6 +20,7 @@ from apf_viz.core.formats import (
 )
 from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Point, as_point
+from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 from apf_viz.core.schedulers import REGISTRY as SCHEDULER_REGISTRY
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor, draft_of
@@ -52,7 +53,7 @@ class SessionCore:
         *,
         y_up: Sequence[bool] | None = None,
         algorithm: str = DEFAULT_ALGORITHM,
-        scheduler: str = "async",
+        scheduler: str = DEFAULT_SCHEDULER,
         seed: int = 1,
         light_semantics: str = "compute",
         max_events: int = 5_000_000,

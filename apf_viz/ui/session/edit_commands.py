@@ -11,6 +11,7 @@ from apf_viz.core.formats import (
     InputError,
 )
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
+from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.screen_state import Mode
 from apf_viz.ui.session.core import SessionCore
@@ -42,7 +43,7 @@ class EditCommands(SessionCore):
                 state.selected = None
                 return "nothing here"
             state.selected = r
-            if self.scheduler_name == "manual" and self.click_advances and not self.engine.finished:
+            if self.scheduler_name in BY_HAND and self.click_advances and not self.engine.finished:
                 return f"robot {r}: {self.run.step_robot(r)}"
             return f"selected robot {r}"
 

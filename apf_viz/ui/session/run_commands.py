@@ -6,6 +6,7 @@ import time
 from collections.abc import Hashable
 from typing import Literal
 
+from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.session.core import SCHEDULER_LABELS, SessionCore
 from apf_viz.ui.view_model import stage_of
 
@@ -44,7 +45,7 @@ class RunCommands(SessionCore):
         with self.lock:
             if self.engine.finished or self.mode != "run":
                 return False
-            if self.scheduler_name == "manual" and not self.run.following:
+            if self.scheduler_name in BY_HAND and not self.run.following:
                 selected = self.browser(browser).selected
                 if selected is None:
                     return False
@@ -63,7 +64,7 @@ class RunCommands(SessionCore):
                 at, state = twin.state.events, twin.outcome or "running"
                 said += f"; the run beside it stands at event {at}, {state}, with no steps left"
             return said
-        if self.scheduler_name == "manual":
+        if self.scheduler_name in BY_HAND:
             return "Manual: click a robot to run its next phase"
         return "nothing could run"
 
@@ -82,7 +83,7 @@ class RunCommands(SessionCore):
         with self.lock:
             if self.mode != "run":  # e.g. the Unsolvable box demo opens in Edit robots
                 return self._why_editing("Next move / Next stage")
-            if self.scheduler_name == "manual" and not self.run.following:
+            if self.scheduler_name in BY_HAND and not self.run.following:
                 return "Next move / Next stage need a scheduler other than Manual"
             self.run.pause()
             e = self.engine

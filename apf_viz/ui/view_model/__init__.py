@@ -29,6 +29,7 @@ from apf_viz.core.portrayal import (
     title_of,
 )
 from apf_viz.core.portrayal import stage_of as algorithm_stage
+from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
 from apf_viz.ui.view_model import story
 from apf_viz.ui.view_model.paper import paper_html
@@ -206,7 +207,7 @@ def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool
         a = (view.algorithm, view.outcome, view.event, view.moves)
         b = (twin.algorithm, twin.outcome, twin.event, twin.moves)
         out["compare_text"] = story.compare_text(a, b, view.divergence)
-    if view.scheduler == "manual":
+    if view.scheduler in BY_HAND:
         out["next_phases"] = story.next_phases([r.next_event for r in view.robots], view.click_advances)
     return out
 

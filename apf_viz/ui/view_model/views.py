@@ -9,6 +9,7 @@ from typing import NamedTuple
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Explanation, LightStyle, Mark, Overlays
+from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 from apf_viz.ui.compare import Divergence
 from apf_viz.ui.screen_state import Mode
 
@@ -102,7 +103,7 @@ class SessionView:
     # Steps of the timeline worth a mark: where each stage began (labelled where the phase changes), a loop.
     timeline_marks: tuple[tuple[int, str | None], ...] = ()
     stale: tuple[int, ...] = ()  # robots the selected robot's held snapshot shows other than they are now
-    scheduler: str = "async"  # the run's scheduler (by name)
+    scheduler: str = DEFAULT_SCHEDULER  # the run's scheduler (by name)
     playing: bool = False
     # The sentences of the panels, made here so that a test can read them without a browser.
     banner: str = ""  # the outcome, located
