@@ -19,30 +19,9 @@ from apf_viz.core.grid import COORD_LIMIT, visible_from
 from apf_viz.core.schedulers import make_scheduler, step_rng
 from apf_viz.core.view import Seen
 from apf_viz.core.visibility import Views
-from tests.oracle import visible_by_lattice_walk
+from tests.oracle import visible_by_betweenness, visible_by_lattice_walk
 
 L = COORD_LIMIT
-
-
-def visible_by_betweenness(points: list[tuple[int, int]], i: int) -> list[int]:
-    """Robot j is visible from i iff no robot lies strictly inside the segment i–j (exact integers)."""
-    x0, y0 = points[i]
-    out = []
-    for j, (x1, y1) in enumerate(points):
-        if j == i:
-            continue
-        dx, dy = x1 - x0, y1 - y0
-        blocked = False
-        for m, (x, y) in enumerate(points):
-            if m in (i, j):
-                continue
-            px, py = x - x0, y - y0
-            if px * dy - py * dx == 0 and 0 < px * dx + py * dy < dx * dx + dy * dy:
-                blocked = True
-                break
-        if not blocked:
-            out.append(j)
-    return out
 
 
 # ------------------------------------------------------------------------------------------ the issue's cases

@@ -7,12 +7,7 @@ import json
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import (
-    ALGORITHM_HELP,
-    SEMANTICS_HELP,
-    positive,
-    problem,
-)
+from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem
 
 NAME = "check"
 HELP = "explore every schedule of a small start (model checking)"

@@ -5,9 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import (
-    EXIT_NOT_FORMED,
-)
+from apf_viz.cli.common import EXIT_NOT_FORMED
 
 NAME = "lecture"
 HELP = "check a guided lecture: run every stop headless, report each condition"

@@ -8,12 +8,7 @@ import time
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import (
-    cluster,
-    fail,
-    need_extra,
-    workers,
-)
+from apf_viz.cli.common import cluster, fail, need_extra, workers
 
 NAME = "lights"
 HELP = "which lights could be one colour? every merge of two, explored (docs/LIGHTS.md)"

@@ -6,10 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from apf_viz.cli.common import (
-    emit,
-    fail,
-)
+from apf_viz.cli.common import emit, fail
 from apf_viz.core import shapes
 from apf_viz.core.formats import (
     MAX_INPUT_BYTES,

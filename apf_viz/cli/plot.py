@@ -5,10 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import (
-    fail,
-    need_extra,
-)
+from apf_viz.cli.common import fail, need_extra
 
 NAME = "plot"
 HELP = (

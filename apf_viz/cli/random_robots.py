@@ -4,14 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from apf_viz.cli.common import (
-    add_box_options,
-    emit,
-)
-from apf_viz.core.formats import (
-    check_writable,
-    robots_json,
-)
+from apf_viz.cli.common import add_box_options, emit
+from apf_viz.core.formats import check_writable, robots_json
 from apf_viz.core.random_configs import random_robots
 
 NAME = "random-robots"

@@ -7,15 +7,8 @@ import sys
 from pathlib import Path
 
 from apf_viz.algorithms import algorithm_from_command_line, get_algorithm
-from apf_viz.cli.common import (
-    EXIT_FORMED,
-    EXIT_NOT_FORMED,
-    print_summary,
-)
-from apf_viz.core.formats import (
-    InputError,
-    load_trace,
-)
+from apf_viz.cli.common import EXIT_FORMED, EXIT_NOT_FORMED, print_summary
+from apf_viz.core.formats import InputError, load_trace
 from apf_viz.core.run import RunSummary, engine_for_trace, replay
 
 NAME = "replay"

@@ -17,12 +17,7 @@ from apf_viz.cli.common import (
 )
 from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
 from apf_viz.core.engine import Engine, LightSemantics
-from apf_viz.core.formats import (
-    RobotsFile,
-    check_writable,
-    trace_text,
-    write_atomic,
-)
+from apf_viz.core.formats import RobotsFile, check_writable, trace_text, write_atomic
 from apf_viz.core.run import RunSummary, advance, trace_header
 from apf_viz.core.schedule import (
     Schedule,

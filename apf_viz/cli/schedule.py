@@ -5,20 +5,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import (
-    emit,
-)
-from apf_viz.core.formats import (
-    check_writable,
-    load_trace,
-    pattern_json,
-    robots_json,
-    write_atomic,
-)
-from apf_viz.core.schedule import (
-    schedule_of_trace,
-    schedule_text,
-)
+from apf_viz.cli.common import emit
+from apf_viz.core.formats import check_writable, load_trace, pattern_json, robots_json, write_atomic
+from apf_viz.core.schedule import schedule_of_trace, schedule_text
 
 NAME = "schedule"
 HELP = "write the schedule (who acted and the flips, not what they saw) of a trace"

@@ -5,10 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import (
-    add_run_options,
-    port,
-)
+from apf_viz.cli.common import add_run_options, port
 from apf_viz.core.schedulers import SCHEDULERS
 
 NAME = "serve"

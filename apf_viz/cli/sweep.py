@@ -6,13 +6,7 @@ import argparse
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import (
-    cluster,
-    fail,
-    need_extra,
-    positive_seconds,
-    workers,
-)
+from apf_viz.cli.common import cluster, fail, need_extra, positive_seconds, workers
 from apf_viz.core.formats import check_writable
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 

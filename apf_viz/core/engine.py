@@ -25,9 +25,7 @@ import numpy as np
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
 from apf_viz.core.engine_state import NEXT_EVENT, EngineState, Outcome, Phase
 from apf_viz.core.events import Events
-from apf_viz.core.fast_forward import (
-    check_walks_requested,
-)
+from apf_viz.core.fast_forward import check_walks_requested
 from apf_viz.core.grid import Point, coordinate_problem
 from apf_viz.core.history import Event, History, StepRecord
 from apf_viz.core.pattern_match import matches_pattern

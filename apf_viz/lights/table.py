@@ -6,9 +6,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from apf_viz.core.formats import InputError, replace_atomically
-from apf_viz.lights.merges import (
-    COLUMNS,
-)
+from apf_viz.lights.merges import COLUMNS
 from apf_viz.lights.stories import story
 
 

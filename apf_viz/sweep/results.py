@@ -7,11 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from apf_viz.core.formats import InputError, replace_atomically, write_atomic
-from apf_viz.sweep.cells import (
-    _LATER_COLUMNS,
-    COLUMNS,
-    KEY,
-)
+from apf_viz.sweep.cells import _LATER_COLUMNS, COLUMNS, KEY
 
 
 def read_results(path: Path) -> list[dict]:

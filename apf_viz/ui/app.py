@@ -32,12 +32,7 @@ from apf_viz.lecture import find_lecture
 from apf_viz.ui.browser_screen import BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.scene import (
-    Bounds,
-    SceneRenderer,
-    grown_box,
-    ray_through,
-)
+from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.session import Session
 from apf_viz.ui.view_model import SessionView
 

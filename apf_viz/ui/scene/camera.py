@@ -7,16 +7,8 @@ import math
 
 import numpy as np
 
-from apf_viz.ui.scene.labels import (
-    TYPICAL_CANVAS_PX,
-)
-from apf_viz.ui.scene.style import (
-    NARROW_ASPECT,
-    NOSE_CELLS,
-    NOSE_MIN_PX,
-    RIM_PLAYING_PX,
-    Bounds,
-)
+from apf_viz.ui.scene.labels import TYPICAL_CANVAS_PX
+from apf_viz.ui.scene.style import NARROW_ASPECT, NOSE_CELLS, NOSE_MIN_PX, RIM_PLAYING_PX, Bounds
 
 
 def _unskipped(held, wanted):

@@ -2,16 +2,9 @@
 
 from __future__ import annotations
 
-from apf_viz.ui.scene.camera import (
-    _unskipped,
-    camera_aspect,
-    pose_for,
-)
+from apf_viz.ui.scene.camera import _unskipped, camera_aspect, pose_for
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.style import (
-    NARROW_ASPECT,
-    Bounds,
-)
+from apf_viz.ui.scene.style import NARROW_ASPECT, Bounds
 
 
 class Framing(Canvas):

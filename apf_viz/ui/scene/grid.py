@@ -5,12 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.style import (
-    GRID_CELL_PX,
-    GRID_SECTION_PX,
-    SECTION_STEPS,
-    VIEW_PX,
-)
+from apf_viz.ui.scene.style import GRID_CELL_PX, GRID_SECTION_PX, SECTION_STEPS, VIEW_PX
 
 
 def grid_steps(width: int) -> tuple[bool, int]:

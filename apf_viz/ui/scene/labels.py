@@ -5,10 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from apf_viz.ui.scene.style import (
-    STALE_MARK,
-    Bounds,
-)
+from apf_viz.ui.scene.style import STALE_MARK, Bounds
 
 
 def number_labels(

@@ -7,16 +7,8 @@ import numpy as np
 from apf_viz.core.portrayal import Cells, Frame, Line
 from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.labels import (
-    cells_label_at,
-    frame_label_at,
-    label_box,
-    text_cells,
-)
-from apf_viz.ui.scene.style import (
-    Z,
-    xyz,
-)
+from apf_viz.ui.scene.labels import cells_label_at, frame_label_at, label_box, text_cells
+from apf_viz.ui.scene.style import Z, xyz
 from apf_viz.ui.view_model import SessionView
 
 

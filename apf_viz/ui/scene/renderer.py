@@ -8,17 +8,11 @@ from apf_viz.core.portrayal import Line
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
-from apf_viz.ui.scene.labels import (
-    number_labels,
-)
+from apf_viz.ui.scene.labels import number_labels
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
-from apf_viz.ui.scene.style import (
-    DENSE,
-    LAYER,
-    xyz,
-)
+from apf_viz.ui.scene.style import DENSE, LAYER, xyz
 from apf_viz.ui.view_model import SessionView
 
 

@@ -8,15 +8,7 @@ import numpy as np
 from apf_viz.core.portrayal import Band, HalfPlane, Line
 from apf_viz.ui.palette import MARK_COLORS, region_color
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.style import (
-    GHOST_BADGE_OFFSET,
-    LAYER,
-    REGION_OPACITY,
-    SIZE,
-    Z,
-    light_colors,
-    xyz,
-)
+from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET, LAYER, REGION_OPACITY, SIZE, Z, light_colors, xyz
 from apf_viz.ui.view_model import SessionView
 
 

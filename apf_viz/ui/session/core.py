@@ -1,23 +1,13 @@
-"""The visualiser's commands: one shared run, the drafts being drawn, the mode, and each connected
-browser's own state (its selection). What the screen shows is the view model's (:mod:`apf_viz.ui.view_model`):
-:meth:`Session.view` asks it, for one browser, under the run's lock.
-
-No viser here, and no particular algorithm. The work is split by job:
-:class:`~apf_viz.ui.run_controller.RunController` (engine, adversary, play),
-:class:`~apf_viz.ui.editor.Editor` (drafts), :mod:`apf_viz.ui.loader` (files in),
-:mod:`apf_viz.ui.screen_state` (the screen's state, shared and per browser). Every call is serialised by
-the run's lock, so all connected browsers drive the same run safely.
-"""
+"""The session's core: the browsers and their own state, the shared screen's fields, the run read-only,
+building a new run from a configuration, and what each browser is shown (the view model's view, made
+under the run's lock). The commands build on it (ui/session/*_commands.py)."""
 
 from __future__ import annotations
 
 from collections.abc import Hashable, Mapping, Sequence
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
-from apf_viz.core.formats import (
-    InputError,
-    size_problem,
-)
+from apf_viz.core.formats import InputError, size_problem
 from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER

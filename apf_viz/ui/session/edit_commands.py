@@ -7,9 +7,7 @@ from collections.abc import Hashable
 import numpy as np
 
 from apf_viz.core import shapes
-from apf_viz.core.formats import (
-    InputError,
-)
+from apf_viz.core.formats import InputError
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.library import PatternLibrary

@@ -2,13 +2,7 @@
 
 from __future__ import annotations
 
-from apf_viz.core.formats import (
-    MAX_TRACE_BYTES,
-    InputError,
-    pattern_json,
-    robots_json,
-    trace_text,
-)
+from apf_viz.core.formats import MAX_TRACE_BYTES, InputError, pattern_json, robots_json, trace_text
 from apf_viz.core.grid import as_point
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text

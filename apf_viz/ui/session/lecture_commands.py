@@ -5,9 +5,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
-from apf_viz.core.formats import (
-    InputError,
-)
+from apf_viz.core.formats import InputError
 from apf_viz.lecture import Lecture
 from apf_viz.ui import loader
 from apf_viz.ui.lecturer import Lecturer, Reached
