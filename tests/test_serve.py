@@ -37,18 +37,28 @@ def wait_for_page(port: int, proc: subprocess.Popen) -> str:
 
 
 @pytest.mark.parametrize("args", [(), ("serve", "--trace", "tests/gap_traces/E2.jsonl")])
-def test_serves_and_prints_its_address(args):
+def test_serves_and_prints_its_two_addresses(args):
+    """One line each: the presenter's address (a secret in it) and the class's (none)."""
     proc, port = serve(*args)
     try:
-        line = ""
-        for _ in range(50):  # the server prints its address once it is listening
+        lines: dict[str, str] = {}
+        for _ in range(50):  # the server prints its addresses once it is listening
             line = proc.stdout.readline()
-            if "serving on" in line or not line:
+            if not line:
                 break
-        assert "serving on http://127.0.0.1:" in line, (line, proc.stderr.read() if proc.poll() else "")
+            key, _, value = line.strip().partition(": ")
+            lines[key] = value
+            if "class" in lines:
+                break
+        assert "presenter" in lines and "class" in lines, (lines, proc.stderr.read() if proc.poll() else "")
         # viser moves to the next port if the chosen one was taken meanwhile: use the printed address.
-        actual = int(line.split("http://127.0.0.1:")[1].split()[0])
-        assert actual >= port
+        follower = lines["class"]
+        actual = int(follower.split("http://127.0.0.1:")[1].rstrip("/"))
+        assert actual >= port and follower == f"http://127.0.0.1:{actual}/"
+        presenter = lines["presenter"]
+        secret = presenter.rsplit("/present/", 1)[1]
+        assert presenter == f"{follower}?websocket=ws://127.0.0.1:{actual}/present/{secret}"
+        assert len(secret) >= 20 and secret not in follower
         page = wait_for_page(actual, proc)
         assert "<html" in page.lower()
     finally:

@@ -64,7 +64,7 @@ def app() -> Iterator[App]:
 def open_page(browser, app: App, viewport: dict | None = None):
     page = browser.new_page(viewport=viewport or VIEWPORT)
     page.set_default_timeout(60_000)  # waits for behaviour; a loaded machine is only slower
-    page.goto(f"http://127.0.0.1:{app.port}")
+    page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     time.sleep(1.0)  # the first frames of the scene
     return page
@@ -926,7 +926,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
 def test_a_camera_nobody_moved_keeps_the_whole_run_in_view_to_formed(browser, app, size):
     page = browser.new_page(viewport={"width": size[0], "height": size[1]})
     page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
+    page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     wait_for(lambda: len(app.screens) == 1)
     (cid,) = app.screens
@@ -951,7 +951,7 @@ def test_at_1024x768_step_event_last_event_and_why_show_together(browser, app):
     app.request_render()
     page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
+    page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     time.sleep(1.5)
     r = app.session.selected
@@ -1052,7 +1052,7 @@ def test_a_lecture_runs_from_the_keyboard(browser, app):
 def test_presentation_mode_collapses_the_panel_and_narrates_on_the_canvas(browser, app):
     page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
+    page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     other = open_page(browser, app)  # a second browser keeps its panel
     time.sleep(1.0)
@@ -1099,7 +1099,7 @@ def test_the_paper_panel_highlights_the_line_of_a_phase_2_decision_beside_the_ca
     block, i = paper.line(key)
     page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.set_default_timeout(60_000)
-    page.goto(f"http://127.0.0.1:{app.port}")
+    page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     page.get_by_text(f"Robot {robot}: {rule}").wait_for()
     hit = page.locator("[data-hit]").first
@@ -1381,7 +1381,7 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(brows
     try:
         page = browser.new_page(viewport={"width": 1024, "height": 768})
         page.set_default_timeout(60_000)
-        page.goto(f"http://127.0.0.1:{served.port}")
+        page.goto(served.addresses[0])  # the presenter address
         wait_for(lambda: len(served.screens) == 1)
         ((cid, screen),) = served.screens.items()
         wait_for(lambda: screen.panels.presenting)  # before any key: the room's view
@@ -1422,3 +1422,49 @@ def test_escape_gives_the_keys_back_from_a_panel_field(browser, app):
     page.keyboard.press("Enter")
     wait_for(lambda: app.session.view().steps == 1)
     page.close()
+
+
+def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(browser, app):
+    """The roles come from the address, not the order: a class page opened first follows; its keys and
+    buttons change nothing shared; the presenter's do and the class page shows them; "Class may drive"
+    hands the class the run, and unticking takes it back; a reloaded presenter page presents again."""
+    presenter_address, class_address = app.addresses
+    follower = browser.new_page(viewport=VIEWPORT)
+    follower.set_default_timeout(60_000)
+    follower.goto(class_address)
+    follower.get_by_label("Event").wait_for()
+    wait_for(lambda: len(app.screens) == 1)
+    presenter = open_page(browser, app)
+    wait_for(lambda: len(app.screens) == 2)
+    assert sorted(s.state.role for s in app.screens.values()) == ["class", "presenter"]
+    follower.get_by_text("Following the lecture").first.wait_for()
+    presenter.get_by_text("Presenting").first.wait_for()
+    assert not follower.get_by_role("button", name="Step").is_visible()  # its controls are absent
+    for key in ("Enter", " ", "PageDown", "Backspace", "m"):
+        follower.keyboard.press(key)
+        time.sleep(0.3)
+    time.sleep(1.0)
+    assert app.session.engine.step_index == 0 and not app.session.playing  # nothing shared changed
+    follower.get_by_text("this page follows the lecture").first.wait_for()  # and it was told why
+    presenter.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 1)
+    wait_for(lambda: event_value(follower) == 1)  # the class page follows the run
+    presenter.get_by_label("Class may drive").check()
+    wait_for(lambda: app.session.class_may_drive)
+    follower.get_by_role("button", name="Step").wait_for()  # the class now has the controls
+    follower.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 2)
+    presenter.get_by_label("Class may drive").uncheck()
+    wait_for(lambda: not app.session.class_may_drive)
+    follower.get_by_role("button", name="Step").wait_for(state="hidden")
+    follower.keyboard.press("Enter")
+    time.sleep(1.0)
+    assert app.session.engine.step_index == 2  # taken back
+    shot(follower, "class-page-following")
+    presenter.reload()
+    presenter.get_by_text("Presenting").first.wait_for()
+    wait_for(lambda: sorted(s.state.role for s in app.screens.values()) == ["class", "presenter"])
+    presenter.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 3)
+    follower.close()
+    presenter.close()

@@ -32,6 +32,7 @@ from apf_viz.lecture import find_lecture
 from apf_viz.ui.browser_screen import BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
+from apf_viz.ui.roles import Role, Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.session import Session
 from apf_viz.ui.view_model import SessionView
@@ -105,8 +106,11 @@ class App:
         port: int = 8080,
         verbose: bool = True,
         present: bool = False,
+        roles: Roles | None = None,
     ) -> None:
         self.session = session
+        self.roles = roles or Roles()  # which pages present: those opened at the presenter address
+        self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         gui = self.server.gui
@@ -137,6 +141,18 @@ class App:
     @property
     def port(self) -> int:
         return self.server.get_port()
+
+    @property
+    def addresses(self) -> tuple[str, str]:
+        """(presenter, class): the page addresses to open, on a host other machines reach."""
+        return self.roles.addresses(reachable_host(self._host), self.port)
+
+    def role_of(self, client) -> Role:
+        """A page's role, from the path its websocket was opened at (the presenter address's secret)."""
+        # viser keeps each client's websocket connection; the request it was opened with has the path.
+        connection = getattr(self.server._websock_server, "_live_connections", {}).get(client.client_id)
+        request = getattr(connection, "request", None)
+        return self.roles.role_of(getattr(request, "path", None))
 
     @property
     def panels(self) -> Panels | None:
@@ -380,6 +396,19 @@ def session_from_args(args: argparse.Namespace) -> Session:
     )
 
 
+def reachable_host(host: str) -> str:
+    """The host to put in an address for other machines: ``host`` itself, or for a server listening on
+    every interface (0.0.0.0, ::) this machine's address on its outward network (no packet is sent)."""
+    if host not in ("0.0.0.0", "::", ""):
+        return host
+    try:
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+            probe.connect(("192.0.2.1", 9))  # TEST-NET-1: routes like the internet, never answered
+            return probe.getsockname()[0]
+    except OSError:
+        return socket.gethostname()
+
+
 def check_listen(host: str, port: int) -> None:
     """Refuse, with one line, an address the server could not listen on (a bad host, a port in use),
     before viser tries in a thread of its own."""
@@ -401,7 +430,10 @@ def serve(args: argparse.Namespace) -> int:
         session.start_lecture(find_lecture(args.lecture))  # a bad file: one line, before the UI starts
     present = bool(getattr(args, "lecture", None))  # serve --lecture: pages open presenting it
     app = App(session, host=args.host, port=args.port, verbose=False, present=present)
-    print(f"apf-viz: serving on http://{args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
+    presenter, follower = app.addresses
+    print(f"apf-viz: serving on {args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
+    print(f"presenter: {presenter}", flush=True)
+    print(f"class: {follower}", flush=True)
     try:
         while True:
             time.sleep(3600)

@@ -9,6 +9,7 @@ import numpy as np
 
 from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.roles import Role
 from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, camera_cells, scene_detail
 from apf_viz.ui.session import Session
 
@@ -21,6 +22,7 @@ class Host(Protocol):
     verifier: SharedVerifier
 
     def request_render(self) -> None: ...
+    def role_of(self, client) -> Role: ...
     def frame_client(self, client) -> None: ...
     def frame_all(self) -> None: ...
     def cell_at(self, client, screen: tuple[float, float]) -> tuple[int, int] | None: ...
@@ -31,7 +33,7 @@ class BrowserScreen:
 
     def __init__(self, app: Host, client) -> None:
         self.client = client
-        self.state = app.session.join(client.client_id)
+        self.state = app.session.join(client.client_id, app.role_of(client))
         self.selection = SceneRenderer(client, layer="selection", base=app.renderer)
         self.panels = Panels(
             client,

@@ -10,6 +10,7 @@ from typing import Literal
 
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
+from apf_viz.ui.roles import Role
 from apf_viz.ui.studio import Studio
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
@@ -52,6 +53,7 @@ class BrowserState:
 
     selected: int | None = None
     follow: bool = False  # show the presenter's selection instead of one's own
+    role: Role = "presenter"  # a class page follows the lecture; it drives only when the class may
     # The camera: "framed" (kept on the whole run as it grows) or "moved" by hand (left where it is
     # until a new run starts or Frame run is pressed); and the box and run it was last framed on.
     camera: Literal["framed", "moved"] = "framed"

@@ -91,6 +91,7 @@ class Panels:
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
         self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
+        self._driving_shown = True  # the driving controls are made visible
 
     @property
     def presenting(self) -> bool:
@@ -108,6 +109,16 @@ class Panels:
         for folder in self.folders:
             if slow or not isinstance(folder, SLOW_FOLDERS):
                 folder.refresh(view)
+        self._show_driving()
+
+    def _show_driving(self) -> None:
+        """The controls that change the shared run, shown only where this page may drive it (a class
+        page follows the lecture unless the presenter lets the class drive)."""
+        drives = self.ctx.drives()
+        if drives != self._driving_shown:
+            self._driving_shown = drives
+            for handle in self.ctx.driving_handles:
+                handle.visible = drives
 
     def _folder(self, kind: type):
         return next(f for f in self.folders if isinstance(f, kind))

@@ -18,7 +18,7 @@ class AdversaryFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
         s = ctx.session
-        with gui.add_folder("Adversary"):
+        with ctx.driving(gui.add_folder("Adversary")):
             self.scheduler = gui.add_dropdown(
                 "Scheduler", tuple(SCHEDULER_LABELS), initial_value=scheduler_label(s.scheduler_name)
             )
@@ -50,9 +50,9 @@ class AdversaryFolder:
             "Verify",
             hint=f"explore every schedule of this start and pattern (k ≤ {MAX_K}), as apf-viz check does",
         )
-        self.verify.on_click(self._on_verify)
+        self.verify.on_click(self.ctx.guard(self._on_verify, "Verify"))
         self.cancel_verify = gui.add_button("Cancel verification", visible=False)
-        self.cancel_verify.on_click(lambda e: self.ctx.verifier.cancel())
+        self.cancel_verify.on_click(self.ctx.guard(lambda e: self.ctx.verifier.cancel(), "Verify"))
         self.verify_status = gui.add_markdown("")
 
     def _on_all_activations(self, event) -> None:

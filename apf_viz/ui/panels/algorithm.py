@@ -13,7 +13,7 @@ class AlgorithmFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
         s = ctx.session
-        with gui.add_folder("Algorithm", expand_by_default=False):
+        with ctx.driving(gui.add_folder("Algorithm", expand_by_default=False)):
             self.algorithm = gui.add_dropdown("Algorithm", self._names(), initial_value=s.algorithm_name)
             self.algorithm.on_update(ctx.from_browser(self._on_algorithm))
             self.variant = gui.add_text(

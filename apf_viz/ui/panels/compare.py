@@ -9,7 +9,7 @@ from apf_viz.ui.view_model import SessionView
 class CompareFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
-        with gui.add_folder("Compare", expand_by_default=False):
+        with ctx.driving(gui.add_folder("Compare", expand_by_default=False)):
             self.compare_with = gui.add_text(
                 "Compare with",
                 initial_value="apf-opaque-grid-literal",

@@ -5,11 +5,16 @@ from __future__ import annotations
 
 import weakref
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.ui.session import Session
 from apf_viz.ui.verifier import Status, Verifier
+
+FOLLOWING = (
+    "this page follows the lecture: the presenter drives the shared run (select a robot to see what it "
+    "sees; the presenter may let the class drive)"
+)
 
 # Each browser's last notification under each title: a new one replaces it, so that a key pressed ten
 # times (Next stage) shows one message, the latest, instead of a pile over the canvas.
@@ -96,13 +101,36 @@ class PanelContext:
     client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
     # The grid cell under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     cell_at: Callable[[object, tuple[float, float]], tuple[int, int] | None] = lambda client, point: None
+    driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
 
-    def guard(self, fn: Callable, title: str = "apf-viz") -> Callable:
+    def drives(self) -> bool:
+        """Whether this browser may change the shared run (a presenter page, or the class when the
+        presenter lets it)."""
+        return self.session.may_drive(self.browser)
+
+    def may(self, event) -> bool:
+        """:meth:`drives`; when it may not, the browser that tried is told so, and its controls are
+        put back to the run's values (a frame)."""
+        if self.drives():
+            return True
+        tell(event.client, "Following the lecture", FOLLOWING)
+        self.changed()
+        return False
+
+    def driving(self, handle):
+        """A control (or folder) that changes the shared run: shown only where this browser may drive."""
+        self.driving_handles.append(handle)
+        return handle
+
+    def guard(self, fn: Callable, title: str = "apf-viz", mine: bool = False) -> Callable:
         """Run a callback; bad input, or what it has to say (a returned string), is told to the browser
         that caused it, not to every browser (a laptop's hint must not pop up on the projector). Always
-        re-render afterwards."""
+        re-render afterwards. A callback that changes the shared run runs only for a browser that may
+        drive it; ``mine``: it acts on this browser alone (its camera, its presentation mode)."""
 
         def wrapped(event) -> None:
+            if not mine and not self.may(event):
+                return
             try:
                 said = fn(event)
                 if isinstance(said, str) and said:
@@ -124,10 +152,10 @@ class PanelContext:
         if not s.step(self.browser):
             tell(event.client, "Step", s.why_not_step())
 
-    def from_browser(self, fn: Callable, title: str = "apf-viz") -> Callable:
+    def from_browser(self, fn: Callable, title: str = "apf-viz", mine: bool = False) -> Callable:
         """:meth:`guard`, for a control's update: programmatic updates (``event.client is None``, a value
         refreshed from the session) never feed back into it."""
-        guarded = self.guard(fn, title)
+        guarded = self.guard(fn, title, mine)
 
         def wrapped(event) -> None:
             if event.client is not None:

@@ -16,7 +16,7 @@ class EditFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
         s = ctx.session
-        with gui.add_folder("Edit", expand_by_default=False):
+        with ctx.driving(gui.add_folder("Edit", expand_by_default=False)):
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
             self.counts = gui.add_markdown("")
@@ -67,6 +67,8 @@ class EditFolder:
         if event.client is None:
             return
         s = self.ctx.session
+        if not self.ctx.may(event):
+            return
         mode = MODES.get(self.mode.value)
         problem = s.set_mode(mode) if mode is not None else f"no mode {self.mode.value!r}"  # type: ignore[arg-type]
         if problem:  # refused: the drafts stay, and the browser that asked is told why

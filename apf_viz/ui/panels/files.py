@@ -33,11 +33,15 @@ class FilesFolder:
         self._recording_lock = threading.Lock()
         s = ctx.session
         with gui.add_folder("Files", expand_by_default=False):
-            self.demo_pattern = gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+            self.demo_pattern = ctx.driving(
+                gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+            )
             self.demo_pattern.on_update(
                 ctx.from_browser(lambda e: self._demo("", self.demo_pattern.value, s.load_pattern))
             )
-            self.demo_start = gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
+            self.demo_start = ctx.driving(
+                gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
+            )
             self.demo_start.on_update(
                 ctx.from_browser(lambda e: self._demo("starts", self.demo_start.value, s.load_robots))
             )
@@ -48,7 +52,7 @@ class FilesFolder:
                 ("Upload schedule", s.load_schedule),
                 ("Upload lecture", s.load_lecture),
             ):
-                gui.add_upload_button(label, mime_type="*/*").on_upload(self._uploader(loader))
+                ctx.driving(gui.add_upload_button(label, mime_type="*/*")).on_upload(self._uploader(loader))
             for label, name, make in (
                 ("Download robots", "robots.json", s.robots_file),
                 ("Download pattern", "pattern.json", s.pattern_file),
@@ -65,10 +69,12 @@ class FilesFolder:
             )
             self.record = gui.add_button("Record GIF")
             self.record.on_click(self._on_record)
-            gui.add_button(
-                "Export lecture",
-                hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and an "
-                "HTML page of them, in one zip; keep your hands off the run meanwhile",
+            ctx.driving(
+                gui.add_button(
+                    "Export lecture",
+                    hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and "
+                    "an HTML page of them, in one zip; keep your hands off the run meanwhile",
+                )
             ).on_click(self._on_export)
         self.exporting: LectureExport | None = None
 
@@ -142,7 +148,7 @@ class FilesFolder:
 
     def _on_export(self, event) -> None:
         client = event.client
-        if client is None:
+        if client is None or not self.ctx.may(event):  # it steps the shared run through the stops
             return
         if self.ctx.session.lecturer is None:
             tell(client, "Export lecture", "pick a Lecture (Run) or upload one first", error=True)

@@ -13,11 +13,11 @@ class PaperFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
         with gui.add_folder("Paper"):
-            self.figure = gui.add_dropdown(
+            self.figure = ctx.driving(gui.add_dropdown(
                 "Figure", ("—", *figures()), initial_value="—",
                 hint="one of the paper's figures, reproduced: its scenario run to the event where the "
                 "picture holds, the caption on screen",
-            )  # fmt: skip
+            ))  # fmt: skip
             self.figure.on_update(ctx.from_browser(self._on_figure, "Figure"))
             self.html = gui.add_html("")
 

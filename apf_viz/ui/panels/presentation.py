@@ -48,7 +48,7 @@ class Presentation:
         command = gui.add_command(
             "Presentation mode", description="collapse the panel; a large caption on the canvas", hotkey="P"
         )
-        command.on_trigger(ctx.guard(self.toggle))
+        command.on_trigger(ctx.guard(self.toggle, mine=True))
         ctx.toggle_presentation = self.toggle
         ctx.presenting = lambda: self.on
 

@@ -45,7 +45,19 @@ class RunFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
         with gui.add_folder("Run"):
-            self.demo = gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—")
+            self.role = gui.add_markdown("")
+            self.class_drives = gui.add_checkbox(
+                "Class may drive",
+                initial_value=False,
+                visible=False,
+                hint="let the class pages step, play and change the shared run (untick to take it back)",
+            )
+            self.class_drives.on_update(
+                ctx.from_browser(
+                    lambda e: ctx.session.set_class_may_drive(self.class_drives.value, ctx.browser)
+                )
+            )
+            self.demo = ctx.driving(gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—"))
             self.demo.on_update(ctx.from_browser(self._on_demo))
             self.demo_note = gui.add_markdown("")
             # After a Demo is picked, the keyboard belongs to the lecture again: viser ignores hotkeys while
@@ -55,16 +67,16 @@ class RunFolder:
             self._release = gui.add_html("")
             self._releases = 0
             ctx.release_focus = self.release_focus  # for the other folders' fields (Edit's Mode)
-            self.lecture = gui.add_dropdown(
+            self.lecture = ctx.driving(gui.add_dropdown(
                 "Lecture", ("—", *lectures()), initial_value="—",
                 hint="a guided lecture: PageDown / Next stop runs to each stop and shows its words",
-            )  # fmt: skip
+            ))  # fmt: skip
             self.lecture.on_update(ctx.from_browser(self._on_lecture, "Lecture"))
             self.words = gui.add_markdown("")
             self.stops = gui.add_button_group("Stops", ("Previous stop", "Next stop"), visible=False)
             self.stops.on_click(ctx.guard(self._on_stop, "Lecture"))
-            self.controls = gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset"))
-            self.controls.on_click(self._on_control)
+            self.controls = ctx.driving(gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset")))
+            self.controls.on_click(ctx.guard(self._on_control))
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
             gui.add_markdown(
                 "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
@@ -72,7 +84,7 @@ class RunFolder:
             )
             gui.add_button(
                 "Presentation mode", hint="collapse this panel; a large caption on the canvas (P)"
-            ).on_click(ctx.guard(lambda e: ctx.toggle_presentation(e)))
+            ).on_click(ctx.guard(lambda e: ctx.toggle_presentation(e), mine=True))
             self._trace_controls(gui)
             self.banner = gui.add_markdown("")
             self.fatal = gui.add_button(
@@ -161,6 +173,8 @@ class RunFolder:
             if client is not None:
                 self.ctx.frame(client)
             return
+        if not self.ctx.may(event):
+            return
         result = self.ctx.session.run_until("move" if value == "Next move" else "stage")
         tell(client, NOTE_TITLES[value], result)
         self.ctx.changed()
@@ -181,11 +195,29 @@ class RunFolder:
         if not view.scenario_note and self.demo.value != "—":
             self.demo.value = "—"  # another run replaced the scenario
         self.banner.content = view.banner
+        self._refresh_role()
         self._refresh_lecture(view)
         fatal = view.fatal[1] is not None
         if self.fatal.visible != fatal:
             self.fatal.visible = fatal
         self._refresh_trace(view)
+
+    def _refresh_role(self) -> None:
+        """What this page is: presenting (with the class's permission to drive), or following."""
+        s, browser = self.ctx.session, self.ctx.browser
+        presenter = s.role(browser) == "presenter"
+        if presenter:
+            said = "**Presenting**" + (" · the class may drive" if s.class_may_drive else "")
+        else:
+            said = "**Following the lecture**" + (
+                " · the presenter lets the class drive" if s.class_may_drive else " · the presenter drives"
+            )
+        if self.role.content != said:
+            self.role.content = said
+        if self.class_drives.visible != presenter:
+            self.class_drives.visible = presenter
+        if self.class_drives.value != s.class_may_drive:
+            self.class_drives.value = s.class_may_drive
 
     def _refresh_lecture(self, view: SessionView) -> None:
         words = ""
@@ -219,24 +251,26 @@ class HistoryFolder:
         s = ctx.session
         with gui.add_folder("History"):
             self.log = gui.add_markdown("")
-            self.speed = gui.add_slider(
-                "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
+            self.speed = ctx.driving(
+                gui.add_slider(
+                    "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
+                )
             )
             self.speed.on_update(ctx.from_browser(lambda e: s.set_speed(self.speed.value)))
-            self.timeline = gui.add_slider(
+            self.timeline = ctx.driving(gui.add_slider(
                 "Timeline", min=0, max=1, step=1, initial_value=0,
                 hint="scrub the history; stepping from the past branches",
-            )  # fmt: skip
+            ))  # fmt: skip
             self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
             self.stats = gui.add_markdown("")
-            self.numbers = gui.add_checkbox(
-                "Numbers", initial_value=True, hint="each robot's number beside it"
+            self.numbers = ctx.driving(
+                gui.add_checkbox("Numbers", initial_value=True, hint="each robot's number beside it")
             )
             self.numbers.on_update(ctx.from_browser(lambda e: s.set_numbers(bool(self.numbers.value))))
-            self.trails = gui.add_slider(
+            self.trails = ctx.driving(gui.add_slider(
                 "Trails", min=0, max=MAX_TRAIL, step=1, initial_value=0,
                 hint="draw each robot's last N moves (0: none)",
-            )  # fmt: skip
+            ))  # fmt: skip
             self.trails.on_update(ctx.from_browser(lambda e: s.set_trails(self.trails.value)))
 
     def refresh(self, view: SessionView) -> None:

@@ -39,7 +39,9 @@ class Shortcuts:
         }
         for label, key, text in SHORTCUTS:
             command = gui.add_command(label, description=text, hotkey=key)
-            command.on_trigger(ctx.guard(actions[label], NOTE_TITLES.get(label, label)))
+            command.on_trigger(
+                ctx.guard(actions[label], NOTE_TITLES.get(label, label), mine=label == "Frame run")
+            )
 
     def _next(self, ctx: PanelContext, forward: bool) -> str | None:
         """PageDown / PageUp: a guided lecture's next or previous stop when one is loaded, else the run's

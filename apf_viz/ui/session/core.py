@@ -16,6 +16,7 @@ from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor, draft_of
 from apf_viz.ui.lecturer import Lecturer
 from apf_viz.ui.library import PatternLibrary
+from apf_viz.ui.roles import Role
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, SharedScreen
@@ -67,24 +68,27 @@ class SessionCore:
         self.lock = self.run.lock
         self.screen = SharedScreen(Editor(config.robots, config.y_up, config.pattern))
         self.kept_drafts = False  # a load replaced drafts never run (:meth:`take_kept_drafts_note`)
-        # The presenter's browser state: the first browser to connect holds it (the projector), and so
-        # do the calls made without a browser (scripts, tests). Other browsers get their own.
+        # The presenter's browser state: the first presenter page to connect holds it (the projector),
+        # and so do the calls made without a browser (scripts, tests). Other pages get their own.
         self.presenter = BrowserState()
         self._browsers: dict[Hashable, BrowserState] = {}
         self._presenter_of: Hashable | None = None
+        self.class_may_drive = False  # the presenter opened the shared run to the class pages
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
         self.saved = self.library.names()  # their names, read once and after each save
 
     # ------------------------------------------------------------------ browsers
-    def join(self, browser: Hashable) -> BrowserState:
-        """A browser connects: the first one (or the first after the presenter left) presents."""
+    def join(self, browser: Hashable, role: Role = "presenter") -> BrowserState:
+        """A page connects. A presenter page drives the shared run (the first one, or the first after it
+        left, holds the state the others may follow); a class page follows the lecture: it shows the
+        presenter's selection until it selects a robot of its own, and drives only if the class may."""
         with self.lock:
-            if self._presenter_of is None:
+            if role == "presenter" and self._presenter_of is None:
                 self._presenter_of = browser
                 state = self.presenter
             else:
-                state = BrowserState()
+                state = BrowserState(role=role, follow=role == "class")
             self._browsers[browser] = state
             return state
 
@@ -92,14 +96,31 @@ class SessionCore:
         with self.lock:
             self._browsers.pop(browser, None)
             if browser == self._presenter_of:
-                self._presenter_of = None  # the next browser to connect presents (a reloaded projector)
+                self._presenter_of = None  # the next presenter page to connect holds it (a reload)
 
     def browser(self, browser: Hashable | None) -> BrowserState:
         """That browser's state (the presenter's for None or an unknown browser)."""
         return self._browsers.get(browser, self.presenter) if browser is not None else self.presenter
 
     def is_presenter(self, browser: Hashable | None) -> bool:
+        """Whether the browser holds the presenter's state (the one the others follow)."""
         return self.browser(browser) is self.presenter
+
+    def role(self, browser: Hashable | None) -> Role:
+        return self.browser(browser).role
+
+    def may_drive(self, browser: Hashable | None) -> bool:
+        """Whether the browser may change the shared run: a presenter page, or any page while the
+        presenter lets the class drive."""
+        return self.browser(browser).role == "presenter" or self.class_may_drive
+
+    def set_class_may_drive(self, on: bool, browser: Hashable | None = None) -> str:
+        """Open the shared run to the class pages, or close it (a presenter page's choice only)."""
+        if self.role(browser) != "presenter":
+            raise InputError("only a presenter page opens the run to the class")
+        with self.lock:
+            self.class_may_drive = bool(on)
+        return "the class may drive the run" if on else "only the presenter drives the run"
 
     def _clear_selections(self) -> None:
         self.presenter.selected = None

@@ -33,7 +33,10 @@ class EditCommands(SessionCore):
                     f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
                     f"(|x|, |y| ≤ {COORD_LIMIT:,})"
                 )
+            drives = self.may_drive(browser)
             if self.mode != "run":
+                if not drives:
+                    raise InputError("the presenter is drawing: a class page follows the drawing")
                 return self.screen.studio.click(self.editor, self.mode, cell)
             r = self.robot_at(cell)
             state = self.browser(browser)
@@ -41,7 +44,8 @@ class EditCommands(SessionCore):
                 state.selected = None
                 return "nothing here"
             state.selected = r
-            if self.scheduler_name in BY_HAND and self.click_advances and not self.engine.finished:
+            state.follow = False  # a robot of its own: the page no longer shows the presenter's
+            if self.scheduler_name in BY_HAND and self.click_advances and not self.engine.finished and drives:
                 return f"robot {r}: {self.run.step_robot(r)}"
             return f"selected robot {r}"
 
