@@ -1,4 +1,5 @@
-"""The README's command-line examples run as written (a snippet that is executed cannot drift)."""
+"""The manual's command-line examples (docs/CLI.md) run as written (a snippet that is executed cannot
+drift); the README stays a front page."""
 
 from __future__ import annotations
 
@@ -11,9 +12,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 
+CLI = ROOT / "docs" / "CLI.md"
+
+
 def readme_commands() -> list[str]:
-    text = (ROOT / "README.md").read_text()
-    block = re.search(r"## Command line\n\n```bash\n(.*?)```", text, re.S).group(1)
+    text = CLI.read_text()
+    block = re.search(r"## Examples\n\n```bash\n(.*?)```", text, re.S).group(1)
     joined = block.replace("\\\n", " ")
     return [line.split("#")[0].strip() for line in joined.splitlines() if line.startswith("apf-viz ")]
 
@@ -40,7 +44,7 @@ def test_readme_examples_run(tmp_path):
 def test_the_playing_the_adversary_commands_run_as_written(tmp_path):
     """The block is run by bash as it stands, with ``apf-viz`` this checkout's CLI; exit 1 (ran, not
     formed) is a result, anything else stops the block."""
-    text = (ROOT / "README.md").read_text()
+    text = CLI.read_text()
     section = text[text.index("## Playing the adversary") :]
     block = re.search(r"```bash\n(.*?)```", section, re.S).group(1)
     bin_dir = tmp_path / "bin"
@@ -77,3 +81,31 @@ def test_the_project_dates_its_figures_by_date_and_commit_never_by_work_session(
         if dating.search(line)
     ]
     assert not found, found
+
+
+def _slug(heading: str) -> str:
+    """A heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces as hyphens."""
+    kept = "".join(c for c in heading.strip().lower() if c.isalnum() or c in " -_")
+    return kept.replace(" ", "-")
+
+
+def test_the_readme_is_a_front_page_and_every_link_of_the_manual_resolves():
+    """README.md at most 150 lines; every relative link of it and of docs/ names a file that exists,
+    and an anchor a heading of that file."""
+    readme = ROOT / "README.md"
+    assert len(readme.read_text().splitlines()) <= 150
+    broken = []
+    for page in [readme, ROOT / "CHANGELOG.md", *(ROOT / "docs").glob("*.md")]:
+        text = page.read_text()
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if target.startswith(("http://", "https://", "mailto:")):
+                continue
+            path, _, anchor = target.partition("#")
+            file = (page.parent / path).resolve() if path else page
+            if not file.exists():
+                broken.append(f"{page.name}: {target}")
+            elif anchor and file.suffix == ".md":
+                headings = re.findall(r"^#+ (.+)$", file.read_text(), re.M)
+                if anchor not in {_slug(h) for h in headings}:
+                    broken.append(f"{page.name}: {target} (no such heading)")
+    assert broken == []

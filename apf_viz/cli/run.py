@@ -122,9 +122,9 @@ def _add_schedule_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--schedule",
         type=Path,
-        help="follow this schedule file (who acts, line by line, and each robot's y-axis; README 'Playing "
-        "the adversary') instead of --scheduler; it replays the run it was recorded from whatever --seed "
-        "says; the run stops where it ends (outcome schedule-end) unless --then",
+        help="follow this schedule file (who acts, line by line, and each robot's y-axis; docs/CLI.md, "
+        "'Playing the adversary') instead of --scheduler; it replays the run it was recorded from "
+        "whatever --seed says; the run stops where it ends (outcome schedule-end) unless --then",
     )
     p.add_argument(
         "--flips",

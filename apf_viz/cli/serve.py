@@ -16,8 +16,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--host",
         default="127.0.0.1",
-        help="address to bind; anyone who can reach it can drive the run and upload files (README, "
-        "'Who can reach the server')",
+        help="address to bind; anyone who can reach it can follow at the class address, the presenter "
+        "address drives (docs/GUIDE.md, 'Who can reach the server')",
     )
     p.add_argument("--port", type=port, default=8080, help="port")
     p.add_argument("--robots", type=Path, help="start file (default: the built-in demo)")

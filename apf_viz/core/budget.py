@@ -1,7 +1,7 @@
 """How long a run may go on: a budget that grows with the run, not a fixed event count.
 
 The paper bounds the moves by O(kD), D = max(m, n, M, N, k) (m × n and M × N: the enclosing rectangles
-of the start and of the pattern). We measure moves/(k·D) between 1.0 and 2.0 (README, "Scale"); the
+of the start and of the pattern). We measure moves/(k·D) between 1.0 and 2.0 (docs/PERFORMANCE.md); the
 budget allows ``MOVES_PER_KD`` = 50 times k·D, far above both, so a normal run never meets it and a run
 that does is reported as ``limit``. Events are budgeted per move: with no-op activations skipped a move
 costs about three events (a Look, a Compute, the Move) plus the light changes around it; with every

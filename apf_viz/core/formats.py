@@ -171,7 +171,7 @@ def _one_line(err: ValidationError) -> str:
     loc = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in first["loc"]).lstrip(".")
     msg = first["msg"].removeprefix("Value error, ")
     if first["type"] == "model_type":  # "Input should be a valid dictionary or instance of RobotsFile"
-        msg = "expected a JSON object (see the README's Files)"
+        msg = "expected a JSON object (the file formats: docs/CLI.md, Files)"
     more = f" (and {err.error_count() - 1} more problems)" if err.error_count() > 1 else ""
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
 
