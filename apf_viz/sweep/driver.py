@@ -31,9 +31,9 @@ class Progress:
 def cost(cell: Cell) -> float:
     """A run's expected time, in arbitrary units (about 80 µs each here): moves grow as k·D and each
     costs a little more in a bigger crowd (measured, docs/PERFORMANCE.md: k = 40 → 0.6 s, 100 → 1.8 s,
-    300 → 21 s, 1,000 → 8 min), plus a fixed part per run (a task's round trip, tens of milliseconds). A walk across
-    open ground is one step (fast-forward: 10 robots 10⁶ apart form in 0.1 s), so only the crowd's part
-    of D counts: at most k."""
+    300 → 21 s, 1,000 → 8 min), plus a fixed part per run (a task's round trip, tens of milliseconds).
+    A walk across open ground is one step (fast-forward: 10 robots 10⁶ apart form in 0.1 s), so only
+    the crowd's part of D counts: at most k."""
     from apf_viz.core.budget import paper_D
 
     # A generated start is not drawn just to be weighed: its box's side, or k, is its D.
