@@ -10,11 +10,24 @@ from __future__ import annotations
 
 import os
 import sys
+import time
+
+PLAIN_EVERY_S = 10.0
+"""Into a file or a pipe (a log), a progress line at most this often, and the last: no terminal codes."""
+
+_plain_at = [-PLAIN_EVERY_S]  # when the last plain line was written (monotonic seconds)
 
 
 def show_progress(line: str, *, last: bool) -> None:
-    """Overwrite the terminal's current line with ``line`` (ending it if ``last``)."""
+    """Overwrite the terminal's current line with ``line`` (ending it if ``last``); into a file or a
+    pipe, write it as a line of its own every :data:`PLAIN_EVERY_S` seconds, and the last one."""
     try:
+        if not sys.stderr.isatty():
+            now = time.monotonic()
+            if last or now - _plain_at[0] >= PLAIN_EVERY_S:
+                _plain_at[0] = now
+                print(line, file=sys.stderr, flush=True)
+            return
         print(f"\r{line}\x1b[K", end="\n" if last else "", file=sys.stderr, flush=True)
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)

@@ -483,3 +483,64 @@ def test_sweep_names_the_valid_schedulers_and_semantics(tmp_path):
     assert out.returncode == 2 and "unknown scheduler 'asynch' (choose from fsync, ssync, async" in out.stderr
     out = run_cli("sweep", "--ks", "3", "--light-semantics", "lc", "--out", str(tmp_path / "r.csv"))
     assert out.returncode == 2 and "choose from compute, lc-atomic" in out.stderr
+
+
+# ---------------------------------------------------------------- small words a newcomer reads
+def test_progress_into_a_log_is_plain_lines_without_terminal_codes(tmp_path):
+    """A sweep's or the lab's progress sent to a file: whole lines, no carriage returns or escapes, the
+    last one always, the others at most every PLAIN_EVERY_S."""
+    code = (
+        "from apf_viz.progress import show_progress\n"
+        "for i in range(50): show_progress(f'step {i}', last=False)\n"
+        "show_progress('done', last=True)\n"
+    )
+    log = tmp_path / "log.txt"
+    with log.open("w") as f:
+        subprocess.run([sys.executable, "-c", code], stderr=f, check=True)
+    text = log.read_text()
+    assert "\r" not in text and "\x1b" not in text
+    assert text.splitlines() == ["step 0", "done"]
+
+
+def test_a_command_missing_two_extras_names_both_in_one_sentence(capsys):
+    from apf_viz.cli.common import need_extra
+
+    with pytest.raises(SystemExit) as stop:
+        need_extra("sweep", ["no_such_module_a", "no_such_module_b"])
+    assert stop.value.code == 2
+    said = capsys.readouterr().err
+    assert "(no_such_module_a and no_such_module_b are not installed)" in said
+
+
+def test_one_more_problem_is_one_problem(tmp_path):
+    bad = tmp_path / "r.json"
+    bad.write_text('{"robots": [[0, "a"], [1, "b"]]}')
+    proc = subprocess.run(
+        [sys.executable, "-m", "apf_viz.cli", "run", "--robots", str(bad), "--pattern", str(bad)],
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 2 and "(and 1 more problem)" in proc.stderr, proc.stderr
+
+
+def test_a_shape_pattern_is_named_after_what_made_it(tmp_path, capsys):
+    assert main(["pattern", "--shape", "ring", "--size", "3"]) == 0
+    assert json.loads(capsys.readouterr().out)["name"] == "ring of size 3"
+
+
+def test_replay_says_every_event_matched(capsys):
+    root = Path(__file__).resolve().parent
+    assert main(["replay", "--trace", str(root / "gap_traces" / "E2.jsonl")]) == 1  # a collision
+    out = capsys.readouterr().out
+    assert out.startswith("replayed: all 67 events of ") and "match the engine's, one by one" in out
+
+
+def test_ctrl_c_is_one_line_and_exit_130_wherever_it_comes(monkeypatch, capsys):
+    import apf_viz.cli.replay as replay_command
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(replay_command, "run", interrupted)
+    assert main(["replay", "--trace", "whatever.jsonl"]) == 130
+    assert capsys.readouterr().err == "apf-viz: interrupted\n"

@@ -213,3 +213,17 @@ def test_a_step_leaving_many_robots_to_decide_is_drawn_before_the_next_step(monk
     played = [n for n in per_frame if n]
     assert played
     assert (max(played) == 1) == (dear == 0), played
+
+
+@pytest.mark.parametrize("after", [0.3, 1.0, 2.5])
+def test_ctrl_c_while_the_server_starts_stops_it_without_a_traceback(after):
+    """Early (imports), while viser starts, or once serving: the process ends, and says no more than a
+    line."""
+    import signal
+
+    proc, _ = serve("serve")
+    time.sleep(after)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode in (0, 130), err
+    assert "Traceback" not in err and len(err.strip().splitlines()) <= 1, err

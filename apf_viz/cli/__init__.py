@@ -99,6 +99,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except KeyboardInterrupt:  # before a command's own handling (an import, a file being read)
+        print("apf-viz: interrupted", file=sys.stderr)
+        return 130
     except WalkMismatch as e:
         fail(str(e), EXIT_WALK_MISMATCH)
     except InputError as e:

@@ -132,6 +132,11 @@ def problem(args: argparse.Namespace, output: Path | None):
     return robots, points, targets, algorithm
 
 
+def _listed(names: Sequence[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+
+
 def need_extra(command: str, modules: Sequence[str]) -> None:
     """Refuse in one line, before any work, a command whose optional packages are not installed."""
     import importlib.util
@@ -139,7 +144,8 @@ def need_extra(command: str, modules: Sequence[str]) -> None:
     missing = [m for m in modules if importlib.util.find_spec(m) is None]
     if missing:
         fail(
-            f"apf-viz {command} needs the sweep extra ({', '.join(missing)} is not installed): "
+            f"apf-viz {command} needs the sweep extra ({_listed(missing)} "
+            f"{'is' if len(missing) == 1 else 'are'} not installed): "
             "pip install 'apf-viz[sweep]' (or, in a checkout, pip install -e '.[sweep]')"
         )
 

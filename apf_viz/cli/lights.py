@@ -29,7 +29,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="random runs (half of k = 6–12 random robots, half on the Demo starts) for each merge the "
         "explorer could not break",
     )
-    p.add_argument("--out", required=True, type=Path, help="the verdicts table (.parquet), resumed if there")
+    p.add_argument(
+        "--out",
+        required=True,
+        type=Path,
+        help="the verdicts table (.parquet), resumed if there; beside it NAME-base.json (stage 0), "
+        "NAME-traces/ (counterexamples) and, with --random, NAME-random.parquet",
+    )
     p.add_argument("--traces", type=Path, help="counterexample traces here (default: OUT's name + -traces)")
     p.add_argument("--workers", type=workers, help="local worker processes (default: one per core)")
     p.add_argument(
@@ -63,5 +69,12 @@ def run(args: argparse.Namespace) -> int:
         return 130
     names = {m.name for m in chosen}
     print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == lights.ks_label(ks)]))
-    print(f"{time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    beside = [
+        (args.out.with_name(args.out.stem + "-base.json"), "stage 0's verdicts on the base algorithm"),
+        (args.traces or args.out.with_name(args.out.stem + "-traces"), "counterexample traces"),
+        (args.out.with_name(args.out.stem + "-random.parquet"), "the random runs"),
+    ]
+    written = "; ".join(f"{path} ({what})" for path, what in beside if path.exists())
+    seconds = time.perf_counter() - t0
+    print(f"apf-viz lights: {args.out}, and beside it {written}; {seconds:.0f} s", file=sys.stderr)
     return 0

@@ -104,5 +104,14 @@ def run(args: argparse.Namespace) -> int:
             print(f"apf-viz pattern: note: {note}", file=sys.stderr)
         emit(robots_json(cells), args.out)
     else:
-        emit(pattern_json(cells, args.name or args.text), args.out)
+        emit(pattern_json(cells, args.name or _name_of(args)), args.out)
     return 0
+
+
+def _name_of(args: argparse.Namespace) -> str:
+    """The pattern's name when --name gives none: what it was made from."""
+    if args.text is not None:
+        return args.text
+    if args.ascii is not None:
+        return args.ascii.stem
+    return f"{args.shape} of size {args.size}"

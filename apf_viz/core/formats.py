@@ -172,7 +172,8 @@ def _one_line(err: ValidationError) -> str:
     msg = first["msg"].removeprefix("Value error, ")
     if first["type"] == "model_type":  # "Input should be a valid dictionary or instance of RobotsFile"
         msg = "expected a JSON object (the file formats: docs/CLI.md, Files)"
-    more = f" (and {err.error_count() - 1} more problems)" if err.error_count() > 1 else ""
+    extra = err.error_count() - 1
+    more = f" (and {extra} more problem{'s' if extra > 1 else ''})" if extra else ""
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
 
 

@@ -429,14 +429,18 @@ def serve(args: argparse.Namespace) -> int:
     if getattr(args, "lecture", None):
         session.start_lecture(find_lecture(args.lecture))  # a bad file: one line, before the UI starts
     present = bool(getattr(args, "lecture", None))  # serve --lecture: pages open presenting it
-    app = App(session, host=args.host, port=args.port, verbose=False, present=present)
-    presenter, follower = app.addresses
-    print(f"apf-viz: serving on {args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
-    print(f"presenter: {presenter}", flush=True)
-    print(f"class: {follower}", flush=True)
-    try:
+    app = None
+    try:  # Ctrl+C stops it quietly, however early: while the server starts, or at any time after
+        app = App(session, host=args.host, port=args.port, verbose=False, present=present)
+        presenter, follower = app.addresses
+        print(f"apf-viz: serving on {args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
+        print(f"presenter: {presenter}", flush=True)
+        print(f"class: {follower}", flush=True)
         while True:
             time.sleep(3600)
     except KeyboardInterrupt:
-        app.stop()
+        pass
+    finally:
+        if app is not None:
+            app.stop()
     return 0
