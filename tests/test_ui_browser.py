@@ -39,6 +39,7 @@ ARGS = [
     "--disable-sync",
 ]
 VIEWPORT = {"width": 1400, "height": 900}
+pytestmark = pytest.mark.browser  # bash scripts/test.sh -m "not browser": the quick subset
 
 if not Path(CHROMIUM).exists():  # the README's test command installs it; say so instead of skipping quietly
     pytest.fail(
