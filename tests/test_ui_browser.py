@@ -1441,6 +1441,7 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     follower.get_by_text("Following the lecture").first.wait_for()
     presenter.get_by_text("Presenting").first.wait_for()
     assert not follower.get_by_role("button", name="Step").is_visible()  # its controls are absent
+    follower.get_by_text("the presenter's keys drive the run").first.wait_for()  # and its keys say so
     for key in ("Enter", " ", "PageDown", "Backspace", "m"):
         follower.keyboard.press(key)
         time.sleep(0.3)

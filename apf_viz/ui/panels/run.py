@@ -32,6 +32,14 @@ RELEASE_FOCUS = (
 )
 
 
+KEYS_DRIVING = (
+    "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
+    "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them)</small>"
+)
+KEYS_FOLLOWING = (
+    "<small>Keys: F frame the run · P presentation mode (the presenter's keys drive the run)</small>"
+)
+
 LAST_EVENT_REFRESH_S = 0.125
 """While playing, the last event's line changes at most this often: every event of a run played at up to
 8 steps a second, and no markdown re-rendered in every frame of a fast one (nobody reads 30 lines a
@@ -78,10 +86,7 @@ class RunFolder:
             self.controls = ctx.driving(gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset")))
             self.controls.on_click(ctx.guard(self._on_control))
             gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
-            gui.add_markdown(
-                "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
-                "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them)</small>"
-            )
+            self.keys = gui.add_markdown(KEYS_DRIVING)
             gui.add_button(
                 "Presentation mode", hint="collapse this panel; a large caption on the canvas (P)"
             ).on_click(ctx.guard(lambda e: ctx.toggle_presentation(e), mine=True))
@@ -214,6 +219,9 @@ class RunFolder:
             )
         if self.role.content != said:
             self.role.content = said
+        keys = KEYS_DRIVING if s.may_drive(browser) else KEYS_FOLLOWING
+        if self.keys.content != keys:
+            self.keys.content = keys
         if self.class_drives.visible != presenter:
             self.class_drives.visible = presenter
         if self.class_drives.value != s.class_may_drive:
