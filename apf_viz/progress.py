@@ -12,8 +12,9 @@ import os
 import sys
 import time
 
-PLAIN_EVERY_S = 10.0
-"""Into a file or a pipe (a log), a progress line at most this often, and the last: no terminal codes."""
+PLAIN_EVERY_S = 1.0
+"""Into a file or a pipe (a log), a progress line at most this often (a second: a test or a script
+waiting on a word sees it soon), and the last: no terminal codes."""
 
 _plain_at = [-PLAIN_EVERY_S]  # when the last plain line was written (monotonic seconds)
 

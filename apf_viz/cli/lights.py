@@ -54,19 +54,16 @@ def run(args: argparse.Namespace) -> int:
     chosen = lights.merges(args.algorithm, args.merges)
     ks = lights.parse_ks(args.ks)
     t0 = time.perf_counter()
-    try:
-        rows = lights.run_lab(
-            chosen,
-            ks,
-            args.out,
-            random_runs=args.random,
-            traces=args.traces,
-            workers=args.workers,
-            cluster=args.cluster,
-            progress=lights.report_progress,
-        )
-    except KeyboardInterrupt:
-        return 130
+    rows = lights.run_lab(  # Ctrl+C keeps what finished (cli/__init__.py's main: exit 130)
+        chosen,
+        ks,
+        args.out,
+        random_runs=args.random,
+        traces=args.traces,
+        workers=args.workers,
+        cluster=args.cluster,
+        progress=lights.report_progress,
+    )
     names = {m.name for m in chosen}
     print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == lights.ks_label(ks)]))
     beside = [

@@ -54,17 +54,14 @@ def run(args: argparse.Namespace) -> int:
         args.starts,
     )
     check_writable(args.out)
-    try:
-        rows = sweep.run_sweep(
-            cells,
-            args.out,
-            traces=args.traces,
-            workers=args.workers,
-            cluster=args.cluster,
-            progress=sweep.report_progress,
-            run_timeout=args.run_timeout,
-        )
-    except KeyboardInterrupt:
-        return 130
+    rows = sweep.run_sweep(  # Ctrl+C keeps what finished (cli/__init__.py's main: exit 130)
+        cells,
+        args.out,
+        traces=args.traces,
+        workers=args.workers,
+        cluster=args.cluster,
+        progress=sweep.report_progress,
+        run_timeout=args.run_timeout,
+    )
     print(sweep.summary(rows))
     return 0

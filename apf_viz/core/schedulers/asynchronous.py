@@ -5,21 +5,18 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from apf_viz.core.history import StepRecord
-from apf_viz.core.schedulers.base import StepRandom, candidates, most_starved, new_step
+from apf_viz.core.schedulers.base import OneEventPerStep, StepRandom, candidates, most_starved, new_step
 
 if TYPE_CHECKING:
     from apf_viz.core.engine import Engine
 
 
-class AsyncScheduler:
+class AsyncScheduler(OneEventPerStep):
     """ASYNC: one Look, Compute or Move of a uniformly random eligible robot per step."""
 
     name = "async"
     label = "ASYNC"
     summary = "one Look, Compute or Move of a random robot per step"
-    synchronous = False
-    automatic = True
-    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         mask = candidates(engine)

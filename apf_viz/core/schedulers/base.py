@@ -53,6 +53,15 @@ class SchedulerKind(Protocol):
     def __call__(self) -> Scheduler: ...
 
 
+class OneEventPerStep:
+    """What the ASYNC-like schedulers share: one robot, one event per step (no rounds); they choose by
+    themselves; with one eligible robot they can only choose it (so fast-forward may walk it)."""
+
+    synchronous = False
+    automatic = True
+    forced_when_alone = True
+
+
 def starve_bound(engine: Engine) -> int:
     return max(16, 4 * engine.k)
 

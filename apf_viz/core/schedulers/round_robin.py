@@ -7,21 +7,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from apf_viz.core.history import StepRecord
-from apf_viz.core.schedulers.base import NEVER, StepRandom, candidates
+from apf_viz.core.schedulers.base import NEVER, OneEventPerStep, StepRandom, candidates
 
 if TYPE_CHECKING:
     from apf_viz.core.engine import Engine
 
 
-class RoundRobinScheduler:
+class RoundRobinScheduler(OneEventPerStep):
     """Sequential: robots in index order, each performing a whole cycle (Look, Compute, Move)."""
 
     name = "round-robin"
     label = "round-robin"
     summary = "robots in turn, each a whole Look-Compute-Move cycle"
-    synchronous = False
-    automatic = True
-    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state

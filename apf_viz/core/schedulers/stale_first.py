@@ -8,13 +8,13 @@ import numpy as np
 
 from apf_viz.core.engine import Phase
 from apf_viz.core.history import StepRecord
-from apf_viz.core.schedulers.base import NEVER, StepRandom, candidates, most_starved
+from apf_viz.core.schedulers.base import NEVER, OneEventPerStep, StepRandom, candidates, most_starved
 
 if TYPE_CHECKING:
     from apf_viz.core.engine import Engine
 
 
-class StaleFirstScheduler:
+class StaleFirstScheduler(OneEventPerStep):
     """An ASYNC adversary that maximises staleness: everyone Looks and Computes as early as possible,
     and Moves are delayed until no other event is possible; then the robot holding the *oldest* snapshot
     moves. Every move is thus made on a snapshot taken before as many other moves as possible."""
@@ -22,9 +22,6 @@ class StaleFirstScheduler:
     name = "stale-first"
     label = "stale-first"
     summary = "ASYNC delaying every Move: the oldest snapshot moves last"
-    synchronous = False
-    automatic = True
-    forced_when_alone = True
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
         st = engine.state
