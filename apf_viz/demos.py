@@ -89,3 +89,28 @@ def pattern_of_size(k: int) -> tuple[str, list[tuple[int, int]]] | None:
 DEMO_DIR = demo_dir()
 DEMO_START = DEMO_DIR / "starts" / "demo-10.json"
 DEMO_PATTERN = DEMO_DIR / "heart.json"
+
+
+SHIPPED_KINDS = {"robots": ("starts", ".json"), "pattern": ("", ".json"), "trace": ("traces", ".jsonl")}
+"""Where each kind of input ships (a sub-folder of demo_patterns/, the suffix): names a user may give."""
+
+
+def shipped_file(name: str, kind: str) -> Path | None:
+    """The packaged file a bare name stands for (``sym-call-7`` as robots, ``cup-7`` as a pattern,
+    ``literal-collision-4`` as a trace), or None."""
+    sub, suffix = SHIPPED_KINDS[kind]
+    return demo_files(sub, suffix).get(name)
+
+
+def find_scenario(name: str) -> str:
+    """A Demo scenario's title from its title, or from a word of it that names one scenario only
+    (``heart``, ``lockstep``); a one-line error naming the choices otherwise."""
+    titles = list(scenarios())
+    if name in titles:
+        return name
+    word = name.strip().lower()
+    found = [t for t in titles if word and word in t.lower().replace("_", " ").split()]
+    if len(found) == 1:
+        return found[0]
+    said = "names several" if found else "names none"
+    raise ValueError(f"--demo {name!r} {said} of the scenarios: {'; '.join(titles)}")

@@ -544,3 +544,42 @@ def test_ctrl_c_is_one_line_and_exit_130_wherever_it_comes(monkeypatch, capsys):
     monkeypatch.setattr(replay_command, "run", interrupted)
     assert main(["replay", "--trace", "whatever.jsonl"]) == 130
     assert capsys.readouterr().err == "apf-viz: interrupted\n"
+
+
+# ---------------------------------------------------------------- names, not paths, for what ships
+def test_a_shipped_start_and_pattern_by_name_and_a_file_of_that_name_wins(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["run", "--robots", "sym-call-7", "--pattern", "cup-7"]) == 0
+    said = capsys.readouterr()
+    assert said.out.startswith("formed:")
+    assert "--robots sym-call-7: the shipped robots file" in said.err and "starts/sym-call-7.json" in said.err
+    # A file of that name in the working directory is the one used (and nothing is said).
+    (tmp_path / "cup-7").write_text(json.dumps({"name": "mine", "points": [[0, 0]]}))
+    with pytest.raises(SystemExit) as stop:
+        main(["run", "--robots", "sym-call-7", "--pattern", "cup-7"])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and "shipped pattern" not in err
+    assert "cup-7: the pattern has 1 point but there are 7 robots" in err
+
+
+def test_a_demo_scenario_by_a_word_of_its_title():
+    from apf_viz.demos import find_scenario
+
+    assert find_scenario("heart") == "Heart from 10 robots"
+    assert find_scenario("lockstep") == "The L2 lockstep counterexample"
+    assert find_scenario("Unsolvable box") == "Unsolvable box"
+    with pytest.raises(ValueError, match="names several"):
+        find_scenario("the")
+    with pytest.raises(ValueError, match="names none"):
+        find_scenario("zeppelin")
+
+
+def test_demos_lists_what_ships_and_docs_prints_a_page(capsys):
+    assert main(["demos"]) == 0
+    out = capsys.readouterr().out
+    assert "algorithm-in-12-stops — The algorithm in 12 stops, 12 stops" in out and "sym-call-7" in out
+    assert main(["docs", "cli"]) == 0
+    assert capsys.readouterr().out.startswith("# The command line")
+    with pytest.raises(SystemExit) as stop:
+        main(["docs", "nope"])
+    assert stop.value.code == 2 and "no page 'nope' in the manual" in capsys.readouterr().err

@@ -94,6 +94,17 @@ def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
         and len(shipped_lectures) == len(list((ROOT / "demo_patterns" / "lectures").glob("*.json")))
     )
     assert scenario_files and all(all(found.values()) for found in scenario_files)  # traces shipped too
+    # What ships, by name, from anywhere: a lecture checked, a run of a shipped start and pattern, the
+    # manual's pages (the help texts name them).
+    cli = str(env_dir / "bin" / "apf-viz")
+    for argv, said in (
+        (["lecture", "check", "what-a-robot-cannot-see"], "stops reached, their claims true"),
+        (["run", "--robots", "sym-call-7", "--pattern", "cup-7"], "formed:"),
+        (["docs", "guide"], "# The visualiser: a guide"),
+        (["demos"], "Heart from 10 robots"),
+    ):
+        done = subprocess.run([cli, *argv], cwd=elsewhere, env=env, capture_output=True, text=True)
+        assert done.returncode == 0 and said in done.stdout, (argv, done.stdout[-500:], done.stderr[-500:])
     assert starts == sorted(p.stem for p in (ROOT / "demo_patterns" / "starts").glob("*.json"))
     port = free_port()
     server = subprocess.Popen(

@@ -109,3 +109,28 @@ def test_the_readme_is_a_front_page_and_every_link_of_the_manual_resolves():
                 if anchor not in {_slug(h) for h in headings}:
                     broken.append(f"{page.name}: {target} (no such heading)")
     assert broken == []
+
+
+def test_every_command_line_of_the_front_page_and_the_manual_parses():
+    """Each ``apf-viz …`` line of a shell block (README, docs/; ARCHITECTURE's Extending adds commands of
+    its own) is accepted by the real parser: no option the parser does not know, no choice it refuses."""
+    from apf_viz.cli import build_parser
+
+    pages = [ROOT / "README.md", *(p for p in (ROOT / "docs").glob("*.md") if p.name != "ARCHITECTURE.md")]
+    refused, seen = [], 0
+    for page in pages:
+        for block in re.findall(r"```(?:bash|console|sh)\n(.*?)```", page.read_text(), re.S):
+            for line in block.replace("\\\n", " ").splitlines():
+                line = line.removeprefix("$ ").split(" #")[0].split(" > ")[0].split(" | ")[0].strip()
+                if not line.startswith("apf-viz ") or "..." in line or "…" in line:
+                    continue
+                if "[" in line or re.search(r"(?<![\w.-])[A-Z][A-Z_|]+(?![\w.-])", line):
+                    continue  # a synopsis ([--option]) or a placeholder (SEED, NAME|FILE), not a command
+                line = re.sub(r"\$\w+", "1", line)  # a shell loop's variable: a number in its place
+                seen += 1
+                try:
+                    build_parser().parse_args(shlex.split(line)[1:])
+                except SystemExit as stop:
+                    if stop.code:
+                        refused.append(f"{page.name}: {line}")
+    assert seen >= 20 and refused == []

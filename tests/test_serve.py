@@ -227,3 +227,15 @@ def test_ctrl_c_while_the_server_starts_stops_it_without_a_traceback(after):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode in (0, 130), err
     assert "Traceback" not in err and len(err.strip().splitlines()) <= 1, err
+
+
+def test_serve_demo_opens_a_scenario_named_by_a_word():
+    from apf_viz.cli import build_parser
+    from apf_viz.demos import find_scenario, scenarios
+    from apf_viz.ui.app import session_from_args
+
+    args = build_parser().parse_args(["serve", "--demo", "lockstep"])
+    args.demo = find_scenario(args.demo)  # as apf-viz serve does, before the UI starts
+    session = session_from_args(args)
+    assert session.screen.scenario_note == scenarios()["The L2 lockstep counterexample"].shows
+    assert session.run.following  # a trace scenario: Step follows it

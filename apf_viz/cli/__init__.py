@@ -9,12 +9,15 @@ is one line on stderr, never a traceback.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 from types import ModuleType
 
 from apf_viz.cli import (
     check,
+    demos,
+    docs,
     lecture,
     lights,
     pattern,
@@ -52,6 +55,8 @@ COMMANDS: tuple[ModuleType, ...] = (
     pattern,
     check,
     lecture,
+    demos,
+    docs,
     serve,
 )
 """Every command, in the order ``--help`` lists them; ``serve`` is the default."""
@@ -102,6 +107,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:  # before a command's own handling (an import, a file being read)
         print("apf-viz: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # a listing piped into head: the reader has what it wanted
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # Python would fail again flushing stdout at exit
+        os.close(devnull)
+        return 0
     except WalkMismatch as e:
         fail(str(e), EXIT_WALK_MISMATCH)
     except InputError as e:

@@ -39,7 +39,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--no-reduction",
         action="store_true",
         help="explore every interleaving (without it, ASYNC skips the orders of invisible events: the same "
-        "verdict and counterexample, fewer states; docs/VERIFICATION.md)",
+        "verdict and counterexample, fewer states; apf-viz docs verification)",
     )
     p.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
     p.add_argument("--force", action="store_true", help="explore an unsolvable start anyway")

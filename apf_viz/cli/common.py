@@ -19,6 +19,7 @@ from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER, REGISTRY
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
+from apf_viz.demos import shipped_file
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
 EXIT_WALK_MISMATCH = 5  # --check-walks found a walk that is not the step-by-step run
@@ -101,6 +102,18 @@ def positive_seconds(text: str) -> float:
 port = int_within(0, 65535, "a port (0 to 65535)")
 
 
+def shipped(path: Path | None, kind: str, option: str) -> Path | None:
+    """``path``, or when no such file exists, the packaged demo file its name stands for (said on
+    stderr: which file was used); a file of that name always wins."""
+    if path is None or path.exists():
+        return path
+    found = shipped_file(str(path), kind)
+    if found is None:
+        return path  # the load says: no such file
+    print(f"apf-viz: {option} {path}: the shipped {kind} file {found}", file=sys.stderr)
+    return found
+
+
 def refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: bool) -> None:
     """Theorem 1: a start mirror-symmetric about a robot-free horizontal line cannot form any pattern
     (unless it already is the pattern). Exit 3, naming the axis."""
@@ -119,6 +132,8 @@ def refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: b
 def problem(args: argparse.Namespace, output: Path | None):
     """What ``run`` and ``check`` start from: the robots file, its points, the pattern's points and the
     algorithm, every input checked (and the output path, before any work) with one-line errors."""
+    args.robots = shipped(args.robots, "robots", "--robots")
+    args.pattern = shipped(args.pattern, "pattern", "--pattern")
     robots = load_robots(args.robots)
     pattern = load_pattern(args.pattern)
     check_sizes(robots, pattern, str(args.pattern))
@@ -186,7 +201,7 @@ class HelpFormatter(argparse.HelpFormatter):
 
 ALGORITHM_HELP = (
     f"the algorithm: {', '.join(ALGORITHMS)}; apf-opaque-grid@R1,R2 for exactly these resolutions "
-    "(docs/ALGORITHM.md); or package.module:Name for your own"
+    "(apf-viz docs algorithm); or package.module:Name for your own"
 )
 SEMANTICS_HELP = "when a new light becomes visible: at the end of Compute, or Look+Compute atomic"
 

@@ -11,7 +11,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM
 from apf_viz.cli.common import cluster, fail, need_extra, workers
 
 NAME = "lights"
-HELP = "which lights could be one colour? every merge of two, explored (docs/LIGHTS.md)"
+HELP = "which lights could be one colour? every merge of two, explored (apf-viz docs lights)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

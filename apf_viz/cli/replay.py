@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from apf_viz.algorithms import algorithm_from_command_line, get_algorithm
-from apf_viz.cli.common import EXIT_FORMED, EXIT_NOT_FORMED, print_summary
+from apf_viz.cli.common import EXIT_FORMED, EXIT_NOT_FORMED, print_summary, shipped
 from apf_viz.core.formats import InputError, load_trace
 from apf_viz.core.run import RunSummary, engine_for_trace, replay
 
@@ -26,6 +26,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    args.trace = shipped(args.trace, "trace", "--trace")
     header, events = load_trace(args.trace)
     if args.algorithm:
         algorithm, _ = algorithm_from_command_line(args.algorithm)

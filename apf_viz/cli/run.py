@@ -122,7 +122,7 @@ def _add_schedule_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--schedule",
         type=Path,
-        help="follow this schedule file (who acts, line by line, and each robot's y-axis; docs/CLI.md, "
+        help="follow this schedule file (who acts, line by line, and each robot's y-axis; apf-viz docs cli, "
         "'Playing the adversary') instead of --scheduler; it replays the run it was recorded from "
         "whatever --seed says; the run stops where it ends (outcome schedule-end) unless --then",
     )

@@ -11,7 +11,7 @@ from apf_viz.core.formats import check_writable
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
 NAME = "sweep"
-HELP = "run a grid of runs on Dask into one results table (docs/SWEEPS.md)"
+HELP = "run a grid of runs on Dask into one results table (apf-viz docs sweeps)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

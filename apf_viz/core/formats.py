@@ -171,7 +171,7 @@ def _one_line(err: ValidationError) -> str:
     loc = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in first["loc"]).lstrip(".")
     msg = first["msg"].removeprefix("Value error, ")
     if first["type"] == "model_type":  # "Input should be a valid dictionary or instance of RobotsFile"
-        msg = "expected a JSON object (the file formats: docs/CLI.md, Files)"
+        msg = "expected a JSON object (the file formats: apf-viz docs cli)"
     extra = err.error_count() - 1
     more = f" (and {extra} more problem{'s' if extra > 1 else ''})" if extra else ""
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
@@ -319,7 +319,9 @@ def size_problem(pattern_points: int, robots: int) -> str | None:
     """The pattern must have one point per robot (paper: n = k): what is wrong, or None."""
     if pattern_points == robots:
         return None
-    return f"the pattern has {pattern_points} points but there are {robots} robots"
+    points = f"{pattern_points} point{'s' if pattern_points != 1 else ''}"
+    there = f"is {robots} robot" if robots == 1 else f"are {robots} robots"
+    return f"the pattern has {points} but there {there}"
 
 
 def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "pattern") -> None:

@@ -386,7 +386,7 @@ def session_from_args(args: argparse.Namespace) -> Session:
             f"{len(pattern.points)} points: pass --pattern"
         )
     check_sizes(robots, pattern, str(args.pattern or DEMO_PATTERN))
-    return Session(
+    session = Session(
         [as_point(p) for p in robots.robots],
         [as_point(p) for p in pattern.points],
         y_up=robots.flips(args.seed),
@@ -394,6 +394,9 @@ def session_from_args(args: argparse.Namespace) -> Session:
         plugins=plugins,
         **options,
     )
+    if getattr(args, "demo", None):
+        session.load_scenario(args.demo)  # a Demo scenario by its title (serve --demo)
+    return session
 
 
 def reachable_host(host: str) -> str:
