@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything the tests need (the package and test tools in .venv, Debian's Chromium for the
-# browser tests) and runs the whole suite. `.ci/run` calls exactly this.
+# browser tests) and runs the whole suite. `.ci/run` calls exactly this. `--quick`: all but the browser
+# tests and the slow ones (a few minutes); other arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
@@ -19,4 +20,8 @@ fi
 .venv/bin/python -m pip install -q -e '.[test,sweep,fast]'
 .venv/bin/python -m ruff check .
 .venv/bin/python -m mypy  # the package, as configured in pyproject.toml
+if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser's and the slow ones
+  shift
+  set -- -m "not browser and not slow" "$@"
+fi
 .venv/bin/python -m pytest "$@"

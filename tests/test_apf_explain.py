@@ -73,6 +73,7 @@ def decisions_of_many_runs() -> frozenset[str]:
     return frozenset(reached)
 
 
+@pytest.mark.slow
 def test_explain_agrees_with_decide_on_every_decision_of_many_runs():
     assert len(decisions_of_many_runs()) > 40
 
@@ -131,6 +132,7 @@ def test_crafted_views_reach_their_rule(rule_id, res, view, pattern):
     assert explained.decision == algorithm.decide(view, pattern)
 
 
+@pytest.mark.slow
 def test_every_registered_rule_id_is_reached_and_every_fired_id_is_registered():
     reached = set(decisions_of_many_runs()) | {p for c in CRAFTED for p in parts(c[0])}
     assert reached <= set(RULE_IDS), sorted(reached - set(RULE_IDS))

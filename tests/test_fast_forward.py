@@ -481,6 +481,7 @@ def generated_results() -> tuple:
     return tuple(compare(trial) for trial in trials(GENERATED, far=300))
 
 
+@pytest.mark.slow
 def test_generated_adversarial_starts_run_the_same_with_walks_under_every_scheduler():
     from apf_viz.core.adversarial_starts import FAMILIES
     from apf_viz.explore.fast_forward_campaign import SCHEDULERS
@@ -505,6 +506,7 @@ def _mutated_results(monkeypatch, mutate) -> Iterator:
             yield result
 
 
+@pytest.mark.slow
 def test_the_stride_that_carried_a_robot_past_its_target_fails_the_generated_runs(monkeypatch):
     """The stride before the fix: a robot coming down its own target's column walked to the row below
     it (one cell past, then back up), a move the algorithm never makes from the target."""

@@ -174,6 +174,7 @@ def test_a_schedule_line_costs_tens_of_bytes_not_hundreds():
 
 
 # ------------------------------------------------------------------------- 7, 8. output paths and clusters
+@pytest.mark.slow
 def test_an_unreachable_cluster_is_named_with_its_reason(tmp_path):
     out = run_cli(
         "sweep",

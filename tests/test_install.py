@@ -14,6 +14,8 @@ import urllib.request
 import venv
 from pathlib import Path
 
+import pytest
+
 from apf_viz.demos import NOT_PATTERNS
 from apf_viz.ui.app import free_port
 
@@ -40,6 +42,7 @@ def _see_the_running_environment(python: Path) -> None:
     (Path(own) / "_apf_viz_test_outer.pth").write_text("\n".join(outer) + "\n")
 
 
+@pytest.mark.slow
 def test_a_wheel_installed_in_a_fresh_venv_finds_its_demos_and_serves(tmp_path):
     source = tmp_path / "source"  # a copy: a build leaves build/ and egg-info behind, and may reuse them
     shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(*IGNORED))

@@ -231,6 +231,7 @@ def test_a_foreign_table_is_not_taken_for_a_lights_table(tmp_path):
         lights.read_lights(Path(__file__))
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_the_merges_that_finished(tmp_path):
     from tests.sweep_helpers import interrupt_when
 

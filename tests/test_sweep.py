@@ -146,6 +146,7 @@ def test_a_generated_row_is_reproduced_by_the_documented_apf_viz_run_recipe(tmp_
     )
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_a_valid_results_file_and_the_same_command_resumes_it(tmp_path):
     from tests.sweep_helpers import interrupt_when
 
