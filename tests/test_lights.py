@@ -134,6 +134,9 @@ def test_the_command_writes_resumes_and_plots_the_matrix(tmp_path):
     base = json.loads((tmp_path / "l-base.json").read_text())
     assert len(base["starts"]) == 14 and {r["verdict"] for r in base["starts"]} == {"verified"}
     assert (tmp_path / "l-traces" / "apf-opaque-grid+merge(decider=leader1).jsonl").is_file()
+    # What it wrote beside the table is said, not left to be found.
+    assert "apf-viz lights: l.parquet, and beside it l-base.json (stage 0's verdicts" in first.stderr
+    assert "l-traces (counterexample traces); l-random.parquet (the random runs)" in first.stderr
     again = _cli(*args, "--out", "l.parquet", cwd=tmp_path)  # everything is in the file: nothing is run
     assert again.returncode == 0 and "merges explored" not in again.stderr
     assert lights.read_lights(tmp_path / "l.parquet") == rows
