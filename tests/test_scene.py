@@ -399,3 +399,43 @@ def test_a_framing_equal_to_a_late_report_is_still_sent():
         assert dict(elsewhere.sent)["position"] == position  # unequal values go exactly as framed
     finally:
         renderer.server.stop()
+
+
+def test_what_is_said_of_a_robot_is_one_label_beside_it():
+    """Its number, Manual's next phase, "stale" and "diverges here" join in one label at the robot's upper
+    right: none can pile onto another or be read as a neighbour's (Compare's diverging robot once had a
+    label of its own half a cell under its number)."""
+    from apf_viz.ui.scene import number_labels
+
+    pts = [[0.0, 0.0], [3.0, 0.0], [6.0, 0.0]]
+    labels = number_labels(pts, True, stale=(1, 2), diverged=2, next_phase=("look", "move", "compute"))
+    assert [text for text, _ in labels] == [
+        "0 → look",
+        "1 → move stale",
+        "2 → compute stale diverges here",
+    ]
+    assert [spot[:2] for _, spot in labels] == [(0.25, 0.3), (3.25, 0.3), (6.25, 0.3)]
+    # Without numbers, only the robots something is said of.
+    assert [text for text, _ in number_labels(pts, False, stale=(1,), diverged=2)] == [
+        "stale",
+        "diverges here",
+    ]
+
+
+def test_under_manual_each_robot_says_on_the_canvas_what_a_click_on_it_runs():
+    server = viser.ViserServer(port=free_port(), verbose=False)
+    try:
+        s = Session([(0, 0), (2, 1), (4, 0)], [(0, 0), (1, 0), (2, 0)])
+        s.set_scheduler("manual")
+        renderer = SceneRenderer(server, layer="run")
+        renderer.render(s.view())
+        texts = [renderer._handles[f"/numbers/{i}"].text for i in range(3)]
+        assert texts == ["0 → look", "1 → look", "2 → look"]
+        s.click((2, 1))  # robot 1 Looks: its next phase is Compute
+        renderer.render(s.view())
+        assert renderer._handles["/numbers/1"].text == "1 → compute"
+        s.set_scheduler("async")  # a scheduler that chooses: no phase words
+        renderer.render(s.view())
+        assert [renderer._handles[f"/numbers/{i}"].text for i in range(3)] == ["0", "1", "2"]
+    finally:
+        server.stop()

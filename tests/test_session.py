@@ -374,7 +374,9 @@ def test_a_collision_is_located_in_words_and_cells():
     x, y = last[0].to
     assert words.startswith(f"robot {r} moved onto robot ") and f"at ({x}, {y})" in words
     assert "on a snapshot taken at step" in words
-    assert last[0].to in cells and v.robots[r].position in cells
+    # The burst is where the collision is, not on the mover, whose move is drawn into it.
+    assert last[0].to in cells and v.robots[r].position not in cells
+    assert v.robots[r].pending == last[0].to
 
 
 def test_robot_numbers_are_on_for_few_robots_and_can_be_switched():

@@ -9,20 +9,29 @@ from apf_viz.ui.scene.style import STALE_MARK, Bounds
 
 
 def number_labels(
-    pts: list[list[float]], numbers: bool, stale: tuple[int, ...]
+    pts: list[list[float]],
+    numbers: bool,
+    stale: tuple[int, ...],
+    diverged: int | None = None,
+    next_phase: tuple[str, ...] = (),
 ) -> list[tuple[str, tuple[float, float, float]]]:
-    """Each robot's number at its upper right, "stale" joined to it for a robot holding a stale snapshot
-    (one label per robot: it cannot be read as a neighbour's, nor pile onto another); without numbers,
-    "stale" alone in the same place."""
+    """One label per robot at its upper right, so that nothing said of a robot can be read as a
+    neighbour's or pile onto another label: its number; "stale" for a robot holding a stale snapshot;
+    "diverges here" for the robot where Compare's two runs part; under Manual its next phase ("→ look").
+    Without numbers, the words alone in the same place."""
     holding = set(stale)
-    return [
-        (
-            f"{i} {STALE_MARK}" if numbers and i in holding else str(i) if numbers else STALE_MARK,
-            (x + 0.25, y + 0.3, 0.7),
-        )
-        for i, (x, y) in enumerate(pts)
-        if numbers or i in holding
-    ]
+    labels = []
+    for i, (x, y) in enumerate(pts):
+        words = [str(i)] if numbers else []
+        if i < len(next_phase) and next_phase[i]:
+            words.append(f"→ {next_phase[i]}")
+        if i in holding:
+            words.append(STALE_MARK)
+        if i == diverged:
+            words.append("diverges here")
+        if words:
+            labels.append((" ".join(words), (x + 0.25, y + 0.3, 0.7)))
+    return labels
 
 
 LABEL_TEXT_PX = 15.0  # a label's height on screen, padding included (viser's labels keep a screen size)

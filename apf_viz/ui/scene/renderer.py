@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from apf_viz.core.portrayal import Line
+from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
@@ -14,6 +15,8 @@ from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
 from apf_viz.ui.scene.style import DENSE, LAYER, xyz
 from apf_viz.ui.view_model import SessionView
+
+NEXT_PHASE = {"idle": "look", "looked": "compute", "computed": "move"}  # Manual: what a click runs
 
 
 class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing):
@@ -44,11 +47,14 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         dense = len(pts) > DENSE
         self._robots(view, pts)
         self._rings(view, pts)
-        self._labels("/numbers", number_labels(pts.tolist(), view.numbers, view.stale_holders))
+        by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None
+        next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
+        self._labels(
+            "/numbers",
+            number_labels(pts.tolist(), view.numbers, view.stale_holders, view.diverged, next_phase),
+        )
         split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
         self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
-        here = [("diverges here", (float(x) + 0.45, float(y) - 0.2, 0.7)) for x, y in split.tolist()]
-        self._labels("/diverged_label", here)
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
         self._points("/collision", xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"])
         self._targets(view)

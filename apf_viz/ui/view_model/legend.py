@@ -100,7 +100,11 @@ def _engine_marks() -> list[tuple[str, str, str]]:
             "Why: regions tested",
             "the regions its last rule tested, each its own colour, numbered as in Why",
         ),
-        (_swatch(c["collision"], "burst"), "collision", "the cell and robots of a collision"),
+        (
+            _swatch(c["collision"], "burst"),
+            "collision",
+            "where a collision happens: the cell a robot moved into",
+        ),
         (
             _swatch(c["never"], "square-ring"),
             "will never act",

@@ -134,7 +134,9 @@ def last_actor(e: Engine) -> int | None:
 
 
 def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tuple[int, ...]] | None:
-    """The colliding moves of the last step: in words, the cells involved and the robots involved."""
+    """The colliding moves of the last step: in words, the cells they collide in (each move's landing:
+    the moves are not applied, so each mover still stands on its own cell, its move drawn into the
+    burst) and the robots involved."""
     if e.step_index == 0:
         return None
     st = e.state
@@ -151,7 +153,7 @@ def collision(e: Engine, pts: list[Point]) -> tuple[str, tuple[Point, ...], tupl
             f"robot {ev.robot} moved {onto} at ({ev.to[0]}, {ev.to[1]}) on a snapshot taken at step "
             f"{int(st.look_step[ev.robot])}"
         )
-        cells += [ev.to, pts[ev.robot]]
+        cells.append(ev.to)  # where it happens; the mover stands on its cell, its move drawn into this one
         robots += [ev.robot] + ([other] if other is not None and other != ev.robot else [])
     if not words:
         return None
