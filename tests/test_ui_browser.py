@@ -1364,9 +1364,15 @@ CAPTION_FIT = """(title) => {
 
 
 @pytest.mark.parametrize(
-    "name", ["The algorithm in 12 stops", "Where the paper breaks under ASYNC", "What a robot cannot see"]
+    ("name", "size"),
+    [
+        ("The algorithm in 12 stops", (1024, 768)),
+        ("Where the paper breaks under ASYNC", (1024, 768)),
+        ("What a robot cannot see", (1024, 768)),
+        ("Where the paper breaks under ASYNC", (1400, 900)),  # the laptop's window, its longest captions
+    ],
 )
-def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(browser, name):
+def test_serve_lecture_opens_presenting_and_every_caption_fits(browser, name, size):
     """As `apf-viz serve --lecture` starts it: the page opens in presentation mode at stop 1, the Lecture
     dropdown naming it; then PageDown to the last stop, and at each the caption's words fit its box (no
     scroll, none inherited, the words at 60 % of their size or more), no notification covers it, and the
@@ -1380,7 +1386,7 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(brows
     session.start_lecture(lecture)
     served = App(session, port=free_port(), verbose=False, present=True)
     try:
-        page = browser.new_page(viewport={"width": 1024, "height": 768})
+        page = browser.new_page(viewport={"width": size[0], "height": size[1]})
         page.set_default_timeout(60_000)
         page.goto(served.addresses[0])  # the presenter address
         wait_for(lambda: len(served.screens) == 1)
@@ -1401,7 +1407,7 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits_at_1024x768(brows
             assert fit["scroll"] <= fit["client"] + 1 and fit["top"] == 0, (stop.title, fit)
             assert float(fit["font"].rstrip("%")) >= 60 and fit["covered"] == 0, (stop.title, fit)
             assert fit["bottom"] <= fit["page"], (stop.title, fit)
-            shot(page, f"serve-lecture-{lecture.title[:24].replace(' ', '-')}-{i + 1:02d}")
+            shot(page, f"serve-lecture-{lecture.title[:24].replace(' ', '-')}-{size[0]}-{i + 1:02d}")
             cells = [r.position for r in session.view().robots] + list(session.view().targets)
             assert inside_canvas(served, page, cid, cells, CAPTION_ROOM) == [], stop.title
         page.close()
