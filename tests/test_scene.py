@@ -439,3 +439,20 @@ def test_under_manual_each_robot_says_on_the_canvas_what_a_click_on_it_runs():
         assert [renderer._handles[f"/numbers/{i}"].text for i in range(3)] == ["0", "1", "2"]
     finally:
         server.stop()
+
+
+def test_a_long_label_makes_way_for_its_neighbours_numbers():
+    """Robots a cell apart (Compare's runs, zoomed out): a robot's "2 stale diverges here" would cover
+    its neighbour's number at its upper right; it moves below or to the left, and no two labels, nor a
+    label and another robot, overlap where a free place exists."""
+    from apf_viz.ui.scene.labels import _overlaps, label_box, number_labels, spread
+
+    pts = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+    height = 0.6
+    laid = spread(number_labels(pts, True, stale=(0,), diverged=0), pts, height)
+    assert [text for text, _ in laid] == ["0 stale diverges here", "1", "2", "3"]
+    assert laid[1:] == number_labels(pts, True, ())[1:]  # the plain numbers stay where they were
+    boxes = [label_box(text, (x, y, x), height) for text, (x, y, _) in laid]
+    assert not any(_overlaps(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1 :])
+    discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts[1:]]
+    assert not any(_overlaps(boxes[0], d) for d in discs)

@@ -34,6 +34,42 @@ def number_labels(
     return labels
 
 
+def spread(
+    labels: list[tuple[str, tuple[float, float, float]]],
+    pts: list[list[float]],
+    height: float,
+    left_edge: float = -float("inf"),
+) -> list[tuple[str, tuple[float, float, float]]]:
+    """Robots' labels (:func:`number_labels`, at each robot's upper right) moved where they cover no
+    other label and no other robot when their own place does (robots a cell apart, zoomed out: Compare's
+    two runs side by side): below right, left, or below left of their robot, in that order; the plain
+    numbers first, and where they always are, so that a long label gives way to them. ``height``: a
+    label's height in cells; ``left_edge``: how far left a framed camera shows (a label moved past it
+    would not be seen: better over a neighbour)."""
+    discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
+    order = sorted(range(len(labels)), key=lambda i: " " in labels[i][0])  # plain numbers first
+    taken: list[Bounds] = []
+    placed: dict[int, tuple[float, float, float]] = {}
+    for i in order:
+        text, (x0, y0, z) = labels[i]
+        x, y = x0 - 0.25, y0 - 0.3  # the robot it belongs to
+        width = 0.55 * height * len(text)
+        spots = [(x + 0.25, y + 0.3), (x + 0.25, y - 0.55 - height), (x - 0.35 - width, y + 0.3),
+                 (x - 0.35 - width, y - 0.55 - height)]  # fmt: skip
+        chosen = spots[0]
+        for sx, sy in spots if " " in text else ():  # a plain number keeps its place: it is read there
+            box = label_box(text, (sx, sy, sx), height)
+            if box[0] < left_edge:
+                continue
+            others = [d for d in discs if not (d[0] < x < d[2] and d[1] < y < d[3])]
+            if not any(_overlaps(box, t) for t in taken) and not any(_overlaps(box, d) for d in others):
+                chosen = (sx, sy)
+                break
+        taken.append(label_box(text, (chosen[0], chosen[1], chosen[0]), height))
+        placed[i] = (chosen[0], chosen[1], z)
+    return [(labels[i][0], placed[i]) for i in range(len(labels))]
+
+
 LABEL_TEXT_PX = 15.0  # a label's height on screen, padding included (viser's labels keep a screen size)
 TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for (1400×900 and 1024×768 windows)
 TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)

@@ -9,7 +9,7 @@ from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
-from apf_viz.ui.scene.labels import number_labels
+from apf_viz.ui.scene.labels import number_labels, spread, text_cells
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
@@ -49,10 +49,12 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         self._rings(view, pts)
         by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None
         next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
-        self._labels(
-            "/numbers",
-            number_labels(pts.tolist(), view.numbers, view.stale_holders, view.diverged, next_phase),
-        )
+        said = number_labels(pts.tolist(), view.numbers, view.stale_holders, view.diverged, next_phase)
+        if any(" " in text for text, _ in said):  # words beside numbers: room made for them
+            visible = self.view_cells if self.view_cells is not None else self._visible_height()
+            # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4).
+            said = spread(said, pts.tolist(), text_cells(visible), left_edge=self.bounds[0] - 1.5)
+        self._labels("/numbers", said)
         split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
         self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
