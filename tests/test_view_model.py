@@ -50,7 +50,8 @@ def test_a_collision_names_its_robots_and_cell_in_the_banner():
     mover, cell = crash[0].robot, crash[0].to
     onto = next(i for i, r in enumerate(v.robots) if r.position == cell and i != mover)
     assert set(v.collided) == {mover, onto}
-    assert cell in v.collision[1] and v.robots[mover].position in v.collision[1]
+    # The burst is on the cell moved into; the mover stands on its own, its move drawn into the burst.
+    assert v.collision[1] == (cell,) and v.robots[mover].pending == cell
     assert "COLLISION" in v.banner and f"robot {mover}" in v.banner and f"robot {onto}" in v.banner
     assert f"({cell[0]}, {cell[1]})" in v.banner
     look = int(s.engine.state.look_step[mover])
