@@ -49,11 +49,16 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         self._rings(view, pts)
         by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None
         next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
-        said = number_labels(pts.tolist(), view.numbers, view.stale_holders, view.diverged, next_phase)
+        # Compare (a title above each run) is about where the runs part: "stale" words there, over two
+        # runs framed small, would crowd out "diverges here"; a selected robot still shows its ghosts.
+        stale = () if title else view.stale_holders
+        said = number_labels(pts.tolist(), view.numbers, stale, view.diverged, next_phase)
         if any(" " in text for text, _ in said):  # words beside numbers: room made for them
             visible = self.view_cells if self.view_cells is not None else self._visible_height()
-            # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4).
-            said = spread(said, pts.tolist(), text_cells(visible), left_edge=self.bounds[0] - 1.5)
+            # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4); the
+            # run on the right of Compare has the gap between the runs on its left.
+            edge = -float("inf") if self.prefix else self.bounds[0] - 1.5
+            said = spread(said, pts.tolist(), text_cells(visible), left_edge=edge)
         self._labels("/numbers", said)
         split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
         self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
