@@ -17,10 +17,16 @@ from apf_viz.core.grid import as_point
 _PACKAGE = Path(__file__).resolve().parent
 
 
+def packaged_dir(name: str) -> Path:
+    """A top-level folder of the checkout that ships inside the package (demo_patterns, docs): the
+    installed copy, or the checkout's own."""
+    shipped = _PACKAGE / name
+    return shipped if shipped.is_dir() else _PACKAGE.parent / name
+
+
 def demo_dir() -> Path:
     """The folder of demo patterns (its ``starts/`` holds the demo starts)."""
-    shipped = _PACKAGE / "demo_patterns"
-    return shipped if shipped.is_dir() else _PACKAGE.parent / "demo_patterns"
+    return packaged_dir("demo_patterns")
 
 
 NOT_PATTERNS = ("scenarios.json", "figures.json")  # lists of demo_patterns/, not patterns

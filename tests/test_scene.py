@@ -456,3 +456,31 @@ def test_a_long_label_makes_way_for_its_neighbours_numbers():
     assert not any(_overlaps(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1 :])
     discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts[1:]]
     assert not any(_overlaps(boxes[0], d) for d in discs)
+
+
+def test_without_numbers_manual_draws_no_label_per_robot_and_a_lone_stale_word_may_move():
+    """A crowd shown without numbers gets no "→ look" per robot (a thousand labels in every frame); a word
+    standing alone ("stale") is not a number: it moves aside like any long label."""
+    from apf_viz.ui.scene.labels import number_labels, spread
+
+    server = viser.ViserServer(port=free_port(), verbose=False)
+    try:
+        s = Session([(0, 0), (2, 1), (4, 0)], [(0, 0), (1, 0), (2, 0)])
+        s.set_scheduler("manual")
+        s.set_numbers(False)
+        renderer = SceneRenderer(server, layer="run")
+        renderer.render(s.view())
+        assert not any(name.startswith("/numbers/") and h.visible for name, h in renderer._handles.items())
+    finally:
+        server.stop()
+    pts = [[0.0, 0.0], [1.0, 0.0]]
+    laid = spread(number_labels(pts, False, stale=(0,)), [*pts, [0.5, 1.0]], 0.6)
+    assert laid[0][0] == "stale" and laid[0][1][:2] != (0.25, 0.3)  # its place covered the robot above
+
+
+def test_a_websocket_path_that_is_not_ascii_is_a_class_page():
+    from apf_viz.ui.roles import Roles
+
+    roles = Roles("secret")
+    assert roles.role_of("/present/secret") == "presenter"
+    assert roles.role_of("/present/sécret") == "class" and roles.role_of("/") == "class"

@@ -6,17 +6,15 @@ import argparse
 from pathlib import Path
 
 from apf_viz.core.formats import InputError
+from apf_viz.demos import packaged_dir
 
 NAME = "docs"
 HELP = "the manual: list its pages, or print one (apf-viz docs guide | less)"
 
-_PACKAGE = Path(__file__).resolve().parent.parent
-
 
 def docs_dir() -> Path:
     """The manual's folder: shipped inside the package, or a checkout's docs/."""
-    shipped = _PACKAGE / "docs"
-    return shipped if shipped.is_dir() else _PACKAGE.parent / "docs"
+    return packaged_dir("docs")
 
 
 def pages() -> dict[str, Path]:

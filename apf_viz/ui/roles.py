@@ -22,7 +22,7 @@ class Roles:
 
     def role_of(self, path: str | None) -> Role:
         """The role of a page whose websocket was opened at ``path`` (None: unknown, a class page)."""
-        if path is not None and secrets.compare_digest(path, PRESENT_PATH + self.secret):
+        if path is not None and secrets.compare_digest(path.encode(), (PRESENT_PATH + self.secret).encode()):
             return "presenter"
         return "class"
 

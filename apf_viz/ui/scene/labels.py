@@ -17,8 +17,9 @@ def number_labels(
 ) -> list[tuple[str, tuple[float, float, float]]]:
     """One label per robot at its upper right, so that nothing said of a robot can be read as a
     neighbour's or pile onto another label: its number; "stale" for a robot holding a stale snapshot;
-    "diverges here" for the robot where Compare's two runs part; under Manual its next phase ("→ look").
-    Without numbers, the words alone in the same place."""
+    "diverges here" for the robot where Compare's two runs part; under Manual its next phase ("→ look",
+    given by the caller only while numbers are shown). Without numbers, the words alone in the same
+    place."""
     holding = set(stale)
     labels = []
     for i, (x, y) in enumerate(pts):
@@ -47,7 +48,7 @@ def spread(
     label's height in cells; ``left_edge``: how far left a framed camera shows (a label moved past it
     would not be seen: better over a neighbour)."""
     discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
-    order = sorted(range(len(labels)), key=lambda i: " " in labels[i][0])  # plain numbers first
+    order = sorted(range(len(labels)), key=lambda i: not labels[i][0].isdigit())  # plain numbers first
     taken: list[Bounds] = []
     placed: dict[int, tuple[float, float, float]] = {}
     for i in order:
@@ -57,11 +58,11 @@ def spread(
         spots = [(x + 0.25, y + 0.3), (x + 0.25, y - 0.55 - height), (x - 0.35 - width, y + 0.3),
                  (x - 0.35 - width, y - 0.55 - height)]  # fmt: skip
         chosen = spots[0]
-        for sx, sy in spots if " " in text else ():  # a plain number keeps its place: it is read there
+        others = [d for d in discs if not (d[0] < x < d[2] and d[1] < y < d[3])]  # not its own robot
+        for sx, sy in () if text.isdigit() else spots:  # a plain number keeps its place: it is read there
             box = label_box(text, (sx, sy, sx), height)
             if box[0] < left_edge:
                 continue
-            others = [d for d in discs if not (d[0] < x < d[2] and d[1] < y < d[3])]
             if not any(_overlaps(box, t) for t in taken) and not any(_overlaps(box, d) for d in others):
                 chosen = (sx, sy)
                 break

@@ -17,6 +17,7 @@ from apf_viz.ui.scene.style import DENSE, LAYER, xyz
 from apf_viz.ui.view_model import SessionView
 
 NEXT_PHASE = {"idle": "look", "looked": "compute", "computed": "move"}  # Manual: what a click runs
+SPREAD_UP_TO = 60  # labels: beyond, each keeps its robot's upper right (see labels.spread)
 
 
 class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing):
@@ -47,13 +48,16 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         dense = len(pts) > DENSE
         self._robots(view, pts)
         self._rings(view, pts)
-        by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None
+        # Manual's next phases join the numbers: a crowd shown without numbers gets no label per robot.
+        by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None and view.numbers
         next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
         # Compare (a title above each run) is about where the runs part: "stale" words there, over two
         # runs framed small, would crowd out "diverges here"; a selected robot still shows its ghosts.
         stale = () if title else view.stale_holders
         said = number_labels(pts.tolist(), view.numbers, stale, view.diverged, next_phase)
-        if any(" " in text for text, _ in said):  # words beside numbers: room made for them
+        # Words beside numbers: room made for them, among a few robots (a pass over every pair of labels;
+        # in a crowd the labels overlap whatever their places).
+        if len(said) <= SPREAD_UP_TO and not all(text.isdigit() for text, _ in said):
             visible = self.view_cells if self.view_cells is not None else self._visible_height()
             # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4); the
             # run on the right of Compare has the gap between the runs on its left.
