@@ -345,15 +345,25 @@ def test_serve_with_a_bad_lecture_stops_before_the_ui_with_one_line(tmp_path):
 
 
 def test_enter_at_a_compare_stop_whose_run_is_over_says_each_sides_state():
-    """Stop 5 of "Where the paper breaks": the run on the left is stuck; Enter says so and where the run
-    beside it stands (it replays the left run's steps, so it cannot go on alone)."""
+    """Stop 5 of "Where the paper breaks": the run on the left is stuck; Enter goes on with the run beside
+    it alone (the same scheduler and seed) to its own end, then says where each side stands."""
     s = demo_session()
     lecture = lectures()["Where the paper breaks under ASYNC"]
     s.start_lecture(lecture)
     for _ in range(4):
         s.next_stop()
     assert s.lecturer.position == 4 and s.engine.outcome == "stuck"
-    assert not s.step()
+    before = s.view()
+    assert before.compare is not None and before.compare.outcome is None
+    assert s.step()  # the left run is over; the right one takes a step
+    after = s.view()
+    assert after.event == before.event and after.compare.event > before.compare.event
+    steps = 0
+    while s.step():
+        steps += 1
+        assert steps < 100_000
+    end = s.view().compare
+    assert end.outcome == "formed"  # as the stop's words say
     said = s.why_not_step()
     assert said.startswith("the run is over (stuck)")
-    assert "the run beside it stands at event 70, running, with no steps left" in said
+    assert f"the run beside it is over too, at event {end.event} ({end.outcome})" in said

@@ -18,18 +18,18 @@ from tests.test_explorer import Stay, StepUpIfFree, Toggle
 def _reachable(explorer: Explorer) -> tuple[set, set, int]:
     """(configurations, violations, states) of the explored graph, by a plain search of successors."""
     start = explorer.initial()
-    seen = {start.key()}
+    seen = {start}
     configurations, violations = set(), set()
     queue = deque([start])
     while queue:
         st = queue.popleft()
-        configurations.add((st.positions, st.lights))
+        configurations.add(explorer.space.configuration(st))
         for _, nxt in explorer.successors(st):
             if isinstance(nxt, str):
                 violations.add(nxt.split(":")[0])
                 continue
-            if nxt.key() not in seen:
-                seen.add(nxt.key())
+            if nxt not in seen:
+                seen.add(nxt)
                 queue.append(nxt)
     return configurations, violations, len(seen)
 

@@ -693,3 +693,30 @@ def test_play_at_speed_walks_and_records_the_same_run_as_stepping(spread):
     assert played.engine.current_points() == stepped.engine.current_points()
     a, b = played.view(), stepped.view()
     assert (a.robots, a.stage, a.event, a.moves) == (b.robots, b.stage, b.event, b.moves)
+
+
+def test_compare_goes_on_with_the_run_beside_it_once_the_run_is_over():
+    """A run that ends first (the literal paper's collision) leaves the run beside it mid-way: Step then
+    goes on with that one alone, under the run's scheduler and seed, to its own end; Back drops what it
+    did alone."""
+    from apf_viz.core.formats import load_trace
+    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+
+    demos = Path(__file__).parent.parent / "demo_patterns"
+    s = demo_session()
+    s.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
+    s.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
+    s.set_algorithm("apf-opaque-grid-literal")  # A: the literal paper, which collides …
+    header, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
+    s.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
+    s.compare_with("apf-opaque-grid")  # … B: the default, which does not
+    steps = 0
+    while s.step():
+        steps += 1
+        assert steps < 100_000
+    v = s.view()
+    assert v.outcome == "collision" and v.compare is not None and v.compare.outcome == "formed"
+    assert v.compare.event > v.event  # the run beside it went on past the collision
+    assert "the run beside it is over too" in s.why_not_step()
+    s.seek(3)
+    assert s.view().compare.event == s.view().event  # Back: the steps it took alone are dropped

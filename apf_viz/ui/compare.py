@@ -5,6 +5,10 @@ depends only on how often it was activated, so the same records drive any algori
 where its own run ends (formed, collision, stuck) and the run goes on. It is brought to the run's step
 lazily, when a frame is drawn (after a step, Back, the timeline or a branch), so no control needs to
 know about it.
+
+When the run has ended and the twin has not, Step goes on with the twin alone, its steps chosen by the
+same scheduler and seed as the run's (a scheduler's choice is a function of the seed and the step
+number); those steps are kept while the run stays at its end, and dropped when it leaves it.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from typing import NamedTuple
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.history import Event
+from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
 from apf_viz.ui.run_config import RunConfig
 
 
@@ -35,6 +40,8 @@ class Twin:
         self._plugins = plugins
         self.engine: Engine | None = None
         self._config: RunConfig | None = None
+        # The run (its engine and history generation) at whose end the twin went on alone, if it did.
+        self._alone_after: tuple[int, int, int] | None = None
         # (history generations, steps compared, events in them, the divergence found): scanned once.
         self._divergence: tuple[tuple[int, int], int, int, Divergence | None] = ((-1, -1), 0, 0, None)
 
@@ -45,11 +52,25 @@ class Twin:
             self.engine = config.but(algorithm=self.algorithm).engine(self._plugins)
         twin = self.engine
         target = run.step_index
-        if twin.step_index > target:
+        if twin.step_index > target and self._alone_after != (id(run), run.history.generation, target):
+            self._alone_after = None
             twin.seek(min(target, twin.history.length))
         while twin.step_index < target and not twin.finished:
             twin.apply(run.history.steps.record(twin.step_index))
         return twin
+
+    def step_alone(self, run: Engine, config: RunConfig) -> bool:
+        """One step of the twin past the run's end (the run's scheduler and seed choose it). False if
+        the run has not ended, the twin has, or the scheduler is Manual."""
+        if not run.finished or config.scheduler in BY_HAND:
+            return False
+        twin = self.follow(run, config)
+        if twin.finished:
+            return False
+        scheduler = make_scheduler(config.scheduler)
+        twin.apply(scheduler.choose(twin, step_rng(config.seed, twin.step_index)))
+        self._alone_after = (id(run), run.history.generation, run.step_index)
+        return True
 
     def divergence(self, run: Engine) -> Divergence | None:
         """(event number, what differs) of the first event at which the two configurations differ: a

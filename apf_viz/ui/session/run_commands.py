@@ -43,8 +43,11 @@ class RunCommands(SessionCore):
         """One step chosen by the scheduler (in Manual: the robot that browser selected). False if
         nothing ran."""
         with self.lock:
-            if self.engine.finished or self.mode != "run":
+            if self.mode != "run":
                 return False
+            if self.engine.finished:  # Compare: the run beside it may go on alone
+                twin = self.screen.twin
+                return twin is not None and twin.step_alone(self.engine, self.run.config)
             if self.scheduler_name in BY_HAND and not self.run.following:
                 selected = self.browser(browser).selected
                 if selected is None:
@@ -60,9 +63,10 @@ class RunCommands(SessionCore):
         if self.engine.finished:
             said = f"the run is over ({self.engine.outcome}): Back, the timeline or Reset go on from earlier"
             twin = self.screen.twin.engine if self.screen.twin is not None else None
-            if twin is not None:  # Compare: the run beside it replays this run's steps, and there are no more
-                at, state = twin.state.events, twin.outcome or "running"
-                said += f"; the run beside it stands at event {at}, {state}, with no steps left"
+            if twin is not None:  # Compare: the run beside it went on alone, to its own end
+                said += f"; the run beside it is over too, at event {twin.state.events} ({twin.outcome})"
+                if not twin.finished:  # Manual: no scheduler to go on with
+                    said = f"the run is over ({self.engine.outcome}); in Manual the run beside it stays"
             return said
         if self.scheduler_name in BY_HAND:
             return "Manual: click a robot to run its next phase"
