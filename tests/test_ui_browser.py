@@ -1476,3 +1476,52 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     wait_for(lambda: app.session.engine.step_index == 3)
     follower.close()
     presenter.close()
+
+
+def _canvas(page) -> np.ndarray:
+    png = page.locator("canvas").first.screenshot()
+    return np.asarray(Image.open(BytesIO(png)).convert("RGB"), dtype=np.int32)
+
+
+def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes_back(browser, app):
+    """Try it yourself: the class page branches a run of its own from the lecture's as it is; its keys
+    step that run alone (the shared run and the projector do not move), the shared run is no longer drawn
+    on it (the presenter's moves leave its canvas as it was), and Back to the lecture follows again."""
+    presenter_address, class_address = app.addresses
+    presenter = open_page(browser, app)
+    student = browser.new_page(viewport=VIEWPORT)
+    student.set_default_timeout(60_000)
+    student.goto(class_address)
+    student.get_by_label("Event").wait_for()
+    wait_for(lambda: len(app.screens) == 2)
+    for _ in range(5):
+        presenter.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 5)
+    wait_for(lambda: event_value(student) == 5)
+    student.get_by_role("button", name="Try it yourself").click()
+    student.get_by_text("Your own run").first.wait_for()
+    page = next(x for x in app.screens.values() if x.state.role == "class")
+    assert page.own is not None and page.session.private
+    student.get_by_role("button", name="Step").wait_for()  # its own run's controls, and not the room's
+    assert not student.get_by_role("button", name="Verify").is_visible()
+    assert not student.get_by_label("Lecture").is_visible()
+    for _ in range(3):
+        student.keyboard.press("Enter")
+    wait_for(lambda: page.session.engine.step_index == 8)
+    wait_for(lambda: event_value(student) == 8)
+    assert app.session.engine.step_index == 5 and event_value(presenter) == 5  # the projector untouched
+    time.sleep(1.0)
+    before = _canvas(student)
+    app.session.run_until("move")  # the presenter's run moves a robot …
+    app.session.run_until("move")
+    app.request_render()
+    wait_for(lambda: event_value(presenter) == app.session.engine.step_index)
+    time.sleep(1.5)
+    assert np.abs(_canvas(student) - before).max() <= 8  # … which the student's canvas does not show
+    shot(student, "class-page-own-run")
+    student.get_by_role("button", name="Back to the lecture").click()
+    student.get_by_text("Following the lecture").first.wait_for()
+    wait_for(lambda: page.own is None)
+    wait_for(lambda: event_value(student) == app.session.engine.step_index)  # following again
+    student.close()
+    presenter.close()

@@ -31,6 +31,7 @@ from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
 from apf_viz.ui.browser_screen import BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
+from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Role, Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
@@ -118,7 +119,7 @@ class App:
         # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
         # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
         gui.main_panel.dock_right()
-        self.renderer = SceneRenderer(self.server, layer="run")
+        self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
         self.compare_renderer: SceneRenderer | None = None  # Compare: the second run, to the right
         self.verifier = SharedVerifier(session, self.request_render)
         self.screens: dict[int, BrowserScreen] = {}
@@ -130,6 +131,7 @@ class App:
         self._framed_end = False  # the cameras were framed on the run's end
         self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
         self.frames = 0
+        self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -161,8 +163,18 @@ class App:
             screens = list(self.screens.values())
         return next((x.panels for x in screens if x.state is self.session.presenter), None)
 
+    def _screens(self) -> list[BrowserScreen]:
+        with self._screens_lock:
+            return list(self.screens.values())
+
+    def _screen(self, client) -> BrowserScreen | None:
+        with self._screens_lock:
+            return self.screens.get(client.client_id) if client is not None else None
+
     def _connect(self, client) -> None:
         screen = BrowserScreen(self, client)
+        screen.panels.ctx.try_alone = lambda: self.own_runs.try_alone(screen)
+        screen.panels.ctx.back_to_lecture = lambda: self.own_runs.back(screen)
         with self._screens_lock:
             self.screens[client.client_id] = screen
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
@@ -180,10 +192,9 @@ class App:
 
     def frame_client(self, client) -> None:
         """Point this browser's camera at the whole run (robots and targets), as it is now."""
-        with self._screens_lock:
-            screen = self.screens.get(client.client_id)
+        screen = self._screen(client)
         if screen is not None:
-            screen.frame(self.renderer)
+            screen.frame(screen.renderer)
         else:
             self.renderer.frame_camera(client.camera)
 
@@ -191,7 +202,7 @@ class App:
         with self._screens_lock:
             screens = list(self.screens.values())
         for screen in screens:
-            screen.frame(self.renderer)
+            screen.frame(screen.renderer)
 
     def drawn(self) -> dict[str, object]:
         """Every node drawn, by name: the shared run's, then each browser's selection layer."""
@@ -214,13 +225,17 @@ class App:
             origin, direction = ray_through(client.camera, screen)
         except (AssertionError, TypeError, ValueError):  # the browser has not reported its camera
             return None
-        return self.renderer.cell_of_ray(tuple(origin), tuple(direction))
+        page = self._screen(client)
+        return (page.renderer if page else self.renderer).cell_of_ray(tuple(origin), tuple(direction))
 
     def _on_click(self, event) -> None:
-        cell = self.renderer.cell_of_ray(event.ray_origin, event.ray_direction)
+        page = self._screen(event.client)  # a page trying its own run clicks in its own run
+        session = page.session if page is not None else self.session
+        renderer = page.renderer if page is not None else self.renderer
+        cell = renderer.cell_of_ray(event.ray_origin, event.ray_direction)
         if cell is not None:
             try:
-                self.session.click(cell, event.client.client_id if event.client is not None else None)
+                session.click(cell, event.client.client_id if event.client is not None else None)
             except Exception as err:  # a click must never kill the server; only its browser is told
                 tell(event.client, "Click refused", str(err), error=True)
         self.request_render()
@@ -233,9 +248,10 @@ class App:
         last = tick = time.perf_counter()
         was_playing = False
         pacer = StepPacer()
+        own_playing = False
         settle_memory()
         while not self._stop.is_set():
-            if not self.session.playing:  # idle: sleep until a click or a callback asks for a frame
+            if not self.session.playing and not own_playing:  # idle: sleep until something asks for a frame
                 self._dirty.wait(timeout=1.0 / FPS)
             now = time.perf_counter()
             s = self.session
@@ -260,6 +276,9 @@ class App:
                 if was_playing:
                     settle_memory()
             was_playing = s.playing
+            own_playing = self.own_runs.play(1.0 / FPS, now - last)  # pages' own runs: a share of a frame
+            if own_playing:
+                self._dirty.set()
             last = now
             if self._dirty.is_set():
                 self._dirty.clear()
@@ -272,7 +291,14 @@ class App:
 
     def _render(self) -> None:
         with self._screens_lock:
-            screens = list(self.screens.values())
+            everyone = list(self.screens.values())
+        for screen in everyone:  # a page trying its own run: drawn from it alone
+            if screen.own is not None:
+                try:
+                    self.own_runs.render(screen)
+                except RuntimeError:  # the browser left while its frame was drawn
+                    continue
+        screens = [x for x in everyone if x.own is None]
         with self.session.lock:  # the run drawn and the run framed are one (a load may come in between)
             engine = self.session.engine
             run_view, views = self.session.views([x.client.client_id for x in screens])
@@ -335,7 +361,7 @@ class App:
                 self.compare_renderer = None
             return
         if self.compare_renderer is None:
-            self.compare_renderer = SceneRenderer(self.server, prefix="/compare")
+            self.compare_renderer = SceneRenderer(self.server, prefix="/compare", root="/shared")
         c = self.session.config
         xs = [p[0] for p in (*c.robots, *c.pattern)]
         gap = max(xs) - min(xs) + len(c.robots) + 8

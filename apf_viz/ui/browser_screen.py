@@ -3,10 +3,11 @@ where the hand moved it)."""
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Protocol, cast
 
 import numpy as np
 
+from apf_viz.ui.attachment import Attachment
 from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.roles import Role
@@ -34,10 +35,15 @@ class BrowserScreen:
     def __init__(self, app: Host, client) -> None:
         self.client = client
         self.state = app.session.join(client.client_id, app.role_of(client))
-        self.selection = SceneRenderer(client, layer="selection", base=app.renderer)
+        self.selection = SceneRenderer(client, layer="selection", base=app.renderer, root="/own")
+        # The run it is attached to (the shared one, or its own: ui/own_runs.py); its panel's commands
+        # go there.
+        self.attachment = Attachment(app.session)
+        self.own: SceneRenderer | None = None  # its own run, drawn in its own scene
+        self._hiding: list = []  # its own frame over the shared scene's root, which hides it here
         self.panels = Panels(
             client,
-            app.session,
+            cast(Session, self.attachment),
             app.request_render,
             app.frame_client,
             browser=client.client_id,
@@ -52,6 +58,36 @@ class BrowserScreen:
         self.cells: float | None = None  # how many cells tall its camera shows (scene.camera_cells)
         self._request_render = app.request_render
         client.camera.on_update(self._camera_moved)
+
+    @property
+    def session(self) -> Session:
+        """The run this page is attached to."""
+        return self.attachment.target
+
+    @property
+    def renderer(self) -> SceneRenderer:
+        """What draws the run it shows: its own run's renderer, or the shared one."""
+        return self.own if self.own is not None else self._renderer
+
+    def attach_own(self, own: Session) -> None:
+        """From now on this page shows and drives ``own``: the shared run is hidden on this page alone (a
+        frame of its own of the same name shadows the shared one: viser draws a page's own variant of a
+        node before the one every page shares), and the shared run's selection layer is cleared."""
+        own.join(self.client.client_id, "presenter")
+        self.attachment.own = own
+        self._hiding = [self.client.scene.add_frame("/shared", show_axes=False, visible=False)]
+        self.selection.clear()
+        self.own = SceneRenderer(self.client, layer="all", root="/mine")
+
+    def detach_own(self) -> None:
+        """Back to the shared run: its own run and everything drawn of it are dropped."""
+        self.attachment.own = None
+        if self.own is not None:
+            self.own.clear()
+            self.own = None
+        for frame in self._hiding:
+            frame.remove()
+        self._hiding = []
 
     def _camera_moved(self, camera) -> None:
         """A camera that leaves the pose it was last framed to was moved by hand: it is left there while
@@ -74,7 +110,7 @@ class BrowserScreen:
         if self.state.camera == "framed" and abs(camera_aspect(camera) - self._framed_aspect) > 0.02:
             # The canvas changed shape (the panel docked, a window resized, a first report): the framing
             # was fitted to another width.
-            self.frame(self._renderer)
+            self.frame(self.renderer)
 
     @property
     def _acknowledged(self) -> bool:

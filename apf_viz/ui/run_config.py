@@ -26,6 +26,7 @@ class RunConfig:
     seed: int = 1
     max_events: int = 5_000_000  # events a loaded trace may hold
     skip_noops: bool = True  # False: every no-op activation is kept (the All activations box)
+    event_cap: int | None = None  # the run ends (``limit``) before passing this many events (an own run)
 
     def engine(self, plugins: Mapping[str, Factory] | None = None) -> Engine:
         """A fresh engine at the start of this run, stopped by the run's budget (core/budget.py)."""
@@ -36,7 +37,9 @@ class RunConfig:
             get_algorithm(self.algorithm, plugins),
             y_up=self.y_up,
             light_semantics=self.light_semantics,
-            max_events=budget.max_events,
+            max_events=budget.max_events
+            if self.event_cap is None
+            else min(budget.max_events, self.event_cap),
             max_moves=budget.max_moves,
             skip_noops=self.skip_noops,
             fast_forward=True,  # only Play at speed walks (RunController.play_steps); a step is one step

@@ -91,7 +91,7 @@ class Panels:
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
         self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
-        self._driving_shown = True  # the driving controls are made visible
+        self._driving_shown = (True, True)  # the driving controls (and the shared run's alone) shown
 
     @property
     def presenting(self) -> bool:
@@ -115,10 +115,14 @@ class Panels:
         """The controls that change the shared run, shown only where this page may drive it (a class
         page follows the lecture unless the presenter lets the class drive)."""
         drives = self.ctx.drives()
-        if drives != self._driving_shown:
-            self._driving_shown = drives
+        shared = not self.ctx.session.private  # a run of its own has no files, lectures or Demo
+        shown = (drives, shared)
+        if shown != self._driving_shown:
+            self._driving_shown = shown
             for handle in self.ctx.driving_handles:
                 handle.visible = drives
+            for handle in self.ctx.shared_handles:
+                handle.visible = drives and shared
 
     def _folder(self, kind: type):
         return next(f for f in self.folders if isinstance(f, kind))

@@ -3,6 +3,7 @@ next for what, and Verify (every schedule of a small start)."""
 
 from __future__ import annotations
 
+from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.session import SCHEDULER_LABELS
@@ -51,6 +52,7 @@ class AdversaryFolder:
             hint=f"explore every schedule of this start and pattern (k ≤ {MAX_K}), as apf-viz check does",
         )
         self.verify.on_click(self.ctx.guard(self._on_verify, "Verify"))
+        self.ctx.driving(self.verify, shared=True)
         self.cancel_verify = gui.add_button("Cancel verification", visible=False)
         self.cancel_verify.on_click(self.ctx.guard(lambda e: self.ctx.verifier.cancel(), "Verify"))
         self.verify_status = gui.add_markdown("")
@@ -61,6 +63,8 @@ class AdversaryFolder:
             self.ctx.session.set_all_activations(keep)
 
     def _on_verify(self, event) -> None:
+        if self.ctx.session.private:  # the verifier is the shared run's, one at a time for the room
+            raise InputError("Verify is the lecture's: not in a run of your own")
         why_not = self.ctx.verifier.start(event.client)
         if why_not:
             tell(event.client, "Verify", why_not, error=True)

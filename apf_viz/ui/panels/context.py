@@ -102,6 +102,11 @@ class PanelContext:
     # The grid cell under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     cell_at: Callable[[object, tuple[float, float]], tuple[int, int] | None] = lambda client, point: None
     driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
+    shared_handles: list = field(default_factory=list)  # shown only where it drives the shared run
+    # Try it yourself (ui/own_runs.py): a class page branches a run of its own, and comes back; the App
+    # sets these (a panel without an App has no own runs).
+    try_alone: Callable[[], str] = lambda: "no runs of one's own here"
+    back_to_lecture: Callable[[], str] = lambda: "this page follows the lecture"
 
     def drives(self) -> bool:
         """Whether this browser may change the shared run (a presenter page, or the class when the
@@ -117,9 +122,10 @@ class PanelContext:
         self.changed()
         return False
 
-    def driving(self, handle):
-        """A control (or folder) that changes the shared run: shown only where this browser may drive."""
-        self.driving_handles.append(handle)
+    def driving(self, handle, shared: bool = False):
+        """A control (or folder) that changes the run: shown only where this browser may drive;
+        ``shared``: only where it drives the shared run (files, lectures: not in a run of its own)."""
+        (self.shared_handles if shared else self.driving_handles).append(handle)
         return handle
 
     def guard(self, fn: Callable, title: str = "apf-viz", mine: bool = False) -> Callable:

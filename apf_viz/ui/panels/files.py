@@ -34,30 +34,32 @@ class FilesFolder:
         s = ctx.session
         with gui.add_folder("Files", expand_by_default=False):
             self.demo_pattern = ctx.driving(
-                gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—")
+                gui.add_dropdown("Demo pattern", ("—", *demo_files()), initial_value="—"), shared=True
             )
             self.demo_pattern.on_update(
                 ctx.from_browser(lambda e: self._demo("", self.demo_pattern.value, s.load_pattern))
             )
             self.demo_start = ctx.driving(
-                gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—")
+                gui.add_dropdown("Demo start", ("—", *demo_files("starts")), initial_value="—"), shared=True
             )
             self.demo_start.on_update(
                 ctx.from_browser(lambda e: self._demo("starts", self.demo_start.value, s.load_robots))
             )
+            # Commands by name, looked up when used: the page may be attached to another run by then.
             for label, loader in (
-                ("Upload robots", s.load_robots),
-                ("Upload pattern", s.load_pattern),
-                ("Upload trace", s.load_trace),
-                ("Upload schedule", s.load_schedule),
-                ("Upload lecture", s.load_lecture),
+                ("Upload robots", "load_robots"),
+                ("Upload pattern", "load_pattern"),
+                ("Upload trace", "load_trace"),
+                ("Upload schedule", "load_schedule"),
+                ("Upload lecture", "load_lecture"),
             ):
-                ctx.driving(gui.add_upload_button(label, mime_type="*/*")).on_upload(self._uploader(loader))
+                button = ctx.driving(gui.add_upload_button(label, mime_type="*/*"), shared=True)
+                button.on_upload(self._uploader(loader))
             for label, name, make in (
-                ("Download robots", "robots.json", s.robots_file),
-                ("Download pattern", "pattern.json", s.pattern_file),
-                ("Download trace", "trace.jsonl", s.trace_file),
-                ("Download schedule", "schedule.jsonl", s.schedule_file),
+                ("Download robots", "robots.json", "robots_file"),
+                ("Download pattern", "pattern.json", "pattern_file"),
+                ("Download trace", "trace.jsonl", "trace_file"),
+                ("Download schedule", "schedule.jsonl", "schedule_file"),
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)
@@ -74,7 +76,8 @@ class FilesFolder:
                     "Export lecture",
                     hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and "
                     "an HTML page of them, in one zip; keep your hands off the run meanwhile",
-                )
+                ),
+                shared=True,
             ).on_click(self._on_export)
         self.exporting: LectureExport | None = None
 
@@ -82,18 +85,18 @@ class FilesFolder:
     def _demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
         return load_demo(folder, name, load) if name != "—" else None
 
-    def _uploader(self, loader: Callable[[str, bytes], str | None]) -> Callable:
+    def _uploader(self, loader: str) -> Callable:
         def on_upload(event) -> None:
             f = event.target.value
-            self.ctx.guard(lambda e: loader(f.name, f.content), f.name)(event)
+            self.ctx.guard(lambda e: getattr(self.ctx.session, loader)(f.name, f.content), f.name)(event)
 
         return on_upload
 
-    @staticmethod
-    def _downloader(filename: str, make: Callable[[], str]) -> Callable:
+    def _downloader(self, filename: str, make: str) -> Callable:
         def on_click(event) -> None:
             if event.client is not None:
-                event.client.send_file_download(filename, make().encode("utf-8"), save_immediately=True)
+                text = getattr(self.ctx.session, make)()
+                event.client.send_file_download(filename, text.encode("utf-8"), save_immediately=True)
 
         return on_click
 

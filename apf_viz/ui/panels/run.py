@@ -54,6 +54,15 @@ class RunFolder:
         self.ctx = ctx
         with gui.add_folder("Run"):
             self.role = gui.add_markdown("")
+            self.alone = gui.add_button(
+                "Try it yourself",
+                visible=False,
+                hint="a run of this page's own, from the lecture's run as it is now: the projector is "
+                "untouched",
+            )
+            self.alone.on_click(ctx.guard(lambda e: ctx.try_alone(), "Try it yourself", mine=True))
+            self.back = gui.add_button("Back to the lecture", visible=False, hint="drop this page's own run")
+            self.back.on_click(ctx.guard(lambda e: ctx.back_to_lecture(), "Back to the lecture", mine=True))
             self.class_drives = gui.add_checkbox(
                 "Class may drive",
                 initial_value=False,
@@ -65,7 +74,9 @@ class RunFolder:
                     lambda e: ctx.session.set_class_may_drive(self.class_drives.value, ctx.browser)
                 )
             )
-            self.demo = ctx.driving(gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—"))
+            self.demo = ctx.driving(
+                gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—"), shared=True
+            )
             self.demo.on_update(ctx.from_browser(self._on_demo))
             self.demo_note = gui.add_markdown("")
             # After a Demo is picked, the keyboard belongs to the lecture again: viser ignores hotkeys while
@@ -78,7 +89,7 @@ class RunFolder:
             self.lecture = ctx.driving(gui.add_dropdown(
                 "Lecture", ("—", *lectures()), initial_value="—",
                 hint="a guided lecture: PageDown / Next stop runs to each stop and shows its words",
-            ))  # fmt: skip
+            ), shared=True)  # fmt: skip
             self.lecture.on_update(ctx.from_browser(self._on_lecture, "Lecture"))
             self.words = gui.add_markdown("")
             self.stops = gui.add_button_group("Stops", ("Previous stop", "Next stop"), visible=False)
@@ -210,8 +221,11 @@ class RunFolder:
     def _refresh_role(self) -> None:
         """What this page is: presenting (with the class's permission to drive), or following."""
         s, browser = self.ctx.session, self.ctx.browser
-        presenter = s.role(browser) == "presenter"
-        if presenter:
+        own = s.private
+        presenter = s.role(browser) == "presenter" and not own
+        if own:
+            said = "**Your own run** · the projector is untouched"
+        elif presenter:
             said = "**Presenting**" + (" · the class may drive" if s.class_may_drive else "")
         else:
             said = "**Following the lecture**" + (
@@ -224,6 +238,11 @@ class RunFolder:
             self.keys.content = keys
         if self.class_drives.visible != presenter:
             self.class_drives.visible = presenter
+        trying = not own and s.role(browser) == "class"
+        if self.alone.visible != trying:
+            self.alone.visible = trying
+        if self.back.visible != own:
+            self.back.visible = own
         if self.class_drives.value != s.class_may_drive:
             self.class_drives.value = s.class_may_drive
 

@@ -18,11 +18,16 @@ class Canvas:
     """What every part of the scene draws with: nodes created once and updated in place (points,
     segments, labels), the integer origin the float32 scene is drawn around, and the run's box."""
 
-    def __init__(self, owner, prefix: str = "", layer: Layer = "all", base: Canvas | None = None) -> None:
+    def __init__(
+        self, owner, prefix: str = "", layer: Layer = "all", base: Canvas | None = None, root: str = ""
+    ) -> None:
         self.server = owner
         # A second run drawn beside the first (Compare) is a second renderer under its own prefix, its
         # origin set by the caller so that it stands to the right of the first.
         self.prefix = prefix
+        # Every node is drawn under ``root`` (a frame): one browser can hide a whole scope at once (a
+        # page trying a run of its own hides the shared run under a frame of its own of the same name).
+        self.root = root
         self.layer: Layer = layer
         self.base = base
         self.fixed_origin: tuple[int, int] | None = None
@@ -90,7 +95,7 @@ class Canvas:
             name,
             points,
             lambda: self.scene.add_point_cloud(
-                self.prefix + name,
+                self.root + self.prefix + name,
                 points,
                 np.array(color, dtype=np.uint8),
                 point_size=size * VISER_POINT_SCALE,
@@ -118,7 +123,7 @@ class Canvas:
             name,
             points,
             lambda: self.scene.add_line_segments(
-                self.prefix + name, points, color, thickness=thickness, thickness_units="screen"
+                self.root + self.prefix + name, points, color, thickness=thickness, thickness_units="screen"
             ),
             "points",
         )
@@ -139,7 +144,7 @@ class Canvas:
                 text = canvas_symbol(text)
                 if handle is None:
                     self._handles[name] = self.scene.add_label(
-                        self.prefix + name,
+                        self.root + self.prefix + name,
                         text,
                         position=position,
                         font_screen_scale=LABEL_SCALE,

@@ -4,7 +4,9 @@ under the run's lock). The commands build on it (ui/session/*_commands.py)."""
 
 from __future__ import annotations
 
-from collections.abc import Hashable, Mapping, Sequence
+import functools
+from collections.abc import Callable, Hashable, Mapping, Sequence
+from typing import TypeVar
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
 from apf_viz.core.formats import InputError, size_problem
@@ -21,6 +23,25 @@ from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, SharedScreen
 from apf_viz.ui.view_model import SessionView, for_browser, present, present_run
+
+F = TypeVar("F", bound=Callable)
+
+
+def shared_only(command: F) -> F:
+    """A command refused in a page's run of its own (ui/own_runs.py): files and uploads, lectures, the
+    pattern library on the server's disk, the class's permission. Refused here, in the session, so that
+    no control or key can reach it from a class page."""
+
+    @functools.wraps(command)
+    def refusing(self, *args, **kwargs):
+        if self.private:
+            raise InputError(
+                f"{command.__name__.replace('_', ' ')}: not in a run of your own (Back to the lecture first)"
+            )
+        return command(self, *args, **kwargs)
+
+    return refusing  # type: ignore[return-value]
+
 
 SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
 """The UI's dropdown: each scheduler's label, and the name it stands for (core/schedulers)."""
@@ -74,6 +95,7 @@ class SessionCore:
         self._browsers: dict[Hashable, BrowserState] = {}
         self._presenter_of: Hashable | None = None
         self.class_may_drive = False  # the presenter opened the shared run to the class pages
+        self.private = False  # a class page's run of its own (ui/own_runs.py): no files, no lectures
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
         self.saved = self.library.names()  # their names, read once and after each save
@@ -114,6 +136,7 @@ class SessionCore:
         presenter lets the class drive."""
         return self.browser(browser).role == "presenter" or self.class_may_drive
 
+    @shared_only
     def set_class_may_drive(self, on: bool, browser: Hashable | None = None) -> str:
         """Open the shared run to the class pages, or close it (a presenter page's choice only)."""
         if self.role(browser) != "presenter":
@@ -220,8 +243,6 @@ class SessionCore:
     def return_to_set_aside(self) -> None:
         """Back to the recorded steps the last branch dropped; Step then follows them."""
         self.run.return_to_set_aside()
-
-    # ------------------------------------------------------------------ building runs
 
     # ------------------------------------------------------------------ building runs
     def _start(self, config: RunConfig) -> None:

@@ -12,7 +12,7 @@ from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.screen_state import Mode
-from apf_viz.ui.session.core import SessionCore
+from apf_viz.ui.session.core import SessionCore, shared_only
 
 
 class EditCommands(SessionCore):
@@ -93,10 +93,12 @@ class EditCommands(SessionCore):
         with self.lock:
             self.editor.clear_pattern()
 
+    @shared_only
     def use_library(self, library: PatternLibrary) -> None:
         with self.lock:
             self.library, self.saved = library, library.names()
 
+    @shared_only
     def save_pattern(self, name: str) -> str:
         """The pattern being drawn (in Run: the run's) saved under ``name`` in the library."""
         with self.lock:

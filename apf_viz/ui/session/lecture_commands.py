@@ -10,7 +10,7 @@ from apf_viz.lecture import Lecture
 from apf_viz.ui import loader
 from apf_viz.ui.lecturer import Lecturer, Reached
 from apf_viz.ui.screen_state import LectureStop
-from apf_viz.ui.session.core import SessionCore
+from apf_viz.ui.session.core import SessionCore, shared_only
 from apf_viz.ui.view_model.story import MAX_TRAIL
 
 
@@ -23,12 +23,14 @@ class LectureCommands(SessionCore):
         def step(self, browser: Hashable | None = None) -> bool: ...
 
     # ------------------------------------------------------------------ a guided lecture
+    @shared_only
     def start_lecture(self, lecture: Lecture | None) -> str:
         """Follow ``lecture`` (None: stop following one) from its first stop."""
         self.lecturer = Lecturer(self, lecture) if lecture is not None else None
         self.screen.lecture = None
         return self.next_stop() if lecture is not None else "no lecture: PageDown stops at the run's stages"
 
+    @shared_only
     def load_lecture(self, filename: str, content: bytes) -> str:
         """A lecture file uploaded (checked whole first: a bad one leaves the run and lecture as they are)."""
         return self.start_lecture(loader.lecture_upload(filename, content))

@@ -1,0 +1,144 @@
+"""Try it yourself (ui/own_runs.py): a class page's run of its own branches from the shared run as it
+is, never touches it, is refused what only the shared run may do, and is bounded."""
+
+from __future__ import annotations
+
+import contextlib
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from apf_viz.core.formats import InputError
+from apf_viz.ui import own_runs
+from apf_viz.ui.app import demo_session
+from apf_viz.ui.attachment import Attachment
+from apf_viz.ui.own_runs import OwnPlay, OwnRuns, branch
+
+
+def _state(session):
+    e = session.engine
+    return e.step_index, e.state.events, np.asarray(e.positions).tolist(), list(e.state.lights)
+
+
+def test_an_own_run_starts_where_the_shared_run_is_and_goes_its_own_way():
+    shared = demo_session()
+    for _ in range(40):
+        shared.step()
+    own = branch(shared)
+    assert _state(own) == _state(shared) and own.private and not shared.private
+    before = _state(shared)
+    for _ in range(25):
+        own.step()
+    assert _state(shared) == before  # the shared run is untouched
+    assert own.engine.step_index == 65
+    own.back()
+    own.set_scheduler("manual")
+    assert own.scheduler_name == "manual" and shared.scheduler_name != "manual"
+    for _ in range(5):
+        shared.step()
+    assert own.engine.step_index == 64  # and the shared run's steps do not reach it
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        lambda s: s.load_pattern("p.json", b"{}"),
+        lambda s: s.load_robots("r.json", b"{}"),
+        lambda s: s.load_trace("t.jsonl", b""),
+        lambda s: s.load_schedule("s.jsonl", b""),
+        lambda s: s.load_lecture("l.json", b"{}"),
+        lambda s: s.start_lecture(None),
+        lambda s: s.save_pattern("mine"),
+        lambda s: s.set_class_may_drive(True),
+    ],
+)
+def test_an_own_run_refuses_files_lectures_the_library_and_the_class_permission(command):
+    own = branch(demo_session())
+    with pytest.raises(InputError, match="not in a run of your own"):
+        command(own)
+
+
+def test_a_page_attached_to_its_own_run_sends_every_command_there():
+    shared = demo_session()
+    page = Attachment(shared)
+    page.step()
+    assert shared.engine.step_index == 1
+    page.own = branch(shared)
+    page.step()
+    page.step()
+    assert shared.engine.step_index == 1 and page.own.engine.step_index == 3
+    assert page.engine is page.own.engine
+    page.own = None
+    assert page.engine is shared.engine
+
+
+class _Page:
+    """What OwnRuns needs of a browser's screen, without a browser."""
+
+    def __init__(self, cid: int, role: str = "class") -> None:
+        self.state = SimpleNamespace(role=role)
+        self.client = SimpleNamespace(client_id=cid, atomic=contextlib.nullcontext)
+        self.panels = SimpleNamespace(refresh=lambda view: None)
+        self.own_session = None
+        self.own = None
+        self.renderer = None
+
+    @property
+    def session(self):
+        return self.own_session
+
+    def attach_own(self, own):
+        own.join(self.client.client_id, "presenter")
+        self.own_session = own
+        self.own = SimpleNamespace(render=lambda view: None)
+
+    def detach_own(self):
+        self.own_session = self.own = None
+
+    def frame(self, renderer):
+        pass
+
+
+def test_own_runs_are_for_class_pages_bounded_in_number_and_dropped_on_the_way_back(monkeypatch):
+    monkeypatch.setattr(own_runs, "MAX_OWN_RUNS", 2)
+    shared = demo_session()
+    pages = [_Page(i) for i in range(3)]
+    runs = OwnRuns(shared, lambda: pages, lambda: None)
+    with pytest.raises(InputError, match="presenter page drives the shared run"):
+        runs.try_alone(_Page(9, role="presenter"))
+    assert "your own run, from event 0" in runs.try_alone(pages[0])
+    runs.try_alone(pages[1])
+    with pytest.raises(InputError, match="2 pages are trying runs of their own"):
+        runs.try_alone(pages[2])
+    assert runs.back(pages[0]) == "back to the lecture" and pages[0].own is None
+    runs.try_alone(pages[2])  # room again
+    assert len(runs.attached()) == 2
+
+
+def test_an_own_run_ends_a_bounded_number_of_events_past_where_it_branched(monkeypatch):
+    monkeypatch.setattr(own_runs, "EXTRA_EVENTS", 60)
+    shared = demo_session()
+    for _ in range(30):
+        shared.step()
+    own = branch(shared)
+    while own.step():
+        pass
+    assert own.engine.outcome == "limit"
+    assert own.engine.state.events <= shared.engine.state.events + 60
+
+
+def test_own_play_keeps_each_run_to_its_speed_and_all_to_their_share_of_a_frame():
+    shared = demo_session()
+    a, b = branch(shared), branch(shared)
+    for run in (a, b):
+        run.set_speed(10)
+        run.toggle_play()
+    pacer = OwnPlay()
+    for _ in range(20):  # two seconds of frames at 10 frames a second
+        assert pacer.play([a, b], frame_seconds=0.1, since=0.1)
+    assert 18 <= a.engine.step_index <= 21 and 18 <= b.engine.step_index <= 21
+    assert shared.engine.step_index == 0
+    frozen = a.engine.step_index
+    pacer.play([a], frame_seconds=0.0, since=1.0)  # no time left in the frame: nothing runs
+    assert a.engine.step_index == frozen
