@@ -20,10 +20,14 @@
   of play; the last window is that steady state, the first the page still at full resolution;
 - click-to-update latency: Manual scheduler, a click on a robot, until the page shows the new event;
 - with ``--to-formed``: a run played at the Speed slider's top from its start to FORMED, with a browser
-  watching (wall time, and the page's update rate meanwhile).
+  watching (wall time, and the page's update rate meanwhile);
+- with ``--class N``: a lecture hall (bench_class.py): the heart demo played at 30 steps/s, a real
+  projector page at 1024×768 and a real student page, first alone, then with N lightweight class pages
+  (websocket clients that send a camera as a page does, read every message, and have each selected a
+  robot); each page's scene updates/s in both, and the projector's share of its rate alone.
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
-python benchmarks/bench_ui.py --robots 100 --to-formed
+python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60
 """
 
 from __future__ import annotations
@@ -103,7 +107,13 @@ def main() -> None:
     ap.add_argument("--line", type=int, default=20, help="with --stage pattern: robots on the line first")
     ap.add_argument("--speed", type=float, default=2000.0, help="steps/s requested while playing")
     ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
+    ap.add_argument("--class", dest="pages", type=int, default=None, help="N lightweight class pages")
     args = ap.parse_args()
+    if args.pages is not None:
+        from bench_class import lecture_hall
+
+        lecture_hall(args.pages, ARGS, START_RECORD)
+        return
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
     pattern = random_pattern(args.robots, rng)

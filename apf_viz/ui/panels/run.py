@@ -54,15 +54,7 @@ class RunFolder:
         self.ctx = ctx
         with gui.add_folder("Run"):
             self.role = gui.add_markdown("")
-            self.alone = gui.add_button(
-                "Try it yourself",
-                visible=False,
-                hint="a run of this page's own, from the lecture's run as it is now: the projector is "
-                "untouched",
-            )
-            self.alone.on_click(ctx.guard(lambda e: ctx.try_alone(), "Try it yourself", mine=True))
-            self.back = gui.add_button("Back to the lecture", visible=False, hint="drop this page's own run")
-            self.back.on_click(ctx.guard(lambda e: ctx.back_to_lecture(), "Back to the lecture", mine=True))
+            self._own_run_controls(gui)
             self.class_drives = gui.add_checkbox(
                 "Class may drive",
                 initial_value=False,
@@ -217,6 +209,18 @@ class RunFolder:
         if self.fatal.visible != fatal:
             self.fatal.visible = fatal
         self._refresh_trace(view)
+
+    def _own_run_controls(self, gui) -> None:
+        """Try it yourself (a class page) and Back to the lecture (a page trying its own run)."""
+        ctx = self.ctx
+        self.alone = gui.add_button(
+            "Try it yourself",
+            visible=False,
+            hint="a run of this page's own, from the lecture's run as it is now: the projector is untouched",
+        )
+        self.alone.on_click(ctx.guard(lambda e: ctx.try_alone(), "Try it yourself", mine=True))
+        self.back = gui.add_button("Back to the lecture", visible=False, hint="drop this page's own run")
+        self.back.on_click(ctx.guard(lambda e: ctx.back_to_lecture(), "Back to the lecture", mine=True))
 
     def _refresh_role(self) -> None:
         """What this page is: presenting (with the class's permission to drive), or following."""
