@@ -10,7 +10,7 @@ The heart demo plays at 30 steps/s; for 10 s each page counts how often its ``Ev
 from __future__ import annotations
 
 import asyncio
-import threading
+import multiprocessing
 import time
 
 import viser
@@ -42,56 +42,74 @@ def _camera() -> bytes:
 
 
 class LightPages:
-    """N websocket clients in one asyncio loop (a thread of its own): each sends its camera and reads."""
+    """N websocket clients in one asyncio loop, in a process of their own (as a class's laptops are
+    machines of their own: their reading must not take the server's interpreter): each sends its camera
+    and reads every message."""
 
     def __init__(self, url: str, n: int) -> None:
         self.url, self.n = url, n
-        self.received = [0] * n
-        self._loop = asyncio.new_event_loop()
-        self._stop: asyncio.Event | None = None
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._ready = threading.Event()
+        self._ready = multiprocessing.Event()
+        self._stop = multiprocessing.Event()
+        self._received = multiprocessing.Value("d", 0.0)
+        self._cpu = multiprocessing.Value("d", 0.0)  # the process's CPU seconds, from connected to stopped
+        self._process = multiprocessing.Process(
+            target=_pages, args=(url, n, self._ready, self._stop, self._received, self._cpu), daemon=True
+        )
 
     def start(self) -> None:
-        self._thread.start()
+        self._process.start()
         self._ready.wait(60)
 
     def stop(self) -> None:
-        if self._stop is not None:
-            self._loop.call_soon_threadsafe(self._stop.set)
-        self._thread.join(30)
+        self._stop.set()
+        self._process.join(30)
 
-    def _run(self) -> None:
-        self._loop.run_until_complete(self._main())
+    @property
+    def received(self) -> float:
+        """Bytes read, in all."""
+        return self._received.value
 
-    async def _main(self) -> None:
-        self._stop = asyncio.Event()
-        protocol = f"viser-v{viser.__version__}"
-        sockets = []
-        for _ in range(self.n):
-            sockets.append(await websockets.connect(self.url, subprotocols=[protocol], max_size=None))
-        self._ready.set()
-        tasks = [asyncio.create_task(self._page(i, ws)) for i, ws in enumerate(sockets)]
-        await self._stop.wait()
-        for task in tasks:
-            task.cancel()
-        for ws in sockets:
-            await ws.close()
+    @property
+    def cpu(self) -> float:
+        """CPU seconds the lightweight pages took, from all connected to stopped."""
+        return self._cpu.value
 
-    async def _page(self, i: int, ws) -> None:
-        camera = _camera()
 
-        async def read() -> None:
-            async for message in ws:
-                self.received[i] += len(message)
+def _pages(url: str, n: int, ready, stop, received, cpu) -> None:
+    asyncio.run(_main(url, n, ready, stop, received, cpu))
 
-        reader = asyncio.create_task(read())
-        try:
-            while True:
-                await ws.send(camera)
-                await asyncio.sleep(1.0)
-        finally:
-            reader.cancel()
+
+async def _main(url: str, n: int, ready, stop, received, cpu) -> None:
+    protocol = f"viser-v{viser.__version__}"
+    sockets = [await websockets.connect(url, subprotocols=[protocol], max_size=None) for _ in range(n)]
+    ready.set()
+    cpu0 = time.process_time()
+    counts = [0] * n
+    tasks = [asyncio.create_task(_page(i, ws, counts)) for i, ws in enumerate(sockets)]
+    while not stop.is_set():
+        await asyncio.sleep(0.2)
+    received.value = float(sum(counts))
+    cpu.value = time.process_time() - cpu0
+    for task in tasks:
+        task.cancel()
+    for ws in sockets:
+        await ws.close()
+
+
+async def _page(i: int, ws, counts: list[int]) -> None:
+    camera = _camera()
+
+    async def read() -> None:
+        async for message in ws:
+            counts[i] += len(message)
+
+    reader = asyncio.create_task(read())
+    try:
+        while True:
+            await ws.send(camera)
+            await asyncio.sleep(1.0)
+    finally:
+        reader.cancel()
 
 
 def _rate(page, start_record: str) -> float:
@@ -142,14 +160,22 @@ def lecture_hall(n: int, args: list[str], start_record: str) -> None:
             app.session.click(robots[i % len(robots)], cid)  # each has selected a robot of its own
         app.request_render()
         time.sleep(2.0)
+        cpu0, wall0 = time.process_time(), time.perf_counter()
         full = _measure(app, projector, student, start_record)
+        server_cpu = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
         share = full[0] / alone[0] if alone[0] else float("nan")
         print(
             f"| 2 + {n} class pages (each a robot selected) | {full[0]:.1f} ({share:.2f} of alone) | "
             f"{full[1]:.1f} | {full[2]:.1f} |"
         )
-        received = sum(pages.received) / max(1, n)
-        print(f"({len(app.screens)} pages connected; each lightweight page read {received / 1e6:.1f} MB)")
+        connected = len(app.screens)
+        held = time.perf_counter() - wall0
         pages.stop()
+        received = pages.received / max(1, n)
+        print(
+            f"({connected} pages connected; each lightweight page read {received / 1e6:.1f} MB; CPU while "
+            f"measured: the server {server_cpu:.2f} cores, the {n} lightweight pages about "
+            f"{pages.cpu / (held + 4.0):.2f})"
+        )
         browser.close()
     app.stop()

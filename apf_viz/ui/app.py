@@ -29,7 +29,7 @@ from apf_viz.core.formats import (
 from apf_viz.core.grid import as_point
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
-from apf_viz.ui.browser_screen import BrowserScreen, inside
+from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
@@ -132,6 +132,8 @@ class App:
         self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
         self.frames = 0
         self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
+        # Class pages brought up to date in turn while playing (:meth:`_due`): pages owed, whose turn next.
+        self._class_due, self._class_turn, self._last_due = 0.0, 0, time.monotonic()
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -299,24 +301,45 @@ class App:
                 except RuntimeError:  # the browser left while its frame was drawn
                     continue
         screens = [x for x in everyone if x.own is None]
+        # While the run plays, a class page's panel and selection are brought up to date a dozen times a
+        # second, in turn (the canvas they share is drawn for all at once, every frame): the projector
+        # keeps its rate however large the class.
+        due = self._due(screens)
         with self.session.lock:  # the run drawn and the run framed are one (a load may come in between)
             engine = self.session.engine
-            run_view, views = self.session.views([x.client.client_id for x in screens])
+            run_view, views = self.session.views([x.client.client_id for x in due])
         cells = [x.cells for x in screens if x.cells is not None]
         self.renderer.view_cells = min(cells) if cells else None
         with self.server.atomic():
             self.renderer.render(run_view, compare_title("A", run_view) if run_view.compare else None)
             self._render_compare(run_view)
-        for screen in screens:
+        for screen in due:
             view = views[screen.client.client_id]
             try:
                 with screen.client.atomic():
                     screen.selection.render(view)
-                    screen.panels.refresh(view)
+                    screen.panels.refresh(view, following=screen.state.role == "class" and view.playing)
             except RuntimeError:  # the browser left while its frame was drawn
                 continue
         self.frames += 1
         self._keep_framed(screens, engine)
+
+    def _due(self, screens: list[BrowserScreen]) -> list[BrowserScreen]:
+        """The pages whose panel and selection are brought up to date in this frame: every page, but
+        while the run plays the class pages :data:`CLASS_HZ` times a second each, in turn (a share of
+        them in each frame, so the work of a frame does not grow with the class beyond that share)."""
+        now = time.monotonic()
+        since, self._last_due = min(0.25, now - self._last_due), now
+        if not self.session.playing:
+            return screens
+        pages = [x for x in screens if x.state.role == "class"]
+        self._class_due = min(len(pages), self._class_due + len(pages) * CLASS_HZ * since)
+        take = int(self._class_due)
+        self._class_due -= take
+        start = self._class_turn % max(1, len(pages))
+        self._class_turn = start + take
+        turn = {id(x) for x in (pages[start:] + pages[:start])[:take]}
+        return [x for x in screens if x.state.role != "class" or id(x) in turn]
 
     def _keep_framed(self, screens: list[BrowserScreen], engine: Engine) -> None:
         """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;

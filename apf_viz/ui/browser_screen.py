@@ -14,6 +14,10 @@ from apf_viz.ui.roles import Role
 from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, camera_cells, scene_detail
 from apf_viz.ui.session import Session
 
+CLASS_HZ = 12.0
+"""How often a class page's panel and selection are brought up to date while the run plays (the canvas
+every page shares is drawn every frame, for all at once)."""
+
 
 class Host(Protocol):
     """What a browser's screen is given by the app that serves it (ui/app.py)."""

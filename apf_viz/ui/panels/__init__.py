@@ -62,6 +62,8 @@ class Folder(Protocol):
 # a software-rendered page's frame each (docs/PERFORMANCE.md): at most four times a second they follow.
 SLOW_FOLDERS = (PaperFolder, HistoryFolder, MovesFolder)
 PLAYING_REFRESH_S = 0.25
+FOLLOWING_FOLDERS = (RunFolder, SelectedFolder)  # what a class page following a played run keeps in step
+FOLLOWING_REFRESH_S = 1.0
 
 
 class Panels:
@@ -98,16 +100,20 @@ class Panels:
         """This browser is in presentation mode (its camera leaves room for the caption)."""
         return self.presentation.on
 
-    def refresh(self, view: SessionView) -> None:
+    def refresh(self, view: SessionView, following: bool = False) -> None:
         """Every folder shows the view; while the run plays, the folders that redraw much of the page for
         a change (:data:`SLOW_FOLDERS`) at most every :data:`PLAYING_REFRESH_S`. A paused run, a step or
-        the frame that ends Play refreshes them all."""
+        the frame that ends Play refreshes them all. ``following``: a class page following the played run
+        (one of many) keeps only the Run and Selected folders in step; the others every
+        :data:`FOLLOWING_REFRESH_S`."""
         now = time.monotonic()
-        slow = not view.playing or now - self._slow_refreshed >= PLAYING_REFRESH_S
+        period = FOLLOWING_REFRESH_S if following else PLAYING_REFRESH_S
+        slow = not view.playing or now - self._slow_refreshed >= period
         if slow:
             self._slow_refreshed = now
+        fast = FOLLOWING_FOLDERS if following else ()
         for folder in self.folders:
-            if slow or not isinstance(folder, SLOW_FOLDERS):
+            if slow or (isinstance(folder, fast) if following else not isinstance(folder, SLOW_FOLDERS)):
                 folder.refresh(view)
         self._show_driving()
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import BY_HAND
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.session import SCHEDULER_LABELS
 from apf_viz.ui.verifier import MAX_K
 from apf_viz.ui.view_model import SessionView
@@ -75,13 +75,13 @@ class AdversaryFolder:
         v = self.ctx.verifier.shown()
         running = v is not None and v.state == "running"
         if v is None:
-            self.verify_status.content = ""
+            put(self.verify_status, content="")
         elif running:
             self.verify_status.content = (
                 f"Verifying… **{v.states:,}** states, frontier {v.frontier:,}, {v.rate:,.0f} states/s"
             )
         else:
-            self.verify_status.content = f"Verify: {v.text}"
+            put(self.verify_status, content=f"Verify: {v.text}")
         if self.cancel_verify.visible != running:
             self.cancel_verify.visible = running
         manual = view.scheduler in BY_HAND
@@ -94,4 +94,4 @@ class AdversaryFolder:
             self.all_activations.value = not s.config.skip_noops
         if self.scheduler.value != scheduler_label(view.scheduler):
             self.scheduler.value = scheduler_label(view.scheduler)
-        self.next_phase.content = view.next_phases
+        put(self.next_phase, content=view.next_phases)

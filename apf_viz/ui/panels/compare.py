@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.view_model import SessionView
 
 
@@ -41,6 +41,6 @@ class CompareFolder:
         self.ctx.frame_all()  # both runs in view
 
     def refresh(self, view: SessionView) -> None:
-        self.status.content = view.compare_text
+        put(self.status, content=view.compare_text)
         if self.divergence.visible != (view.divergence is not None):
             self.divergence.visible = view.divergence is not None

@@ -4,7 +4,7 @@ browser's own; Shift erases) while the Box tool is chosen in an edit mode."""
 
 from __future__ import annotations
 
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
 from apf_viz.ui.view_model import SessionView
 
@@ -101,7 +101,7 @@ class EditFolder:
         self._boxing = wanted
 
     def refresh(self, view: SessionView) -> None:
-        self.counts.content = view.counts
+        put(self.counts, content=view.counts)
         if self.mode.value != MODE_LABELS[view.mode]:
             self.mode.value = MODE_LABELS[view.mode]
         studio = self.ctx.session.screen.studio
@@ -111,7 +111,7 @@ class EditFolder:
         if view.anchor is not None:  # the first of two clicks is in: say what the second does
             second = "where it goes" if studio.tool == "move" else "the second"
             hint = f"**first click at {view.anchor}**: now click {second} ({hint})"
-        self.tool_hint.content = f"<small>{hint}</small>"
+        put(self.tool_hint, content=f"<small>{hint}</small>")
         self._boxes(view.mode != "run" and studio.tool == "box")
         options = ("—", *self.ctx.session.saved)
         if tuple(self.saved.options) != options:

@@ -9,7 +9,7 @@ from viser._messages import GuiSliderMark
 
 from apf_viz.demos import scenarios
 from apf_viz.lecture import lectures
-from apf_viz.ui.panels.context import PanelContext, tell
+from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
 from apf_viz.ui.run_controller import MAX_SPEED
 from apf_viz.ui.view_model import SessionView
@@ -157,7 +157,7 @@ class RunFolder:
     def release_focus(self) -> None:
         """Take the keyboard focus off the panel's fields in this browser, so that its keys drive the run."""
         self._releases += 1
-        self._release.content = RELEASE_FOCUS.format(n=self._releases)
+        put(self._release, content=RELEASE_FOCUS.format(n=self._releases))
 
     def _on_control(self, event) -> None:
         value, s = event.target.value, self.ctx.session
@@ -188,21 +188,21 @@ class RunFolder:
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:
-        self.controls.options = ("Step", "Back", "Pause" if view.playing else "Play", "Reset")
-        self.event.value = view.event
+        put(self.controls, options=("Step", "Back", "Pause" if view.playing else "Play", "Reset"))
+        put(self.event, value=view.event)
         last = f"**Last event:** {view.last_events[0]}" if view.last_events else "**Last event:** —"
         now = time.monotonic()
         if self.last_event.content != last and (
             not view.playing or now - self._last_event_at >= LAST_EVENT_REFRESH_S
         ):
-            self.last_event.content = last
+            put(self.last_event, content=last)
             self._last_event_at = now
         note = f"<small>{symbol_html(view.scenario_note)}</small>" if view.scenario_note else ""
         if self.demo_note.content != note:
             self.demo_note.content = note
         if not view.scenario_note and self.demo.value != "—":
             self.demo.value = "—"  # another run replaced the scenario
-        self.banner.content = view.banner
+        put(self.banner, content=view.banner)
         self._refresh_role()
         self._refresh_lecture(view)
         fatal = view.fatal[1] is not None
@@ -269,10 +269,10 @@ class RunFolder:
         following = view.trace_position is not None
         if self.branch.visible != following:
             self.branch.visible = following
-        self.trace.content = view.trace_line
+        put(self.trace, content=view.trace_line)
         if self.restore.visible != (view.set_aside is not None):
             self.restore.visible = view.set_aside is not None
-        self.aside.content = view.aside_line
+        put(self.aside, content=view.aside_line)
 
 
 class HistoryFolder:
@@ -305,12 +305,12 @@ class HistoryFolder:
             self.trails.on_update(ctx.from_browser(lambda e: s.set_trails(self.trails.value)))
 
     def refresh(self, view: SessionView) -> None:
-        self.timeline.max = max(1, view.history_length)
-        self.timeline.value = view.steps
+        put(self.timeline, max=max(1, view.history_length))
+        put(self.timeline, value=view.steps)
         log = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])
         if self.log.content != log:
             self.log.content = log
-        self.stats.content = view.stats
+        put(self.stats, content=view.stats)
         if self.numbers.value != view.numbers:
             self.numbers.value = view.numbers
         if self.trails.value != view.trail_setting:

@@ -3,7 +3,7 @@ presenter's when this browser follows it."""
 
 from __future__ import annotations
 
-from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.panels.context import PanelContext, put
 from apf_viz.ui.view_model import SessionView
 
 
@@ -32,4 +32,4 @@ class SelectedFolder:
         if self.follow.value != following:
             self.follow.value = following
         head = "<small>Following the presenter's selection.</small>\n\n" if view.follows_presenter else ""
-        self.caption.content = head + view.caption
+        put(self.caption, content=head + view.caption)

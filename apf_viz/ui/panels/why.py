@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.panels.context import PanelContext, put
 from apf_viz.ui.view_model import SessionView
 from apf_viz.ui.view_model.why import why_markdown
 
@@ -13,4 +13,4 @@ class WhyFolder:
             self.markdown = gui.add_markdown(why_markdown(None))
 
     def refresh(self, view: SessionView) -> None:
-        self.markdown.content = view.why_text
+        put(self.markdown, content=view.why_text)

@@ -16,7 +16,13 @@ class SelectionLayer(Canvas):
     """Draws a browser's selection, in that browser's own scene."""
 
     def _selection(self, view: SessionView) -> None:
-        """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested."""
+        """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested. Drawn
+        only when what it is drawn from changed (a class's pages would otherwise redo it in every turn
+        of every page, for a robot that has not moved)."""
+        inputs = _selection_inputs(view, self.origin, self.bounds)
+        if self._last.get("/selection") == (inputs, None, None):
+            return
+        self._last["/selection"] = (inputs, None, None)
         sel = view.selected
         at = self._local([view.robots[sel].position] if sel is not None and sel < len(view.robots) else [])
         self._points(
@@ -96,28 +102,27 @@ class SelectionLayer(Canvas):
         if self._last.get("/why") == (regions, None, None):
             return
         self._last["/why"] = (regions, None, None)
-        for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line"))]:
-            self._handles.pop(name).remove()  # type: ignore[attr-defined]
+        # Each slot's node is kept and changed in place (a node made anew costs the server its type hints
+        # and the browser a new material): what a slot does not show now is hidden.
+        shown: set[str] = set()
         labels = []
         for i, mark in enumerate(regions):
             at = self._why_line(i, mark) if isinstance(mark, Line) else None
             if isinstance(mark, HalfPlane | Band):
                 at = self._why_area(i, mark)
+            shown.add(f"/why/{'line' if isinstance(mark, Line) else 'area'}{i}")
             if at is not None:
                 labels.append((f"{i + 1} · {mark.label}", at))
+        for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line")) and n not in shown]:
+            empty = np.zeros((0, 2, 3) if name.startswith("/why/line") else (0, 3), dtype=np.float32)
+            self._why_node(name, empty, 0)
         self._labels("/why/labels", labels)
 
     def _why_line(self, i: int, mark: Line) -> tuple[float, float, float]:
         """A tested line as a segment; its label's place, inside the framed run (the line runs on)."""
         _, _, x1, y1 = self.bounds
         seg = self._line(mark)
-        self._handles[f"/why/line{i}"] = self.scene.add_line_segments(
-            f"{self.prefix}/why/line{i}",
-            seg[:1].astype(np.float32),
-            region_color(i),
-            thickness=3.0,
-            thickness_units="screen",
-        )
+        self._why_node(f"/why/line{i}", seg[:1].astype(np.float32), i)
         if mark.axis == "y":
             return (x1 - 3.0, float(seg[0, 1, 1]) + 0.15, 0.1)
         return (float(seg[0, 1, 0]) + 0.2, y1, 0.1)
@@ -133,19 +138,32 @@ class SelectionLayer(Canvas):
         if rect[0] >= rect[2] or rect[1] >= rect[3]:
             return None
         corners = [(rect[0], rect[1]), (rect[2], rect[1]), (rect[2], rect[3]), (rect[0], rect[3])]
-        self._handles[f"/why/area{i}"] = self.scene.add_mesh_simple(
-            f"{self.prefix}/why/area{i}",
-            np.array([(x, y, 0.02) for x, y in corners], dtype=np.float32),
-            np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
-            color=region_color(i),
-            opacity=REGION_OPACITY,
-            side="double",
-            cast_shadow=False,
-            receive_shadow=False,
-        )
+        self._why_node(f"/why/area{i}", np.array([(x, y, 0.02) for x, y in corners], dtype=np.float32), i)
         inner = (max(rect[0], x0), max(rect[1], y0), min(rect[2], x1), min(rect[3], y1))
         inside = inner[0] < inner[2] and inner[1] < inner[3]
         return self._region_label_at(mark, inner if inside else rect)
+
+    def _why_node(self, name: str, data: np.ndarray, i: int) -> None:
+        """Slot ``i``'s line (segments) or area (a quad's four corners), made once and changed in place;
+        hidden when ``data`` is empty."""
+        if name.startswith("/why/line"):
+            self._segments(name, data, region_color(i), 3.0)
+            return
+        self._in_place(
+            name,
+            data,
+            lambda: self.scene.add_mesh_simple(
+                f"{self.root}{self.prefix}{name}",
+                data,
+                np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
+                color=region_color(i),
+                opacity=REGION_OPACITY,
+                side="double",
+                cast_shadow=False,
+                receive_shadow=False,
+            ),
+            "vertices",
+        )
 
     def _extent(self, mark: HalfPlane | Band) -> tuple[float, float]:
         """The region's span on its axis, in scene units (a half plane reaches far; the caller clips)."""
@@ -166,3 +184,18 @@ class SelectionLayer(Canvas):
             return (x, y1 - 0.3, 0.1)
         y = y1 - 0.3 if isinstance(mark, HalfPlane) and mark.side < 0 else y0 + 0.3
         return (x0 + 0.2, y, 0.1)
+
+
+def _selection_inputs(view: SessionView, origin: tuple[int, int], bounds) -> tuple:
+    """Everything a selection layer is drawn from: the selected robot and where it is, its rays, ghosts,
+    the robots it cannot see and their hiders (and where those are), Why's regions, the lights' colours
+    and where the scene is drawn."""
+    robots = view.robots
+    sel = view.selected
+    at = robots[sel].position if sel is not None and sel < len(robots) else None
+    fogged = tuple(
+        robots[j].position for j in (*view.hidden, *(h for h, _ in view.hiders)) if j < len(robots)
+    )
+    regions = view.why.regions if view.why is not None else ()
+    return (sel, at, view.rays, view.ghosts, view.hidden, view.hiders, fogged, regions, view.legend is None,
+            tuple(view.legend), origin, bounds)  # fmt: skip

@@ -22,7 +22,7 @@ from apf_viz.ui.roles import Role
 from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.run_controller import RunController
 from apf_viz.ui.screen_state import BrowserState, SharedScreen
-from apf_viz.ui.view_model import SessionView, for_browser, present, present_run
+from apf_viz.ui.view_model import SessionView, browser_key, for_browser, present, present_run
 
 F = TypeVar("F", bound=Callable)
 
@@ -219,10 +219,14 @@ class SessionCore:
         run's part once, each browser's selection laid over it."""
         with self.lock:
             shared = present_run(self.run, self.screen)
-            own = {
-                b: for_browser(shared, self.run, self.screen, self.browser(b), self.presenter)
-                for b in browsers
-            }
+            made: dict[tuple, SessionView] = {}  # one view per browser_key: a class shares a few
+            own = {}
+            for b in browsers:
+                state = self.browser(b)
+                key = browser_key(state, self.presenter)
+                if key not in made:
+                    made[key] = for_browser(shared, self.run, self.screen, state, self.presenter)
+                own[b] = made[key]
             return shared, own
 
     def set_follow(self, browser: Hashable | None, follow: bool) -> None:

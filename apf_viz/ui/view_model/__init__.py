@@ -25,14 +25,13 @@ from apf_viz.core.portrayal import (
     Overlays,
     legend_of,
     overlays_of,
-    pseudocode_of,
     title_of,
 )
 from apf_viz.core.portrayal import stage_of as algorithm_stage
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
 from apf_viz.ui.view_model import story
-from apf_viz.ui.view_model.paper import paper_html
+from apf_viz.ui.view_model.paper import paper_html_for
 from apf_viz.ui.view_model.run_source import RunSource
 from apf_viz.ui.view_model.staleness import hidden_from, seen_robots, stale_holders
 from apf_viz.ui.view_model.views import Ghost, RobotView, SessionView, WhyView
@@ -125,9 +124,7 @@ def _told(view: SessionView, run: RunSource, crash: str | None, stuck: bool) -> 
     """The run's view with what is said of it: the Paper panel, the divergence marked in both runs of
     Compare, a followed trace's end, and the panels' sentences."""
     e = run.engine
-    view = replace(
-        view, paper_text=paper_html(pseudocode_of(e.algorithm), view.paper_decision, view.algorithm)
-    )
+    view = replace(view, paper_text=paper_html_for(e.algorithm, view.paper_decision, view.algorithm))
     if view.compare is not None and view.diverged is not None:  # marked in both runs
         view = replace(view, compare=replace(view.compare, diverged=view.diverged))
     position = run.trace_position
@@ -212,6 +209,14 @@ def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool
     return out
 
 
+def browser_key(browser: BrowserState, presenter: BrowserState) -> tuple[int | None, bool]:
+    """What :func:`for_browser` depends on of a browser: the robot whose selection it shows, and whether
+    it shows the presenter's. Browsers with one key are shown one view (a class following the lecture,
+    or pages that selected the same robot): made once."""
+    source = presenter if browser.follow and browser is not presenter else browser
+    return source.selected, source is presenter and browser is not presenter
+
+
 def for_browser(
     view: SessionView,
     run: RunSource,
@@ -241,7 +246,7 @@ def for_browser(
     paper: dict[str, Any] = (
         {
             "paper_decision": (sel, decided),
-            "paper_text": paper_html(pseudocode_of(e.algorithm), (sel, decided), view.algorithm),
+            "paper_text": paper_html_for(e.algorithm, (sel, decided), view.algorithm),
         }
         if decided
         else {}

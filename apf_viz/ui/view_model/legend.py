@@ -115,9 +115,22 @@ def _engine_marks() -> list[tuple[str, str, str]]:
     ]
 
 
+_last_legend: list = [None, None, ""]  # (legend, overlays, html): the last inputs, by identity
+
+
 def legend_html(view: SessionView) -> str:
     """Every mark the screen can show, in two columns: the algorithm's lights (their meaning on hover)
-    and overlays, then the engine's marks, each swatch drawn as the canvas draws it."""
+    and overlays, then the engine's marks, each swatch drawn as the canvas draws it. Every page's view
+    of one frame holds the run's very legend and overlays: the table is made once for them all."""
+    legend, overlays, made = _last_legend
+    if view.legend is legend and view.overlays is overlays:
+        return made
+    made = _legend_html(view)
+    _last_legend[:] = [view.legend, view.overlays, made]
+    return made
+
+
+def _legend_html(view: SessionView) -> str:
     cells = [
         (
             _swatch(style.color),

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import html
 
-from apf_viz.core.portrayal import CodeBlock, CodeLine, Pseudocode
+from apf_viz.core.portrayal import CodeBlock, CodeLine, Pseudocode, pseudocode_of
 from apf_viz.ui.view_model.legend import symbol_html
 
 HIT = "#ffe680"  # the decision's line
@@ -20,6 +20,21 @@ _SCROLL = (
     '<img alt="" src="data:,{n}" style="display:none" onerror="var b=this.parentElement,'
     "h=b.querySelector('[data-hit]');if(h)b.scrollTop=h.offsetTop-b.offsetTop-60\">"
 )
+
+
+_made: dict[tuple[str, tuple[int, str] | None], str] = {}  # (algorithm, decision) → its block, made once
+
+
+def paper_html_for(algorithm: object, decision: tuple[int, str] | None, name: str) -> str:
+    """:func:`paper_html` of an algorithm (by its registry name, which names one pseudocode): made once
+    per decision, however many pages show it in however many frames."""
+    key = (name, decision)
+    made = _made.get(key)
+    if made is None:
+        if len(_made) >= 4096:
+            _made.clear()
+        made = _made[key] = paper_html(pseudocode_of(algorithm), decision, name)  # type: ignore[arg-type]
+    return made
 
 
 def paper_html(paper: Pseudocode | None, decision: tuple[int, str] | None, algorithm: str) -> str:
