@@ -179,3 +179,82 @@ def lecture_hall(n: int, args: list[str], start_record: str) -> None:
         )
         browser.close()
     app.stop()
+
+
+def _rss_mb() -> float:
+    """The server's resident memory (this process), in MB, after a full collection and with the C
+    allocator's free pages given back (what is left is what the server holds, not what it once used)."""
+    import ctypes
+    import gc
+
+    gc.collect()
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except OSError:
+        pass
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+def _connect_and_wait(url: str, n: int, ready, sleep: float) -> None:
+    """n connections that read nothing (a laptop asleep), held ``sleep`` seconds or until killed."""
+
+    async def hold() -> None:
+        protocol = f"viser-v{viser.__version__}"
+        sockets = [await websockets.connect(url, subprotocols=[protocol], max_size=None) for _ in range(n)]
+        camera = _camera()
+        for ws in sockets:  # a page reports its camera once it has loaded: the server then counts it in
+            await ws.send(camera)
+        ready.set()
+        await asyncio.sleep(sleep)
+        for ws in sockets:  # waking: read what is waiting, then leave
+            try:
+                while True:
+                    await asyncio.wait_for(ws.recv(), timeout=2.0)
+            except (TimeoutError, websockets.ConnectionClosed):
+                pass
+
+    asyncio.run(hold())
+
+
+def churn(n: int, rounds: int = 3) -> None:
+    """``--churn N``: N connections opened, then their process killed (no goodbye), ``rounds`` times,
+    while the heart demo plays; the server's memory after each round, and whether every page was let go."""
+    import gc
+    import os
+    import signal
+
+    app = App(demo_session(), port=free_port(), verbose=False)
+    url = app.addresses[1].replace("http://", "ws://").split("?")[0]
+    app.session.set_speed(SPEED)
+    app.session.toggle_play()
+    time.sleep(2.0)
+    gc.collect()
+    print("| round | pages connected | pages left after the kill | server memory (MB) |")
+    print("|---:|---:|---:|---:|")
+    print(f"| before | 0 | 0 | {_rss_mb():.1f} |")
+    for round_ in range(1, rounds + 1):
+        ready = multiprocessing.Event()
+        process = multiprocessing.Process(target=_connect_and_wait, args=(url, n, ready, 3600.0), daemon=True)
+        process.start()
+        ready.wait(120)
+        deadline = time.time() + 60
+        while len(app.screens) < n and time.time() < deadline:
+            time.sleep(0.2)
+        connected = len(app.screens)
+        time.sleep(3.0)  # a few seconds of play with every one of them asleep
+        os.kill(process.pid, signal.SIGKILL)  # abruptly: no close handshake
+        process.join()
+        deadline = time.time() + 60
+        while app.screens and time.time() < deadline:
+            time.sleep(0.2)
+        if app.session.engine.finished:
+            app.session.reset()
+            app.session.toggle_play()
+        time.sleep(2.0)
+        gc.collect()
+        print(f"| {round_} | {connected} | {len(app.screens)} | {_rss_mb():.1f} |", flush=True)
+    app.stop()

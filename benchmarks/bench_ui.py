@@ -24,10 +24,13 @@
 - with ``--class N``: a lecture hall (bench_class.py): the heart demo played at 30 steps/s, a real
   projector page at 1024×768 and a real student page, first alone, then with N lightweight class pages
   (websocket clients that send a camera as a page does, read every message, and have each selected a
-  robot); each page's scene updates/s in both, and the projector's share of its rate alone.
+  robot); each page's scene updates/s in both, and the projector's share of its rate alone;
+- with ``--churn N``: N pages that connect and read nothing (laptops asleep) while the run plays, then
+  vanish without a goodbye (their process killed), three times: the server's memory after each round.
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
-python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60
+python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60;
+python benchmarks/bench_ui.py --churn 200
 """
 
 from __future__ import annotations
@@ -108,11 +111,17 @@ def main() -> None:
     ap.add_argument("--speed", type=float, default=2000.0, help="steps/s requested while playing")
     ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
     ap.add_argument("--class", dest="pages", type=int, default=None, help="N lightweight class pages")
+    ap.add_argument("--churn", type=int, default=None, help="N pages connected, asleep, then killed")
     args = ap.parse_args()
     if args.pages is not None:
         from bench_class import lecture_hall
 
         lecture_hall(args.pages, ARGS, START_RECORD)
+        return
+    if args.churn is not None:
+        from bench_class import churn
+
+        churn(args.churn)
         return
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)
