@@ -10,6 +10,7 @@ The heart demo plays at 30 steps/s; for 10 s each page counts how often its ``Ev
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import multiprocessing
 import time
 
@@ -188,10 +189,8 @@ def _rss_mb() -> float:
     import gc
 
     gc.collect()
-    try:
+    with contextlib.suppress(OSError):
         ctypes.CDLL("libc.so.6").malloc_trim(0)
-    except OSError:
-        pass
     with open("/proc/self/status") as f:
         for line in f:
             if line.startswith("VmRSS:"):

@@ -257,8 +257,9 @@ class RunFolder:
             words = f"<small>{where}</small>  \n**{symbol_html(title)}**  \n{symbol_html(say)}"
         if self.words.content != words:
             self.words.content = words
-        if self.stops.visible != (view.lecture is not None):
-            self.stops.visible = view.lecture is not None
+        stops = view.lecture is not None and self.ctx.drives()  # a class page's keys do not turn them
+        if self.stops.visible != stops:
+            self.stops.visible = stops
         title = view.lecture_title or "—"
         if title != "—" and title not in self.lecture.options:  # a lecture from a file (serve --lecture)
             self.lecture.options = ("—", *lectures(), title)
