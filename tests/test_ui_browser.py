@@ -1363,6 +1363,37 @@ CAPTION_FIT = """(title) => {
 }"""
 
 
+def _canvas_labels(renderer) -> list[tuple[str, tuple[float, float]]]:
+    return [
+        (h.text, (float(h.position[0]), float(h.position[1])))
+        for name, h in renderer._handles.items()
+        if name.startswith(("/numbers/", "/marks/labels/", "/title/")) and h.visible and h.text
+    ]
+
+
+def label_clashes(app: App) -> list[tuple[str, str]]:
+    """The canvas's labels (numbers, the marks' words, Compare's titles; both runs, drawn in one scene)
+    whose text covers another's at the zoom the page shows them (a glyph about 0.45 of a label's height
+    wide: the layout keeps a wider margin, which may touch where the text does not). A robot's plain
+    number stays at its robot: two robots a cell apart have two numbers a cell apart, not counted."""
+    from apf_viz.ui.scene.labels import _overlaps, text_cells
+
+    renderers = [r for r in (app.renderer, app.compare_renderer) if r is not None]
+    cells = app.renderer.view_cells if app.renderer.view_cells is not None else app.renderer._visible_height()
+    h = text_cells(cells)
+    boxes = [
+        (text, (x, y - 0.2, x + 0.45 * h * len(text), y - 0.2 + 0.8 * h))
+        for r in renderers
+        for text, (x, y) in _canvas_labels(r)
+    ]
+    return [
+        (a, b)
+        for n, (a, ba) in enumerate(boxes)
+        for b, bb in boxes[n + 1 :]
+        if not (a.isdigit() and b.isdigit()) and _overlaps(ba, bb)
+    ]
+
+
 @pytest.mark.parametrize(
     ("name", "size"),
     [
@@ -1375,8 +1406,9 @@ CAPTION_FIT = """(title) => {
 def test_serve_lecture_opens_presenting_and_every_caption_fits(browser, name, size):
     """As `apf-viz serve --lecture` starts it: the page opens in presentation mode at stop 1, the Lecture
     dropdown naming it; then PageDown to the last stop, and at each the caption's words fit its box (no
-    scroll, none inherited, the words at 60 % of their size or more), no notification covers it, and the
-    run stays clear of it (screenshots: test-output/serve-lecture-*)."""
+    scroll, none inherited, the words at 60 % of their size or more), no notification covers it, the
+    run stays clear of it, and at a Compare stop no label covers another (screenshots:
+    test-output/serve-lecture-*)."""
     from apf_viz.lecture import lectures
     from apf_viz.ui.panels.presentation import CAPTION_ROOM
     from apf_viz.ui.view_model.legend import symbol_html
@@ -1410,6 +1442,8 @@ def test_serve_lecture_opens_presenting_and_every_caption_fits(browser, name, si
             shot(page, f"serve-lecture-{lecture.title[:24].replace(' ', '-')}-{size[0]}-{i + 1:02d}")
             cells = [r.position for r in session.view().robots] + list(session.view().targets)
             assert inside_canvas(served, page, cid, cells, CAPTION_ROOM) == [], stop.title
+            if stop.compare is not None:
+                assert label_clashes(served) == [], stop.title
         page.close()
     finally:
         served.stop()

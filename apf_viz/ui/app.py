@@ -390,7 +390,9 @@ class App:
         gap = max(xs) - min(xs) + len(c.robots) + 8
         a = self.renderer
         self.compare_renderer.fixed_origin = (a.origin[0] - gap, a.origin[1])
-        self.compare_renderer.render(other, compare_title("B", other))
+        # One camera shows both runs: the second's labels are laid out for the first's zoom.
+        self.compare_renderer.view_cells = a.view_cells if a.view_cells is not None else a._visible_height()
+        self.compare_renderer.render(other, compare_title("B", other), beside=a.label_boxes)
         b = self.compare_renderer.bounds
         x0, y0, x1, y1 = a.bounds
         # Labels run to the right of what they name (numbers, "the leader's frame"): room for them.
@@ -400,7 +402,9 @@ class App:
 def compare_title(side: str, view: SessionView) -> str:
     """A Compare run's title above it, in words a room reads: which algorithm, and how its run stands."""
     state = view.outcome.upper() if view.outcome else "running"
-    return f"{side}: {view.algorithm_title or view.algorithm} · {state}"
+    # The title's gloss in brackets is left to the caption: the camera frames the runs, not their titles.
+    name = (view.algorithm_title or view.algorithm).split(" (")[0]
+    return f"{side}: {name} · {state}"
 
 
 def demo_session(**options) -> Session:

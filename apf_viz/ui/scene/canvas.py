@@ -54,6 +54,7 @@ class Canvas:
         # How many cells tall the view of the browser zoomed in furthest is (the app sets it from the
         # cameras); None: the framed pose's.
         self.view_cells: float | None = None
+        self.label_boxes: list[Bounds] = []  # where the last frame's labels are (SceneRenderer.render)
 
     # ------------------------------------------------------------------ batched helpers
     def _visible_height(self) -> float:

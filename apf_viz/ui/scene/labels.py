@@ -3,6 +3,8 @@ the framed zoom, clear of robots, their numbers and other labels."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from apf_viz.ui.scene.style import STALE_MARK, Bounds
@@ -40,31 +42,38 @@ def spread(
     pts: list[list[float]],
     height: float,
     left_edge: float = -float("inf"),
+    taken: Sequence[Bounds] = (),
 ) -> list[tuple[str, tuple[float, float, float]]]:
     """Robots' labels (:func:`number_labels`, at each robot's upper right) moved where they cover no
     other label and no other robot when their own place does (robots a cell apart, zoomed out: Compare's
-    two runs side by side): below right, left, or below left of their robot, in that order; the plain
-    numbers first, and where they always are, so that a long label gives way to them. ``height``: a
-    label's height in cells; ``left_edge``: how far left a framed camera shows (a label moved past it
-    would not be seen: better over a neighbour)."""
+    two runs side by side): below right, left, below left, above or further below their robot, in that
+    order; the plain numbers first, and where they always are, so that a long label gives way to them.
+    ``height``: a label's height in cells; ``left_edge``: how far left a framed camera shows (a label
+    moved past it would not be seen: better over a neighbour). Where no place is free, the one that
+    covers least. ``taken``: labels already on the canvas (another run's), kept clear of as well."""
     discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
     order = sorted(range(len(labels)), key=lambda i: not labels[i][0].isdigit())  # plain numbers first
-    taken: list[Bounds] = []
+    taken = list(taken)
     placed: dict[int, tuple[float, float, float]] = {}
     for i in order:
         text, (x0, y0, z) = labels[i]
         x, y = x0 - 0.25, y0 - 0.3  # the robot it belongs to
         width = 0.55 * height * len(text)
         spots = [(x + 0.25, y + 0.3), (x + 0.25, y - 0.55 - height), (x - 0.35 - width, y + 0.3),
-                 (x - 0.35 - width, y - 0.55 - height)]  # fmt: skip
+                 (x - 0.35 - width, y - 0.55 - height), (x + 0.25, y + 0.3 + height + 0.2),
+                 (x + 0.25, y - 0.75 - 2 * height)]  # fmt: skip
         chosen = spots[0]
         others = [d for d in discs if not (d[0] < x < d[2] and d[1] < y < d[3])]  # not its own robot
+        least = float("inf")
         for sx, sy in () if text.isdigit() else spots:  # a plain number keeps its place: it is read there
             box = label_box(text, (sx, sy, sx), height)
             if box[0] < left_edge:
                 continue
-            if not any(_overlaps(box, t) for t in taken) and not any(_overlaps(box, d) for d in others):
-                chosen = (sx, sy)
+            # Another label covered is worse than a robot: two texts over each other read as neither.
+            cost = 4 * sum(_overlap_area(box, t) for t in taken) + sum(_overlap_area(box, d) for d in others)
+            if cost < least:
+                least, chosen = cost, (sx, sy)
+            if cost == 0:
                 break
         taken.append(label_box(text, (chosen[0], chosen[1], chosen[0]), height))
         placed[i] = (chosen[0], chosen[1], z)
@@ -90,6 +99,10 @@ def label_box(text: str, spot: Spot, height: float) -> Bounds:
     return (x, y - 0.25, max(x_end, x + 0.55 * height * len(text)), y - 0.25 + max(0.5, height))
 
 
+def _overlap_area(a: Bounds, b: Bounds) -> float:
+    return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
+
+
 def _overlaps(a: Bounds, b: Bounds) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
@@ -103,12 +116,17 @@ def free_label_spot(
 ) -> tuple[float, float, float]:
     """The first of ``spots`` where the text covers no robot, no robot's number (upper right of its
     disc) and no label already placed (``taken``: their :func:`label_box`); else the first that covers
-    no label (a label over a robot still reads, two labels over each other do not); else the first."""
+    no label (a label over a robot still reads, two labels over each other do not); else the one that
+    covers the least of other labels."""
     taken = taken or []
     clear_of_labels = []
+    least: tuple[float, Spot] | None = None
     for spot in spots:
         box = label_box(text, spot, height)
-        if any(_overlaps(box, t) for t in taken):
+        covered_labels = sum(_overlap_area(box, t) for t in taken)
+        if least is None or covered_labels < least[0]:
+            least = (covered_labels, spot)
+        if covered_labels > 0:
             continue
         clear_of_labels.append(spot)
         covered = (
@@ -119,24 +137,37 @@ def free_label_spot(
         )
         if not covered.any():
             return (spot[0], spot[1], 0.1)
-    x, y, _ = (clear_of_labels or spots)[0]
+    x, y, _ = clear_of_labels[0] if clear_of_labels else (least[1] if least is not None else spots[0])
     return (x, y, 0.1)
 
 
 def cells_label_at(
-    cells: np.ndarray, robots: np.ndarray, text: str = "", height: float = TEXT_CELLS_MIN
+    cells: np.ndarray,
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[Bounds] | None = None,
 ) -> tuple[float, float, float]:
     """Where a set of cells' label goes: just above their top row; when a robot stands where the text
     would be (a pattern drawn among the robots, as the Unsolvable box demo's is), just below their bottom
-    row, else to the right of their top row. So the label does not cover a robot."""
+    row, else to the right of their top row (then a row higher, to their left, a row lower). So the
+    label does not cover a robot, nor another label (``taken``) where a place is free of them."""
     left, right = float(cells[:, 0].min()) - 0.4, float(cells[:, 0].max())
     top, bottom = float(cells[:, 1].max()), float(cells[:, 1].min())
     below = bottom - 0.55 - height  # its text ends just under the bottom row, however tall it is
     return free_label_spot(
-        [(left, top + 0.6, right + 0.5), (left, below, right + 0.5), (right + 0.7, top, right + 3.7)],
+        [
+            (left, top + 0.6, right + 0.5),
+            (left, below, right + 0.5),
+            (right + 0.7, top, right + 3.7),
+            (left, top + 0.8 + height, right + 0.5),
+            (left - 0.3 - 0.55 * height * len(text), top, left - 0.3),
+            (left, below - height - 0.2, right + 0.5),
+        ],
         robots,
         text,
         height,
+        taken,
     )
 
 
@@ -156,4 +187,7 @@ def frame_label_at(
     away = oy + 0.6 if y_sign < 0 else oy - 0.25 - height
     tip = oy + 2.6 if y_sign > 0 else oy - 2.25 - height
     under, beyond_x = (ox, away, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
-    return free_label_spot([under, beyond_x, (ox - 0.4, tip, ox + 2.6)], robots, text, height, taken)
+    lower = away - height - 0.3 if y_sign > 0 else away + height + 0.3  # past a robot's label under it
+    left = ox - 0.6 - 0.55 * height * len(text)
+    spots = [under, beyond_x, (ox - 0.4, tip, ox + 2.6), (ox, lower, ox + 3.0), (left, oy - 0.25, ox - 0.6)]
+    return free_label_spot(spots, robots, text, height, taken)

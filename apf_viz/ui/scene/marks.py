@@ -23,10 +23,11 @@ class MarksLayer(Canvas):
         points = self._local(cells.points if cells else ())
         self._points("/targets", xyz(points, 0.005), TARGET_COLORS[style], 0.8)
 
-    def _marks(self, view: SessionView, robots: np.ndarray) -> None:
+    def _marks(self, view: SessionView, robots: np.ndarray, taken: list | None = None) -> list:
         """Lines and frames of the overlays, each labelled on the canvas (``robots``: their scene points; a
-        label goes where none is). A handful per run: a node each, created once per slot and updated in
-        place."""
+        label goes where none is, nor a label already there: ``taken``, the robots' own). A handful per
+        run: a node each, created once per slot and updated in place. Returns ``taken`` and the boxes of
+        the labels placed here."""
         lines = [m for m in view.overlays.marks if isinstance(m, Line)]
         frames = [m for m in view.overlays.marks if isinstance(m, Frame)]
         labels: list[tuple[str, tuple[float, float, float]]] = []
@@ -38,12 +39,12 @@ class MarksLayer(Canvas):
             if mark:
                 labels.append((mark.label, tuple(segs[0, 1])))
         self._slots["line"] = max(len(lines), self._slots.get("line", 0))
-        height = text_cells(self._visible_height())
-        taken = []  # the cells' label first: a frame's label has more places to go
+        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        taken = list(taken or [])  # the cells' label first: a frame's label has more places to go
         cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
         if cells is not None and cells.points and view.mode != "edit-pattern":
             local = self._local(cells.points)
-            spot = cells_label_at(local, robots, cells.label, height)
+            spot = cells_label_at(local, robots, cells.label, height, taken)
             labels.append((cells.label, spot))
             taken.append(label_box(cells.label, (spot[0], spot[1], spot[0]), height))
         for i in range(max(len(frames), self._slots.get("frame", 0))):
@@ -59,6 +60,7 @@ class MarksLayer(Canvas):
                 taken.append(label_box(frame.label, (spot[0], spot[1], spot[0]), height))
         self._slots["frame"] = max(len(frames), self._slots.get("frame", 0))
         self._labels("/marks/labels", labels)
+        return taken  # every label's box: those given, then the cells' and the frames'
 
     def _frame(self, mark: Frame) -> np.ndarray:
         ox, oy = self.to_scene(mark.origin)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from apf_viz.core.portrayal import Line
@@ -9,11 +11,11 @@ from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
-from apf_viz.ui.scene.labels import number_labels, spread, text_cells
+from apf_viz.ui.scene.labels import label_box, number_labels, spread, text_cells
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
-from apf_viz.ui.scene.style import DENSE, LAYER, xyz
+from apf_viz.ui.scene.style import DENSE, LAYER, Bounds, xyz
 from apf_viz.ui.view_model import SessionView
 
 NEXT_PHASE = {"idle": "look", "looked": "compute", "computed": "move"}  # Manual: what a click runs
@@ -28,9 +30,11 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
     that browser's own scene, placed by the ``base`` renderer's origin; ``all`` both (one browser)."""
 
     # ------------------------------------------------------------------ drawing
-    def render(self, view: SessionView, title: str | None = None) -> None:
+    def render(self, view: SessionView, title: str | None = None, beside: Sequence[Bounds] = ()) -> None:
         """Draw one frame; the caller wraps it in ``server.atomic()``. ``title``: a label above the run
-        (Compare names each side)."""
+        (Compare names each side); ``beside``: the labels another run in the same scene has placed (the
+        first of Compare's), which this one's words keep clear of. Its own labels' boxes are kept in
+        :attr:`label_boxes`."""
         if self.layer == "selection":
             assert self.base is not None
             self.origin, self.bounds = self.base.origin, self.base.bounds
@@ -51,10 +55,11 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         # Manual's next phases join the numbers: a crowd shown without numbers gets no label per robot.
         by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None and view.numbers
         next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
-        # Compare (a title above each run) is about where the runs part: "stale" words there, over two
-        # runs framed small, would crowd out "diverges here"; a selected robot still shows its ghosts.
+        # Compare (a title above each run) frames two runs small: only the numbers there, where a word
+        # beside a robot would cover its neighbours; the robot where they part has its diamond, and the
+        # caption says which it is and when. A selected robot still shows its ghosts.
         stale = () if title else view.stale_holders
-        said = number_labels(pts.tolist(), view.numbers, stale, view.diverged, next_phase)
+        said = number_labels(pts.tolist(), view.numbers, stale, None if title else view.diverged, next_phase)
         # Words beside numbers: room made for them, among a few robots (a pass over every pair of labels;
         # in a crowd the labels overlap whatever their places).
         if len(said) <= SPREAD_UP_TO and not all(text.isdigit() for text, _ in said):
@@ -62,8 +67,15 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
             # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4); the
             # run on the right of Compare has the gap between the runs on its left.
             edge = -float("inf") if self.prefix else self.bounds[0] - 1.5
-            said = spread(said, pts.tolist(), text_cells(visible), left_edge=edge)
+            said = spread(said, pts.tolist(), text_cells(visible), left_edge=edge, taken=beside)
         self._labels("/numbers", said)
+        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        # The marks' labels ("the leader's frame", "targets") go where the robots' labels are not.
+        said_boxes = [*beside] + (
+            [label_box(text, (x, y, x), height) for text, (x, y, _) in said]
+            if len(said) <= SPREAD_UP_TO
+            else []
+        )
         split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
         self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
         crash = self._local(view.collision[1]) if view.collision else pts[:0]
@@ -78,10 +90,12 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
         axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
-        self._marks(view, pts)
+        placed = self._marks(view, pts, said_boxes)
         self._anchor(view)
         x0, _, _, y1 = self.bounds
         # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
         self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
+        titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
+        self.label_boxes = placed[len(beside) :] + titled
         if self.layer == "all":
             self._selection(view)

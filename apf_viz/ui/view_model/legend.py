@@ -254,7 +254,10 @@ def compared(view: SessionView) -> str:
         state = v.outcome.upper() if v.outcome else f"running (event {v.event})"
         return f"<b>{name}</b> {html.escape(v.algorithm_title or v.algorithm)}: <b>{state}</b>"
 
-    return f'<div style="margin:2px 0">{side("A", view)} · {side("B", other)}</div>'
+    part = ""
+    if view.divergence is not None:  # on the canvas, a diamond on that robot in both runs
+        part = f" · they part at event {view.divergence[0]}, robot {view.divergence[2]} (◆)"
+    return f'<div style="margin:2px 0">{side("A", view)} · {side("B", other)}{part}</div>'
 
 
 def slide_legend(view: SessionView) -> list[Entry]:
