@@ -1559,7 +1559,10 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     student.get_by_text("Following the lecture").first.wait_for()
     wait_for(lambda: page.own is None)
     wait_for(lambda: event_value(student) == app.session.engine.step_index)  # following again
+    student.get_by_role("button", name="Try it yourself").click()  # again, and then the page leaves:
+    wait_for(lambda: len(app.own_runs.attached()) == 1)
     student.close()
+    wait_for(lambda: len(app.screens) == 1 and app.own_runs.attached() == [])  # its run is dropped
     presenter.close()
 
 
