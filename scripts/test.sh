@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Installs everything the tests need (the package and test tools in .venv, Debian's Chromium for the
-# browser tests) and runs the whole suite. `.ci/run` calls exactly this. `--quick`: all but the browser
+# browser tests, pdflatex with TikZ for the figures' test) and runs the whole suite. `.ci/run` calls exactly this. `--quick`: all but the browser
 # tests and the slow ones (a few minutes); other arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 if ! command -v chromium >/dev/null 2>&1; then
   as_root apt-get update -qq && as_root apt-get install -y -qq chromium >/dev/null
+fi
+if ! command -v pdflatex >/dev/null 2>&1 || ! kpsewhich tikz.sty >/dev/null 2>&1; then
+  as_root apt-get update -qq && as_root apt-get install -y -qq texlive-latex-base texlive-pictures >/dev/null
 fi
 # A virtual environment, so that it works where the system Python refuses pip (PEP 668). Like the
 # README's quick start, it sees no system packages: the tests run on exactly what pyproject.toml asks for.

@@ -31,6 +31,7 @@ from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
+from apf_viz.ui.network import check_listen, reachable_host
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Role, Roles
@@ -450,31 +451,6 @@ def session_from_args(args: argparse.Namespace) -> Session:
     if getattr(args, "demo", None):
         session.load_scenario(args.demo)  # a Demo scenario by its title (serve --demo)
     return session
-
-
-def reachable_host(host: str) -> str:
-    """The host to put in an address for other machines: ``host`` itself, or for a server listening on
-    every interface (0.0.0.0, ::) this machine's address on its outward network (no packet is sent)."""
-    if host not in ("0.0.0.0", "::", ""):
-        return host
-    try:
-        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
-            probe.connect(("192.0.2.1", 9))  # TEST-NET-1: routes like the internet, never answered
-            return probe.getsockname()[0]
-    except OSError:
-        return socket.gethostname()
-
-
-def check_listen(host: str, port: int) -> None:
-    """Refuse, with one line, an address the server could not listen on (a bad host, a port in use),
-    before viser tries in a thread of its own."""
-    try:
-        family, kind, proto, _, address = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0]
-        with socket.socket(family, kind, proto) as probe:
-            probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-            probe.bind(address)
-    except (OSError, OverflowError, UnicodeError) as e:
-        raise InputError(f"cannot listen on {host}:{port}: {getattr(e, 'strerror', None) or e}") from None
 
 
 def serve(args: argparse.Namespace) -> int:

@@ -52,6 +52,37 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         dense = len(pts) > DENSE
         self._robots(view, pts)
         self._rings(view, pts)
+        said_boxes = self._robot_labels(view, pts, title, beside)
+        split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
+        self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
+        crash = self._local(view.collision[1]) if view.collision else pts[:0]
+        self._points("/collision", xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"])
+        self._targets(view)
+        self._trails(view)
+        # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
+        # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
+        pending = self._pending(view)
+        self._segments("/pending", pending[:0] if dense else pending, MARK_COLORS["pending"], 3.0)
+        destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
+        self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
+        axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
+        self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
+        placed = self._marks(view, pts, said_boxes)
+        self._anchor(view)
+        x0, _, _, y1 = self.bounds
+        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
+        self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
+        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
+        self.label_boxes = placed[len(beside) :] + titled
+        if self.layer == "all":
+            self._selection(view)
+
+    def _robot_labels(
+        self, view: SessionView, pts: np.ndarray, title: str | None, beside: Sequence[Bounds]
+    ) -> list:
+        """Each robot's label (its number, and what is said of it); returns ``beside`` and their boxes, for
+        the marks' labels to keep clear of."""
         # Manual's next phases join the numbers: a crowd shown without numbers gets no label per robot.
         by_hand = view.scheduler in BY_HAND and view.mode == "run" and view.outcome is None and view.numbers
         next_phase = tuple(NEXT_PHASE.get(r.phase, "") for r in view.robots) if by_hand else ()
@@ -76,26 +107,4 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
             if len(said) <= SPREAD_UP_TO
             else []
         )
-        split = pts[view.diverged : view.diverged + 1] if view.diverged is not None else pts[:0]
-        self._points("/diverged", xyz(split, LAYER["diverged"]), MARK_COLORS["diverged"], 1.5, "diamond")
-        crash = self._local(view.collision[1]) if view.collision else pts[:0]
-        self._points("/collision", xyz(crash, 0.006), MARK_COLORS["collision"], 1.6, MARK_SHAPES["collision"])
-        self._targets(view)
-        self._trails(view)
-        # Line widths in screen pixels: a world-unit line set is drawn twice (viser adds an antialiasing
-        # pass). Each segment is an instance: about 0.2 ms a frame in a software-rendered browser.
-        pending = self._pending(view)
-        self._segments("/pending", pending[:0] if dense else pending, MARK_COLORS["pending"], 3.0)
-        destinations = pending[:, 1] if dense else pending[:0, 1]  # many robots: a red dot where each goes
-        self._points("/pending_cells", destinations, MARK_COLORS["pending"], 0.3, "circle")
-        axis = self._line(Line("y", view.axis, "")) if editing_robots and view.axis is not None else None
-        self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
-        placed = self._marks(view, pts, said_boxes)
-        self._anchor(view)
-        x0, _, _, y1 = self.bounds
-        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
-        self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
-        titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
-        self.label_boxes = placed[len(beside) :] + titled
-        if self.layer == "all":
-            self._selection(view)
+        return said_boxes

@@ -1,0 +1,100 @@
+"""``apf-viz figure``: one moment of a run as a figure for a paper (SVG or TikZ), or the paper's own
+figures (``demo_patterns/figures.json``) all at once."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from apf_viz.algorithms import algorithm_from_command_line
+from apf_viz.cli.common import add_run_options, shipped
+from apf_viz.core.formats import (
+    InputError,
+    check_writable,
+    load_pattern,
+    load_robots,
+    load_trace,
+    write_atomic,
+)
+from apf_viz.core.grid import as_point
+from apf_viz.core.schedulers import AUTOMATIC
+
+NAME = "figure"
+HELP = "one moment of a run (or the paper's figures) as SVG or TikZ, in grid units, with a legend"
+FORMATS = ("svg", "tikz")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--figure", help="one of the paper's figures by its label (demo_patterns/figures.json)")
+    p.add_argument("--robots", type=Path, help="the start (a file, or a shipped name)")
+    p.add_argument("--pattern", type=Path, help="the pattern (a file, or a shipped name)")
+    p.add_argument("--trace", type=Path, help="a trace: the run it records (a file, or a shipped name)")
+    p.add_argument("--event", type=int, help="the moment: after this many events (default: the start, or a "
+                   "trace's end)")  # fmt: skip
+    p.add_argument("--select", type=int, help="this robot's rays and the robots it cannot see")
+    p.add_argument("--format", choices=FORMATS, default="svg", help="the figure's format")
+    p.add_argument("--out", type=Path, help="write here (atomically) instead of standard output")
+    p.add_argument("--all-figures", type=Path, metavar="DIR",
+                   help="write every figure of figures.json into DIR, as SVG and TikZ")  # fmt: skip
+    add_run_options(p, AUTOMATIC)
+
+
+def run(args: argparse.Namespace) -> int:
+    from apf_viz.figure.export import figure_text, paper_figures
+
+    if args.all_figures is not None:
+        written = paper_figures(args.all_figures)
+        print(f"apf-viz figure: {len(written)} files in {args.all_figures}")
+        return 0
+    if args.out is not None:
+        check_writable(args.out)
+    session, caption = _session(args)
+    if args.select is not None and not 0 <= args.select < len(session.robots):
+        raise InputError(f"--select {args.select}: the run has robots 0 to {len(session.robots) - 1}")
+    text = figure_text(session, args.format, args.select, caption)
+    if args.out is None:
+        print(text, end="")
+    else:
+        write_atomic(args.out, text)
+        print(f"apf-viz figure: {args.out}")
+    return 0
+
+
+def _session(args: argparse.Namespace):
+    """The run at the moment asked for, and the figure's caption."""
+    from apf_viz.figure.export import figure_session, run_to_event
+    from apf_viz.ui.session import Session
+
+    if args.figure is not None:
+        return figure_session(args.figure)
+    if args.trace is not None:
+        from apf_viz.core.formats import MAX_TRACE_BYTES
+        from apf_viz.ui.app import demo_session
+
+        path = shipped(args.trace, "trace", "--trace")
+        assert path is not None
+        load_trace(path)  # a missing or malformed file: one line, before anything
+        session = demo_session()
+        session.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)
+        run_to_event(session, args.event)
+        return session, f"{path.name}, after {session.engine.state.events} events"
+    if args.robots is None or args.pattern is None:
+        raise InputError("figure: give --figure LABEL, --trace T, or --robots R with --pattern P")
+    robots_path = shipped(args.robots, "robots", "--robots")
+    pattern_path = shipped(args.pattern, "pattern", "--pattern")
+    assert robots_path is not None and pattern_path is not None
+    robots, pattern = load_robots(robots_path), load_pattern(pattern_path)
+    algorithm, plugins = algorithm_from_command_line(args.algorithm)
+    session = Session(
+        [as_point(p) for p in robots.robots],
+        [as_point(p) for p in pattern.points],
+        y_up=robots.flips(args.seed),
+        algorithm=algorithm.name,
+        scheduler=args.scheduler,
+        seed=args.seed,
+        light_semantics=args.light_semantics,
+        plugins=plugins,
+    )
+    run_to_event(session, args.event or 0)
+    events = session.engine.state.events
+    return session, f"{args.robots.name}, {args.scheduler}, seed {args.seed}, after {events} events"

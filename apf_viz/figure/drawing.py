@@ -1,0 +1,99 @@
+"""A figure's content, in grid units, read off a view: what the canvas shows, and nothing of viser."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from apf_viz.core.portrayal import Cells, Frame, Line
+from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
+from apf_viz.ui.view_model import SessionView
+
+RGB = tuple[int, int, int]
+MARGIN = 2.0  # cells of grid beyond the outermost robot, target or frame arm (room for its number)
+
+
+@dataclass(frozen=True)
+class Disc:
+    """A robot: where, its number and light (the legend's name), and its light's colour."""
+
+    at: tuple[int, int]
+    number: int
+    light: str
+    color: RGB
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """Everything a figure draws, in grid coordinates; ``box`` (x0, y0, x1, y1) is the grid shown."""
+
+    box: tuple[float, float, float, float]
+    cells: tuple[tuple[int, int], ...]
+    cells_color: RGB
+    cells_label: str
+    robots: tuple[Disc, ...]
+    lines: tuple[tuple[str, float, str, RGB], ...]  # (axis, at, label, colour): x = at or y = at
+    frames: tuple[tuple[tuple[int, int], int, str, RGB], ...]  # (origin, y sign, label, colour)
+    rays: tuple[tuple[tuple[int, int], tuple[int, int]], ...] = ()
+    hidden: tuple[tuple[int, int], ...] = ()  # where the robots the selected one cannot see are
+    selected: tuple[int, int] | None = None
+    legend: tuple[tuple[str, RGB], ...] = ()  # the lights shown, in the algorithm's order
+    marks_legend: tuple[tuple[str, RGB], ...] = field(default=())  # the marks shown: (name, colour)
+    caption: str = ""
+
+
+def drawing_of(view: SessionView, caption: str = "") -> Drawing:
+    """The figure of ``view``: its robots, the algorithm's targets, lines and frames, and the selected
+    robot's rays (to what it saw) and the robots it cannot see."""
+    robots = tuple(
+        Disc(r.position, i, r.light, view.legend[r.light].color if r.light in view.legend else (0, 0, 0))
+        for i, r in enumerate(view.robots)
+    )
+    cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
+    targets = cells.points if cells is not None else tuple(view.targets)
+    style = cells.style if cells is not None else "placed"
+    lines = tuple(
+        (m.axis, float(m.at), m.label, m.color or MARK_COLORS["line"])
+        for m in view.overlays.marks
+        if isinstance(m, Line)
+    )
+    frames = tuple(
+        (m.origin, m.y_sign, m.label, m.color or MARK_COLORS["frame"])
+        for m in view.overlays.marks
+        if isinstance(m, Frame)
+    )
+    sel = view.selected
+    selected = view.robots[sel].position if sel is not None and sel < len(view.robots) else None
+    hidden = tuple(view.robots[j].position for j in view.hidden if j < len(view.robots))
+    rays = tuple((tuple(a), tuple(b)) for a, b in view.rays) if selected is not None else ()
+    shown = {d.light for d in robots}
+    legend = tuple((light, style_.color) for light, style_ in view.legend.items() if light in shown)
+    marks: list[tuple[str, RGB]] = []
+    if targets:
+        marks.append((cells.label if cells is not None else "targets", TARGET_COLORS[style]))
+    if rays:
+        marks.append(("what the selected robot saw", MARK_COLORS["ray"]))
+    if hidden:
+        marks.append(("hidden from it", MARK_COLORS["hidden_line"]))
+    return Drawing(
+        box=_box([d.at for d in robots] + list(targets), lines, frames),
+        cells=tuple(targets),
+        cells_color=TARGET_COLORS[style],
+        cells_label=cells.label if cells is not None else "targets",
+        robots=robots,
+        lines=lines,
+        frames=frames,
+        rays=rays,  # type: ignore[arg-type]
+        hidden=hidden,
+        selected=selected,
+        legend=legend,
+        marks_legend=tuple(marks),
+        caption=caption,
+    )
+
+
+def _box(points, lines, frames) -> tuple[float, float, float, float]:
+    xs = [p[0] for p in points] + [o[0] + dx for o, _, _, _ in frames for dx in (0, 2)]
+    ys = [p[1] for p in points] + [o[1] + 2 * s for o, s, _, _ in frames] + [o[1] for o, _, _, _ in frames]
+    if not xs:
+        xs, ys = [0], [0]
+    return (min(xs) - MARGIN, min(ys) - MARGIN, max(xs) + MARGIN, max(ys) + MARGIN)

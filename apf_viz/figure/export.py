@@ -1,0 +1,67 @@
+"""A run's moment as figure text, and the paper's figures (``demo_patterns/figures.json``) exported."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from apf_viz.core.formats import InputError, write_atomic
+from apf_viz.figure.drawing import drawing_of
+from apf_viz.figure.svg import to_svg
+from apf_viz.figure.tikz import to_tikz
+from apf_viz.ui.session import Session
+
+WRITERS = {"svg": to_svg, "tikz": to_tikz}
+SUFFIXES = {"svg": ".svg", "tikz": ".tex"}
+
+
+def figure_text(session: Session, fmt: str, select: int | None = None, caption: str = "") -> str:
+    """The figure of the session's run as it is now (``select``: whose rays and hidden robots)."""
+    if fmt not in WRITERS:
+        raise InputError(f"figure format {fmt!r}: choose {' or '.join(WRITERS)}")
+    session.selected = select
+    return WRITERS[fmt](drawing_of(session.view(), caption))
+
+
+def run_to_event(session: Session, event: int | None) -> None:
+    """Step the run until ``event`` events have happened (None: a loaded trace's end), or it ends."""
+    if event is None:
+        while session.step():
+            pass
+        return
+    if event < 0:
+        raise InputError(f"--event {event}: a number of events, 0 or more")
+    while session.engine.state.events < event and session.step():
+        pass
+    if session.engine.state.events < event:
+        raise InputError(f"--event {event}: the run ends after {session.engine.state.events} events")
+
+
+def figure_session(label: str) -> tuple[Session, str]:
+    """The paper's figure ``label`` reached as its one-stop lecture reaches it, and its caption."""
+    from apf_viz.lecture import figures
+    from apf_viz.ui.app import demo_session
+
+    figure = figures().get(label)
+    if figure is None:
+        raise InputError(f"--figure {label!r}: the figures are {', '.join(figures())}")
+    session = demo_session()
+    session.start_lecture(figure.as_lecture())
+    session.lecturer = None  # the figure alone: no lecture's words in it
+    return session, f"Figure “{label}”: {figure.caption}"
+
+
+def paper_figures(folder: Path) -> list[Path]:
+    """Every figure of figures.json, as SVG and TikZ, into ``folder`` (``figure-LABEL.svg``, ``.tex``)."""
+    from apf_viz.lecture import figures
+
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"--all-figures {folder}: not a folder")
+    folder.mkdir(parents=True, exist_ok=True)
+    written = []
+    for label in figures():
+        session, caption = figure_session(label)
+        for fmt, suffix in SUFFIXES.items():
+            path = folder / f"figure-{label}{suffix}"
+            write_atomic(path, figure_text(session, fmt, None, caption))
+            written.append(path)
+    return written
