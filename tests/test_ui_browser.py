@@ -313,6 +313,34 @@ def test_save_screenshot_downloads_the_view_as_a_png(browser, app):
     page.close()
 
 
+def test_save_figure_downloads_what_the_page_shows_as_svg_and_tikz(browser, app):
+    """Save figure (Files): the page's view, its selected robot's rays included, as SVG and TikZ in a zip
+    named after the event shown; the presenter's selection is not changed by it."""
+    import io
+    import xml.etree.ElementTree as ET
+    import zipfile
+
+    page = open_page(browser, app)
+    for _ in range(40):
+        page.keyboard.press("Enter")
+    wait_for(lambda: event_value(page) == app.session.view().event >= 40)
+    app.session.selected = 1
+    app.request_render()
+    open_folder(page, "Files")
+    name, data = downloaded(page, page.get_by_role("button", name="Save figure"))
+    event = app.session.view().event
+    assert name == f"apf-viz-event-{event}.zip" and app.session.selected == 1
+    with zipfile.ZipFile(io.BytesIO(data)) as z:
+        assert sorted(z.namelist()) == [f"apf-viz-event-{event}.svg", f"apf-viz-event-{event}.tex"]
+        svg = ET.fromstring(z.read(f"apf-viz-event-{event}.svg"))
+        tikz = z.read(f"apf-viz-event-{event}.tex").decode()
+    view = app.session.view()
+    lines = [e for e in svg.iter("{http://www.w3.org/2000/svg}line") if e.get("stroke") == "rgb(250,200,0)"]
+    assert len(lines) == len(view.rays) > 0  # the selected robot's rays
+    assert tikz.startswith(r"\begin{tikzpicture}") and f"event {event}" in tikz
+    page.close()
+
+
 def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     page = open_page(browser, app)
     started = time.perf_counter()

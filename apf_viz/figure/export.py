@@ -9,6 +9,7 @@ from apf_viz.figure.drawing import drawing_of
 from apf_viz.figure.svg import to_svg
 from apf_viz.figure.tikz import to_tikz
 from apf_viz.ui.session import Session
+from apf_viz.ui.view_model import SessionView
 
 WRITERS = {"svg": to_svg, "tikz": to_tikz}
 SUFFIXES = {"svg": ".svg", "tikz": ".tex"}
@@ -16,10 +17,28 @@ SUFFIXES = {"svg": ".svg", "tikz": ".tex"}
 
 def figure_text(session: Session, fmt: str, select: int | None = None, caption: str = "") -> str:
     """The figure of the session's run as it is now (``select``: whose rays and hidden robots)."""
+    session.selected = select
+    return figure_of(session.view(), fmt, caption)
+
+
+def figure_of(view: SessionView, fmt: str, caption: str = "") -> str:
+    """The figure of what a page shows (its selection's rays and hidden robots included)."""
     if fmt not in WRITERS:
         raise InputError(f"figure format {fmt!r}: choose {' or '.join(WRITERS)}")
-    session.selected = select
-    return WRITERS[fmt](drawing_of(session.view(), caption))
+    return WRITERS[fmt](drawing_of(view, caption))
+
+
+def figure_zip(view: SessionView, caption: str) -> tuple[str, bytes]:
+    """Save figure: the page's view as SVG and TikZ in one zip, named after the event shown."""
+    import io
+    import zipfile
+
+    stem = f"apf-viz-event-{view.event}"
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as z:
+        for fmt, suffix in SUFFIXES.items():
+            z.writestr(stem + suffix, figure_of(view, fmt, caption))
+    return stem + ".zip", buffer.getvalue()
 
 
 def run_to_event(session: Session, event: int | None) -> None:

@@ -63,6 +63,10 @@ class FilesFolder:
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)
+            gui.add_button(
+                "Save figure",
+                hint="what this page shows, for a paper: SVG and TikZ (grid units, a legend) in a zip",
+            ).on_click(ctx.guard(self._figure, "Save figure", mine=True))
             self.explained = gui.add_checkbox(
                 "With legend, caption",
                 initial_value=True,
@@ -102,6 +106,17 @@ class FilesFolder:
 
     def _event(self) -> int:
         return self.ctx.session.engine.state.events
+
+    def _figure(self, event) -> str:
+        from apf_viz.figure.export import figure_zip
+
+        if event.client is None:
+            return ""
+        view = self.ctx.session.view(self.ctx.browser)
+        stage = f" — {view.stage}" if view.stage else ""
+        name, data = figure_zip(view, f"{view.algorithm_title or view.algorithm}, event {view.event}{stage}")
+        event.client.send_file_download(name, data, save_immediately=True)
+        return f"{name}: the figure as SVG and TikZ"
 
     def _screenshot(self, event) -> None:
         """The clicking browser's view as it is now, at its canvas's resolution (collapse the panel for the
