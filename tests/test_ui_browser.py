@@ -1651,3 +1651,40 @@ def test_a_class_follows_a_lecture_to_formed_while_one_student_tries_it_alone(br
         shot(projector, "class-scenario-projector-formed")
     finally:
         served.stop()
+
+
+def test_an_exported_lecture_plays_from_disk_with_the_network_cut(browser, tmp_path):
+    """`apf-viz export --lecture`: the page opens from file:// with every request off the disk refused,
+    draws the run, offers viser's playback controls, and its canvas changes stop by stop (the stop's
+    title and words are labels on the canvas)."""
+    from apf_viz.cli import main as cli
+
+    out = tmp_path / "lecture.html"
+    assert cli(["export", "--lecture", "algorithm-in-12-stops", "--out", str(out)]) == 0
+    context = browser.new_context(viewport={"width": 1024, "height": 768}, offline=True)
+    page = context.new_page()
+    wanted: list[str] = []
+
+    def only_the_disk(route) -> None:
+        if route.request.url.startswith(("file:", "data:", "blob:")):
+            route.continue_()
+        else:
+            wanted.append(route.request.url)
+            route.abort()
+
+    page.route("**/*", only_the_disk)
+    page.goto(out.as_uri())
+    page.locator("canvas").first.wait_for()
+    time.sleep(3.0)
+    first = _canvas(page)
+    assert first.std() > 5  # it draws
+    assert page.get_by_text("1x").count() > 0  # viser's playback controls (its speed)
+    shot(page, "exported-lecture-stop-1")
+    time.sleep(7.0)  # past the first stop's six seconds
+    second = _canvas(page)
+    shot(page, "exported-lecture-stop-2")
+    changed = np.abs(second - first).max(axis=2) > 40
+    changed[:320, :340] = False  # the notification's corner
+    assert changed.sum() > 500  # the next stop: its words and the robot that moved
+    assert wanted == []  # nothing asked of the network
+    context.close()

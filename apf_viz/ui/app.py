@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import gc
-import socket
 import threading
 import time
 from pathlib import Path
@@ -32,6 +31,7 @@ from apf_viz.lecture import find_lecture
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.network import check_listen, reachable_host
+from apf_viz.ui.network import free_port as free_port  # where tests and benchmarks find it
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Role, Roles
@@ -89,13 +89,6 @@ def freeze_for_play() -> None:
     collecting (a full collection there was the first frame's 45–60 ms wait at 1,000 robots). What play
     then makes is collected as usual; garbage frozen here waits for the settle when play stops."""
     gc.freeze()
-
-
-def free_port(host: str = "127.0.0.1") -> int:
-    """A TCP port nothing listens on now: for servers started side by side (tests, benchmarks, scripts)."""
-    with socket.socket() as sock:
-        sock.bind((host, 0))
-        return sock.getsockname()[1]
 
 
 class App:

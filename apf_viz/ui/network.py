@@ -1,11 +1,18 @@
-"""Where the server listens and how other machines reach it: the host to put in an address, and a
-check that an address can be listened on (one line, before viser tries)."""
+"""Where a server listens and how other machines reach it: a free port, the host to put in an address,
+and a check that an address can be listened on (one line, before viser tries)."""
 
 from __future__ import annotations
 
 import socket
 
 from apf_viz.core.formats import InputError
+
+
+def free_port(host: str = "127.0.0.1") -> int:
+    """A TCP port nothing listens on now: for servers started side by side (tests, benchmarks, scripts)."""
+    with socket.socket() as sock:
+        sock.bind((host, 0))
+        return sock.getsockname()[1]
 
 
 def reachable_host(host: str) -> str:

@@ -1,0 +1,131 @@
+"""A lecture or a run as one HTML page that plays with no server, no Python and no network: viser's own
+client, with the scene's messages recorded frame by frame (``ViserServer.get_scene_serializer``) and
+embedded (``StateSerializer.as_html``). Panels are not recorded: what a page must say is drawn on the
+canvas as labels above the run (a stop's title and words, the run's state)."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import textwrap
+from dataclasses import dataclass
+
+import viser
+
+from apf_viz.lecture import Lecture
+from apf_viz.ui.network import free_port
+from apf_viz.ui.scene import SceneRenderer, text_cells
+from apf_viz.ui.session import Session
+from apf_viz.ui.view_model import SessionView
+
+STOP_SECONDS = 6.0  # a lecture's stop stays on screen this long (the page's own controls pause it)
+FRAME_SECONDS = 0.15  # a kept step of a run
+LINE_CHARACTERS = 90  # the words above the run wrap here
+
+
+@dataclass(frozen=True)
+class Exported:
+    """What a page holds: its frames, the events of the run they show, and its size."""
+
+    html: str
+    frames: int
+    events: int
+
+
+class _Recorder:
+    """A viser server no browser connects to, whose scene is recorded as it is drawn."""
+
+    def __init__(self) -> None:
+        with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: no page will ever connect
+            self.server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
+        self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
+        self.serializer = self.server.get_scene_serializer()
+        self.frames = 0
+        self._framed: tuple | None = None
+
+    def frame(self, view: SessionView, words: list[str], seconds: float) -> None:
+        """One frame: the run as ``view`` shows it, ``words`` above it, held ``seconds``."""
+        with self.server.atomic():
+            self.renderer.render(view)
+            self._words(words)
+        self.frames += 1
+        self.serializer.insert_sleep(seconds)
+
+    def _words(self, words: list[str]) -> None:
+        lines = [line for text in words for line in (textwrap.wrap(text, LINE_CHARACTERS) or [""])]
+        x0, y0, x1, y1 = self.renderer.bounds
+        h = text_cells(self.renderer._visible_height()) * 1.45  # a line and the space under it
+        top = y1 + 1.5 + h * len(lines)
+        placed = [(line, (x0 - 0.5, top - h * i, 0.1)) for i, line in enumerate(lines)]
+        self.renderer._labels("/words", placed)
+        bounds = (x0, y0, max(x1, x0 + 0.55 * h / 1.45 * LINE_CHARACTERS), top + h)
+        if bounds != self._framed:  # the camera the page opens with: the run and its words
+            self._framed = bounds
+            self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
+
+    def html(self) -> str:
+        return self.serializer.as_html()
+
+    def close(self) -> None:
+        with contextlib.redirect_stdout(io.StringIO()):
+            self.server.stop()
+
+
+def export_lecture(session: Session, lecture: Lecture) -> Exported:
+    """Every stop as the browser shows it after PageDown, its title and words above the run, held
+    :data:`STOP_SECONDS`: one page, its stops in order."""
+    recorder = _Recorder()
+    try:
+        session.start_lecture(lecture)
+        for i in range(len(lecture.stops)):
+            if i:
+                session.next_stop()
+            view = session.view()
+            assert view.lecture is not None
+            where, title, say = view.lecture
+            state = f"event {view.event}" + (f" · {view.outcome.upper()}" if view.outcome else "")
+            recorder.frame(view, [f"{where} · {state}", title, say], STOP_SECONDS)
+        return Exported(recorder.html(), recorder.frames, session.engine.state.events)
+    finally:
+        recorder.close()
+
+
+def export_run(session: Session, title: str) -> Exported:
+    """The run from its start to where it is now (or, when it is at its start, to its end): every step
+    that moves a robot or changes a light is a frame; Looks and Computes that change nothing on screen
+    are merged into the frame they lead to, and the page says so."""
+    recorder = _Recorder()
+    try:
+        end = session.engine.step_index
+        if end == 0:
+            while session.step():
+                pass
+            end = session.engine.step_index
+        session.seek(0)
+        kept, last = 0, _picture(session.view())
+        recorder.frame(session.view(), [title, "the start"], 1.0)
+        for step in range(1, end + 1):
+            session.seek(step)
+            view = session.view()
+            if _picture(view) != last or step == end:
+                last = _picture(view)
+                kept += 1
+                state = view.outcome.upper() if view.outcome else "running"
+                recorder.frame(
+                    view,
+                    [title, f"event {view.event} · {state} · {kept} frames of {step} steps"],
+                    FRAME_SECONDS,
+                )
+        recorder.serializer.insert_sleep(STOP_SECONDS)
+        note = (
+            f"thinned: {kept} frames for {end} steps ({session.engine.state.events} events); every move kept"
+        )
+        recorder.frame(session.view(), [title, note], STOP_SECONDS)
+        return Exported(recorder.html(), recorder.frames, session.engine.state.events)
+    finally:
+        recorder.close()
+
+
+def _picture(view: SessionView) -> tuple:
+    """What a frame of the run shows: where each robot is and its light."""
+    return tuple((r.position, r.light) for r in view.robots)
