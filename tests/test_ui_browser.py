@@ -341,6 +341,20 @@ def test_save_figure_downloads_what_the_page_shows_as_svg_and_tikz(browser, app)
     page.close()
 
 
+def test_export_page_downloads_the_run_so_far_without_moving_it(browser, app):
+    page = open_page(browser, app)
+    for _ in range(12):
+        page.keyboard.press("Enter")
+    wait_for(lambda: event_value(page) == app.session.view().event >= 12)
+    steps = app.session.engine.step_index
+    open_folder(page, "Files")
+    name, data = downloaded(page, page.get_by_role("button", name="Export page"))
+    assert name == f"apf-viz-run-event-{app.session.view().event}.html"
+    assert b"window.__VISER_EMBED_DATA__" in data and len(data) < 15_000_000
+    assert app.session.engine.step_index == steps  # recorded on a copy: the run did not move
+    page.close()
+
+
 def test_record_gif_records_the_steps_taken_meanwhile(browser, app):
     page = open_page(browser, app)
     started = time.perf_counter()

@@ -64,6 +64,10 @@ class FilesFolder:
                 gui.add_button(label).on_click(self._downloader(name, make))
             gui.add_button("Save screenshot").on_click(self._screenshot)
             gui.add_button(
+                "Export page",
+                hint="the run so far as one HTML page that plays from disk, with no server (every move kept)",
+            ).on_click(ctx.guard(self._export_page, "Export page", mine=True))
+            gui.add_button(
                 "Save figure",
                 hint="what this page shows, for a paper: SVG and TikZ (grid units, a legend) in a zip",
             ).on_click(ctx.guard(self._figure, "Save figure", mine=True))
@@ -106,6 +110,23 @@ class FilesFolder:
 
     def _event(self) -> int:
         return self.ctx.session.engine.state.events
+
+    def _export_page(self, event) -> str:
+        """The run this page shows, from its start to where it is, recorded on a copy (the run itself,
+        shared or not, does not move)."""
+        from apf_viz.ui.own_runs import branch
+        from apf_viz.ui.page_export import export_run
+
+        if event.client is None:
+            return ""
+        copy = branch(self.ctx.session)
+        view = self.ctx.session.view(self.ctx.browser)
+        if copy.engine.step_index == 0:
+            return "nothing to export yet: step or play the run first"
+        exported = export_run(copy, f"{view.algorithm_title or view.algorithm}, {view.scheduler}")
+        name = f"apf-viz-run-event-{view.event}.html"
+        event.client.send_file_download(name, exported.html.encode(), save_immediately=True)
+        return f"{name}: {exported.frames} frames of the run to event {view.event}; it plays from disk"
 
     def _figure(self, event) -> str:
         from apf_viz.figure.export import figure_zip
