@@ -62,32 +62,37 @@ class FilesFolder:
                 ("Download schedule", "schedule.jsonl", "schedule_file"),
             ):
                 gui.add_button(label).on_click(self._downloader(name, make))
-            gui.add_button("Save screenshot").on_click(self._screenshot)
-            gui.add_button(
-                "Export page",
-                hint="the run so far as one HTML page that plays from disk, with no server (every move kept)",
-            ).on_click(ctx.guard(self._export_page, "Export page", mine=True))
-            gui.add_button(
-                "Save figure",
-                hint="what this page shows, for a paper: SVG and TikZ (grid units, a legend) in a zip",
-            ).on_click(ctx.guard(self._figure, "Save figure", mine=True))
-            self.explained = gui.add_checkbox(
-                "With legend, caption",
-                initial_value=True,
-                hint="the screenshot gets the legend of what it shows beside it and the stage, last event "
-                "and outcome under it, for a slide",
-            )
-            self.record = gui.add_button("Record GIF")
-            self.record.on_click(self._on_record)
-            ctx.driving(
-                gui.add_button(
-                    "Export lecture",
-                    hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and "
-                    "an HTML page of them, in one zip; keep your hands off the run meanwhile",
-                ),
-                shared=True,
-            ).on_click(self._on_export)
+            self._picture_controls(gui)
         self.exporting: LectureExport | None = None
+
+    def _picture_controls(self, gui) -> None:
+        """What this page shows, taken away: a screenshot, a GIF, a figure, the run as a page, the lecture."""
+        ctx = self.ctx
+        gui.add_button("Save screenshot").on_click(self._screenshot)
+        self.explained = gui.add_checkbox(
+            "With legend, caption",
+            initial_value=True,
+            hint="the screenshot gets the legend of what it shows beside it and the stage, last event "
+            "and outcome under it, for a slide",
+        )
+        self.record = gui.add_button("Record GIF")
+        self.record.on_click(self._on_record)
+        gui.add_button(
+            "Export page",
+            hint="the run so far as one HTML page that plays from disk, with no server (every move kept)",
+        ).on_click(ctx.guard(self._export_page, "Export page", mine=True))
+        gui.add_button(
+            "Save figure",
+            hint="what this page shows, for a paper: SVG and TikZ (grid units, a legend) in a zip",
+        ).on_click(ctx.guard(self._figure, "Save figure", mine=True))
+        ctx.driving(
+            gui.add_button(
+                "Export lecture",
+                hint="every stop of the lecture being followed as a slide (PNG, legend, its words) and "
+                "an HTML page of them, in one zip; keep your hands off the run meanwhile",
+            ),
+            shared=True,
+        ).on_click(self._on_export)
 
     @staticmethod
     def _demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
