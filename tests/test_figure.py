@@ -105,3 +105,16 @@ def test_the_command_writes_a_figure_of_a_run_at_an_event(tmp_path):
     text = out.read_text()
     assert text.startswith(r"\begin{tikzpicture}") and text.rstrip().endswith(r"\end{tikzpicture}")
     assert Path(out).stat().st_size > 1000
+
+
+def test_a_png_figure_is_the_same_picture_rasterised(tmp_path):
+    import imageio.v3 as iio
+
+    out = tmp_path / "k.png"
+    assert main(["figure", "--figure", "robotOnK", "--format", "png", "--out", str(out)]) == 0
+    image = iio.imread(out)
+    assert image.ndim == 3 and image.shape[0] > 200 and image.shape[1] > 400
+    session, _ = figure_session("robotOnK")
+    terminal1 = session.view().legend["terminal1"].color
+    pixels = image[:, :, :3].reshape(-1, 3).astype(int)
+    assert (abs(pixels - terminal1).max(axis=1) <= 3).sum() > 200  # the terminal1 robots, in their colour

@@ -7,7 +7,7 @@ import argparse
 from pathlib import Path
 
 from apf_viz.algorithms import algorithm_from_command_line
-from apf_viz.cli.common import add_run_options, shipped
+from apf_viz.cli.common import add_run_options, need_extra, shipped
 from apf_viz.core.formats import (
     InputError,
     check_writable,
@@ -20,8 +20,8 @@ from apf_viz.core.grid import as_point
 from apf_viz.core.schedulers import AUTOMATIC
 
 NAME = "figure"
-HELP = "one moment of a run (or the paper's figures) as SVG or TikZ, in grid units, with a legend"
-FORMATS = ("svg", "tikz")
+HELP = "one moment of a run (or the paper's figures) as SVG, TikZ or PNG, in grid units, with a legend"
+FORMATS = ("svg", "tikz", "png")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -48,9 +48,25 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.out is not None:
         check_writable(args.out)
+    if args.format == "png":
+        need_extra("figure --format png", ["matplotlib"])
+        if args.out is None:
+            raise InputError("--format png: give --out FILE (a picture is not written to the terminal)")
     session, caption = _session(args)
     if args.select is not None and not 0 <= args.select < len(session.robots):
         raise InputError(f"--select {args.select}: the run has robots 0 to {len(session.robots) - 1}")
+    if args.format == "png":
+        from apf_viz.core.formats import replace_atomically
+        from apf_viz.figure.export import figure_png
+
+        data = figure_png(session, args.select, caption)
+
+        def write(tmp: str) -> None:
+            Path(tmp).write_bytes(data)
+
+        replace_atomically(args.out, write)
+        print(f"apf-viz figure: {args.out}")
+        return 0
     text = figure_text(session, args.format, args.select, caption)
     if args.out is None:
         print(text, end="")

@@ -21,6 +21,14 @@ def figure_text(session: Session, fmt: str, select: int | None = None, caption: 
     return figure_of(session.view(), fmt, caption)
 
 
+def figure_png(session: Session, select: int | None = None, caption: str = "") -> bytes:
+    """The figure as a PNG (matplotlib: the ``sweep`` extra)."""
+    from apf_viz.figure.png import to_png
+
+    session.selected = select
+    return to_png(drawing_of(session.view(), caption))
+
+
 def figure_of(view: SessionView, fmt: str, caption: str = "") -> str:
     """The figure of what a page shows (its selection's rays and hidden robots included)."""
     if fmt not in WRITERS:
