@@ -6,17 +6,13 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.algorithms import algorithm_from_command_line
-from apf_viz.cli.common import add_run_options, need_extra, shipped
+from apf_viz.cli.common import add_run_options, need_extra
+from apf_viz.cli.sessions import start_session, trace_session
 from apf_viz.core.formats import (
     InputError,
     check_writable,
-    load_pattern,
-    load_robots,
-    load_trace,
     write_atomic,
 )
-from apf_viz.core.grid import as_point
 from apf_viz.core.schedulers import AUTOMATIC
 
 NAME = "figure"
@@ -79,38 +75,16 @@ def run(args: argparse.Namespace) -> int:
 def _session(args: argparse.Namespace):
     """The run at the moment asked for, and the figure's caption."""
     from apf_viz.figure.export import figure_session, run_to_event
-    from apf_viz.ui.session import Session
 
     if args.figure is not None:
         return figure_session(args.figure)
     if args.trace is not None:
-        from apf_viz.core.formats import MAX_TRACE_BYTES
-        from apf_viz.ui.app import demo_session
-
-        path = shipped(args.trace, "trace", "--trace")
-        assert path is not None
-        load_trace(path)  # a missing or malformed file: one line, before anything
-        session = demo_session()
-        session.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)
+        session, name = trace_session(args.trace)
         run_to_event(session, args.event)
-        return session, f"{path.name}, after {session.engine.state.events} events"
+        return session, f"{name}, after {session.engine.state.events} events"
     if args.robots is None or args.pattern is None:
         raise InputError("figure: give --figure LABEL, --trace T, or --robots R with --pattern P")
-    robots_path = shipped(args.robots, "robots", "--robots")
-    pattern_path = shipped(args.pattern, "pattern", "--pattern")
-    assert robots_path is not None and pattern_path is not None
-    robots, pattern = load_robots(robots_path), load_pattern(pattern_path)
-    algorithm, plugins = algorithm_from_command_line(args.algorithm)
-    session = Session(
-        [as_point(p) for p in robots.robots],
-        [as_point(p) for p in pattern.points],
-        y_up=robots.flips(args.seed),
-        algorithm=algorithm.name,
-        scheduler=args.scheduler,
-        seed=args.seed,
-        light_semantics=args.light_semantics,
-        plugins=plugins,
-    )
+    session, robots, _ = start_session(args)
     run_to_event(session, args.event or 0)
     events = session.engine.state.events
-    return session, f"{args.robots.name}, {args.scheduler}, seed {args.seed}, after {events} events"
+    return session, f"{robots}, {args.scheduler}, seed {args.seed}, after {events} events"
