@@ -1554,36 +1554,6 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     presenter.close()
 
 
-def _shown_apart(a: np.ndarray, b: np.ndarray, shift: int = 3) -> int:
-    """Pixels that differ strongly between two canvases, at the best alignment within ``shift`` pixels
-    (a camera settling moves the whole picture by a pixel; a robot drawn elsewhere stays a difference),
-    the notifications' corner left out."""
-    h, w = a.shape[:2]
-    best = h * w
-    for dy in range(-shift, shift + 1):
-        for dx in range(-shift, shift + 1):
-            pa = a[max(0, dy) : h + min(0, dy), max(0, dx) : w + min(0, dx)]
-            pb = b[max(0, -dy) : h + min(0, -dy), max(0, -dx) : w + min(0, -dx)]
-            apart = np.abs(pa - pb).max(axis=2) > 60
-            apart[:330, :350] = False
-            best = min(best, int(apart.sum()))
-    return best
-
-
-def _steady_canvas(page, seconds: float = 20.0) -> np.ndarray:
-    """The canvas once two looks a second apart show the same picture (a camera framed anew eases to
-    its pose over a few frames)."""
-    end = time.time() + seconds
-    last = _canvas(page)
-    while time.time() < end:
-        time.sleep(1.0)
-        now = _canvas(page)
-        if _shown_apart(last, now) < 60:
-            return now
-        last = now
-    raise AssertionError("the canvas never settled")
-
-
 def _canvas(page) -> np.ndarray:
     png = page.locator("canvas").first.screenshot()
     return np.asarray(Image.open(BytesIO(png)).convert("RGB"), dtype=np.int32)
@@ -1591,8 +1561,9 @@ def _canvas(page) -> np.ndarray:
 
 def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes_back(browser, app):
     """Try it yourself: the class page branches a run of its own from the lecture's as it is; its keys
-    step that run alone (the shared run and the projector do not move), the shared run is no longer drawn
-    on it (the presenter's moves leave its canvas as it was), and Back to the lecture follows again."""
+    step that run alone (the shared run and the projector do not move), the presenter's moves reach
+    neither its run nor its scene (the shared run's root hidden there), and Back to the lecture follows
+    again."""
     presenter_address, class_address = app.addresses
     presenter = open_page(browser, app)
     student = browser.new_page(viewport=VIEWPORT)
@@ -1616,19 +1587,16 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     wait_for(lambda: page.session.engine.step_index == 8)
     wait_for(lambda: event_value(student) == 8)
     assert app.session.engine.step_index == 5 and event_value(presenter) == 5  # the projector untouched
-    before = _steady_canvas(student)  # its camera settled on its own run
-    app.session.run_until("move")  # the presenter's run moves a robot …
+    own = (page.session.engine.step_index, page.session.engine.current_points())
+    app.session.run_until("move")  # the presenter's run moves robots …
     app.session.run_until("move")
     app.request_render()
     wait_for(lambda: event_value(presenter) == app.session.engine.step_index)
     time.sleep(1.5)
-    after = _canvas(student)
-    moved = _shown_apart(before, after)
-    if moved:  # for the reader of a failure: both pictures
-        OUT.mkdir(exist_ok=True)
-        Image.fromarray(before.astype(np.uint8)).save(OUT / "class-page-own-run-before.png")
-        Image.fromarray(after.astype(np.uint8)).save(OUT / "class-page-own-run-after.png")
-    assert moved < 60, moved  # … which the student's canvas does not show (a robot is some 300 pixels)
+    # … which reach neither the student's run nor its scene: the shared run's root is hidden there by a
+    # frame of the page's own (viser draws a page's own variant of a node before the shared one).
+    assert (page.session.engine.step_index, page.session.engine.current_points()) == own
+    assert page._hiding and not page._hiding[0].visible and event_value(student) == 8
     shot(student, "class-page-own-run")
     student.get_by_role("button", name="Back to the lecture").click()
     student.get_by_text("Following the lecture").first.wait_for()
