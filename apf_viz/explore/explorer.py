@@ -124,8 +124,7 @@ class Explorer:
         try:
             groups = self.space.successors(st, origin, out)
         except Violation as v:
-            before = self.space.singles if self.scheduler == "async" else self.space.groups
-            return [(g, n[0]) for g, n in zip(before, out, strict=False)] + [(v.robots, str(v))]
+            return [(g, n[0]) for g, n in zip(self.space.labels, out, strict=False)] + [(v.robots, str(v))]
         return [(g, n[0]) for g, n in zip(groups, out, strict=True)]
 
     # ------------------------------------------------------------------ search
@@ -169,8 +168,7 @@ class Explorer:
         edges, labels = graph.edges, graph.labels
         index: dict[State, int] = {start: 0}
         successors = self.space.successors
-        # the edges before a violation: the first robots or groups, in order (a reduced state has one)
-        before = self.space.singles if self.scheduler == "async" else self.space.groups
+        before = self.space.labels  # what the edges before a violation are labelled by
         i = -1  # breadth first: states are searched in the order they are found, so an index is the queue
         while i + 1 < len(states):
             i += 1

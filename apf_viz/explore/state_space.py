@@ -220,6 +220,12 @@ class StateSpace:
                     return r
         return None
 
+    @property
+    def labels(self) -> tuple:
+        """The robots acting on each edge of a state expanded in full (a reduced state has one edge, its
+        robot's): what the edges before a violation are labelled by."""
+        return self.singles if self.scheduler == "async" else self.groups
+
     # ------------------------------------------------------------------ transitions
     def successors(self, st: State, origin: Point, out: list[tuple[State, Point]]) -> tuple:
         """Appends each edge's (next state, its origin) to ``out`` and returns the robots acting on each

@@ -155,9 +155,7 @@ class App:
     @property
     def panels(self) -> Panels | None:
         """The presenter's panel (the first browser's), if it is connected."""
-        with self._screens_lock:
-            screens = list(self.screens.values())
-        return next((x.panels for x in screens if x.state is self.session.presenter), None)
+        return next((x.panels for x in self._screens() if x.state is self.session.presenter), None)
 
     def _screens(self) -> list[BrowserScreen]:
         with self._screens_lock:
@@ -195,15 +193,12 @@ class App:
             self.renderer.frame_camera(client.camera)
 
     def frame_all(self) -> None:
-        with self._screens_lock:
-            screens = list(self.screens.values())
-        for screen in screens:
+        for screen in self._screens():
             screen.frame(screen.renderer)
 
     def drawn(self) -> dict[str, object]:
         """Every node drawn, by name: the shared run's, then each browser's selection layer."""
-        with self._screens_lock:
-            screens = list(self.screens.values())
+        screens = self._screens()
         nodes = dict(self.renderer._handles)
         for screen in screens:
             nodes.update(screen.selection._handles)
@@ -286,8 +281,7 @@ class App:
             time.sleep(max(0.0, tick - time.perf_counter()))
 
     def _render(self) -> None:
-        with self._screens_lock:
-            everyone = list(self.screens.values())
+        everyone = self._screens()
         for screen in everyone:  # a page trying its own run: drawn from it alone
             if screen.own is not None:
                 try:
