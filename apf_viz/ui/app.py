@@ -28,6 +28,7 @@ from apf_viz.core.formats import (
 from apf_viz.core.grid import as_point
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
+from apf_viz.ui import broadcast
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.network import check_listen, reachable_host
@@ -107,6 +108,7 @@ class App:
         self.roles = roles or Roles()  # which pages present: those opened at the presenter address
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
+        broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         gui = self.server.gui
         gui.configure_theme(control_width="large")
