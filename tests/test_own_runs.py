@@ -83,6 +83,7 @@ class _Page:
         self.own_session = None
         self.own = None
         self.renderer = None
+        self.stale = True
 
     @property
     def session(self):
@@ -142,3 +143,24 @@ def test_own_play_keeps_each_run_to_its_speed_and_all_to_their_share_of_a_frame(
     frozen = a.engine.step_index
     pacer.play([a], frame_seconds=0.0, since=1.0)  # no time left in the frame: nothing runs
     assert a.engine.step_index == frozen
+
+
+def test_an_own_run_is_drawn_again_only_when_it_played_or_was_told_it_changed():
+    """A page whose own run stands still is not drawn again each frame (24 such pages beside a playing
+    projector were a view each a frame): play marks the runs it played, drawing clears the mark."""
+    shared = demo_session()
+    pages = [_Page(i) for i in range(3)]
+    drawn: list[int] = []
+    runs = OwnRuns(shared, lambda: pages, lambda: None)
+    for page in pages:
+        runs.try_alone(page)
+        page.own = SimpleNamespace(render=lambda view, cid=page.client.client_id: drawn.append(cid))
+    assert not any(p.stale for p in pages)  # drawn once as they branched
+    pages[1].session.set_speed(10)
+    pages[1].session.toggle_play()
+    assert runs.play(frame_seconds=0.1, since=0.1)
+    assert [p.stale for p in pages] == [False, True, False]
+    runs.render(pages[1])
+    assert drawn == [1] and not pages[1].stale
+    pages[1].session.pause()
+    assert not runs.play(frame_seconds=0.1, since=0.1) and not pages[1].stale

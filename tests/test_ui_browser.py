@@ -1588,6 +1588,10 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     wait_for(lambda: event_value(student) == 8)
     assert app.session.engine.step_index == 5 and event_value(presenter) == 5  # the projector untouched
     own = (page.session.engine.step_index, page.session.engine.current_points())
+    drawn = []  # the student's own run drawn anew: only when it changed, not each frame of the projector
+    render = app.own_runs.render
+    app.own_runs.render = lambda screen: (drawn.append(screen.client.client_id), render(screen))
+    frames = app.frames
     app.session.run_until("move")  # the presenter's run moves robots …
     app.session.run_until("move")
     app.request_render()
@@ -1597,6 +1601,11 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     # frame of the page's own (viser draws a page's own variant of a node before the shared one).
     assert (page.session.engine.step_index, page.session.engine.current_points()) == own
     assert page._hiding and not page._hiding[0].visible and event_value(student) == 8
+    assert app.frames > frames and drawn == []
+    student.keyboard.press("Enter")  # its own step: drawn anew
+    wait_for(lambda: event_value(student) == 9)
+    assert drawn and set(drawn) == {page.client.client_id}
+    app.own_runs.render = render
     shot(student, "class-page-own-run")
     student.get_by_role("button", name="Back to the lecture").click()
     student.get_by_text("Following the lecture").first.wait_for()

@@ -231,7 +231,10 @@ class App:
                 session.click(cell, event.client.client_id if event.client is not None else None)
             except Exception as err:  # a click must never kill the server; only its browser is told
                 tell(event.client, "Click refused", str(err), error=True)
-        self.request_render()
+        if page is not None:
+            page.changed()
+        else:
+            self.request_render()
 
     # ------------------------------------------------------------------ loop
     def _loop(self) -> None:
@@ -284,8 +287,8 @@ class App:
 
     def _render(self) -> None:
         everyone = self._screens()
-        for screen in everyone:  # a page trying its own run: drawn from it alone
-            if screen.own is not None:
+        for screen in everyone:  # a page trying its own run: drawn from it alone, when it changed
+            if screen.own is not None and screen.stale:
                 try:
                     self.own_runs.render(screen)
                 except RuntimeError:  # the browser left while its frame was drawn

@@ -45,10 +45,14 @@ class BrowserScreen:
         self.attachment = Attachment(app.session)
         self.own: SceneRenderer | None = None  # its own run, drawn in its own scene
         self._hiding: list = []  # its own frame over the shared scene's root, which hides it here
+        self._request_render = app.request_render
+        # Its own run's picture and panel may differ from what the page was last sent: its own commands,
+        # clicks, zoom and play set it; an own run unchanged is not drawn again (ui/own_runs.py).
+        self.stale = True
         self.panels = Panels(
             client,
             cast(Session, self.attachment),
-            app.request_render,
+            self.changed,
             app.frame_client,
             browser=client.client_id,
             verifier=app.verifier,
@@ -60,8 +64,13 @@ class BrowserScreen:
         self._framed_aspect = NARROW_ASPECT  # the canvas shape its camera was last framed for
         self._reported: np.ndarray | None = None  # the camera position it last reported
         self.cells: float | None = None  # how many cells tall its camera shows (scene.camera_cells)
-        self._request_render = app.request_render
         client.camera.on_update(self._camera_moved)
+
+    def changed(self) -> None:
+        """This page did something (a command, a click, a zoom): a frame, in which its own run, if it
+        tries one, is drawn anew."""
+        self.stale = True
+        self._request_render()
 
     @property
     def session(self) -> Session:
@@ -105,7 +114,7 @@ class BrowserScreen:
             return
         cells, self.cells = self.cells, camera_cells(camera)
         if self.cells is not None and (cells is None or scene_detail(cells) != scene_detail(self.cells)):
-            self._request_render()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
+            self.changed()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
         hand = self._acknowledged and not any(_same_pose(position, p) for p in self._sent)
         self._reported = position
         if hand:

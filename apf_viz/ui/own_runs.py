@@ -65,8 +65,8 @@ class OwnPlay:
     def __init__(self) -> None:
         self._budget: weakref.WeakKeyDictionary[Session, float] = weakref.WeakKeyDictionary()
 
-    def play(self, runs: Iterable[Session], frame_seconds: float, since: float) -> bool:
-        """Steps for ``since`` seconds of every playing run. True if any is playing."""
+    def play(self, runs: Iterable[Session], frame_seconds: float, since: float) -> list[Session]:
+        """Steps for ``since`` seconds of every playing run; the runs that were playing."""
         playing = [run for run in runs if run.playing]
         deadline = time.perf_counter() + OWN_SHARE * frame_seconds
         for run in playing:
@@ -75,7 +75,7 @@ class OwnPlay:
                 run.play_steps(int(budget))
                 budget -= int(budget)
             self._budget[run] = budget
-        return bool(playing)
+        return playing
 
 
 class OwnRuns:
@@ -128,6 +128,7 @@ class OwnRuns:
     def render(self, screen: BrowserScreen) -> None:
         """Draw a page's own run and its panel, in one message to that page."""
         assert screen.own is not None
+        screen.stale = False  # before it is drawn: a change made meanwhile is drawn in the next frame
         cid = screen.client.client_id
         _, views = screen.session.views([cid])
         with screen.client.atomic():
@@ -135,4 +136,10 @@ class OwnRuns:
             screen.panels.refresh(views[cid])
 
     def play(self, frame_seconds: float, since: float) -> bool:
-        return self.pacer.play([x.session for x in self.attached()], frame_seconds, since)
+        """Plays the own runs that play, which are then drawn anew; whether any plays."""
+        attached = self.attached()
+        playing = self.pacer.play([x.session for x in attached], frame_seconds, since)
+        for screen in attached:
+            if screen.session in playing:
+                screen.stale = True
+        return bool(playing)
