@@ -40,17 +40,7 @@ def branch(shared: Session) -> Session:
         events = engine.state.events
         plugins = shared.run.plugins
         numbers = shared.numbers
-    own = Session(
-        config.robots,
-        config.pattern,
-        y_up=config.y_up,
-        algorithm=config.algorithm,
-        scheduler=config.scheduler,
-        seed=config.seed,
-        light_semantics=config.light_semantics,
-        plugins=plugins,
-    )
-    own.run.restart(config.but(event_cap=events + EXTRA_EVENTS))
+    own = Session.from_config(config.but(event_cap=events + EXTRA_EVENTS), plugins)
     for record in records:
         own.engine.apply(record)
     own.private = True

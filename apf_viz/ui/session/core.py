@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable, Hashable, Mapping, Sequence
-from typing import TypeVar
+from typing import Self, TypeVar
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
 from apf_viz.core.formats import InputError, size_problem
@@ -85,6 +85,16 @@ class SessionCore:
             seed,
             max_events,
         )
+        self._begin(config, plugins)
+
+    @classmethod
+    def from_config(cls, config: RunConfig, plugins: Mapping[str, Factory] | None = None) -> Self:
+        """A session whose run is ``config`` as it is (another run's, copied: ui/own_runs.py)."""
+        session = cls.__new__(cls)
+        session._begin(config, plugins)
+        return session
+
+    def _begin(self, config: RunConfig, plugins: Mapping[str, Factory] | None) -> None:
         self.run = RunController(config, plugins)
         self.lock = self.run.lock
         self.screen = SharedScreen(Editor(config.robots, config.y_up, config.pattern))
