@@ -59,6 +59,23 @@ def test_an_own_run_refuses_files_lectures_the_library_and_the_class_permission(
         command(own)
 
 
+def test_an_own_run_branched_at_a_compare_compares_too():
+    """Tried at a Compare stop, the copy compares with the same algorithm, its second run following the
+    copy (not the shared run's second run)."""
+    shared = demo_session()
+    shared.compare_with("apf-opaque-grid-literal")
+    for _ in range(30):
+        shared.step()
+    own = branch(shared)
+    assert own.screen.twin is not None and own.screen.twin is not shared.screen.twin
+    assert own.screen.twin.algorithm == "apf-opaque-grid-literal"
+    for _ in range(10):
+        own.step()
+    view = own.view()
+    assert view.compare is not None and view.compare.steps == view.steps == 40
+    assert branch(demo_session()).screen.twin is None
+
+
 def test_a_page_attached_to_its_own_run_sends_every_command_there():
     shared = demo_session()
     page = Attachment(shared)
@@ -93,6 +110,9 @@ class _Page:
         own.join(self.client.client_id, "presenter")
         self.own_session = own
         self.own = SimpleNamespace(render=lambda view: None)
+
+    def draw_own(self, view):
+        self.own.render(view)
 
     def detach_own(self):
         self.own_session = self.own = None

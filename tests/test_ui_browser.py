@@ -854,14 +854,14 @@ def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(brow
         wait_for(lambda n=n: app.session.engine.step_index == n)
     page.get_by_text("First divergence at event").wait_for()
     page.get_by_text("apf-opaque-grid-literal: COLLISION").wait_for()
-    a, b = app.renderer, app.compare_renderer
+    a, b = app.renderer, app.pair.second
     assert b is not None and b.origin[0] < a.origin[0]  # B is drawn to the right of A
     titles = [h.text for n, h in b._handles.items() if n.startswith("/title/") and h.visible]
     assert titles == ["B: the paper as written · COLLISION"]  # in words a room reads
     page.get_by_role("button", name="Frame run").click()
     shot(page, "compare")
     page.get_by_role("button", name="Stop comparing").click()
-    wait_for(lambda: app.compare_renderer is None)
+    wait_for(lambda: app.pair.second is None)
     page.close()
 
 
@@ -1420,7 +1420,7 @@ def label_clashes(app: App) -> list[tuple[str, str]]:
     number stays at its robot: two robots a cell apart have two numbers a cell apart, not counted."""
     from apf_viz.ui.scene.labels import _overlaps, text_cells
 
-    renderers = [r for r in (app.renderer, app.compare_renderer) if r is not None]
+    renderers = [r for r in (app.renderer, app.pair.second) if r is not None]
     cells = app.renderer.view_cells if app.renderer.view_cells is not None else app.renderer._visible_height()
     h = text_cells(cells)
     boxes = [
@@ -1615,6 +1615,41 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     wait_for(lambda: len(app.own_runs.attached()) == 1)
     student.close()
     wait_for(lambda: len(app.screens) == 1 and app.own_runs.attached() == [])  # its run is dropped
+    presenter.close()
+
+
+def test_tried_at_a_compare_the_students_run_compares_beside_itself(browser, app):
+    """A student who tries it at a Compare stop gets both runs in its own scene: its run, and the second
+    algorithm's run following it (not the projector's), framed together; back to the lecture, both go."""
+    presenter_address, class_address = app.addresses
+    presenter = open_page(browser, app, {"width": 1024, "height": 768})
+    app.session.compare_with("apf-opaque-grid-literal")
+    for _ in range(30):
+        presenter.keyboard.press("Enter")
+    wait_for(lambda: app.session.engine.step_index == 30)
+    student = browser.new_page(viewport={"width": 1024, "height": 768})
+    student.set_default_timeout(60_000)
+    student.goto(class_address)
+    student.get_by_label("Event").wait_for()
+    wait_for(lambda: event_value(student) == 30)
+    student.get_by_role("button", name="Try it yourself").click()
+    page = next(x for x in app.screens.values() if x.state.role == "class")
+    wait_for(lambda: page._own_pair is not None and page._own_pair.second is not None)
+    second = page._own_pair.second
+    assert second.server is page.client and second.root == "/mine"  # in the student's scene alone
+    for _ in range(12):
+        student.keyboard.press("Enter")
+    wait_for(lambda: event_value(student) == 42)
+    twin = page.session.screen.twin
+    assert twin is not app.session.screen.twin and twin.engine.step_index == 42
+    assert app.session.screen.twin.engine.step_index == 30  # the projector's second run stays
+    a, b = page.own.bounds, second.bounds
+    assert a[0] <= b[0] and b[2] <= a[2]  # the framed box holds both runs
+    shot(student, "class-page-own-run-compare")
+    student.get_by_role("button", name="Back to the lecture").click()
+    wait_for(lambda: page.own is None and page._own_pair is None)
+    assert not second._handles  # its nodes removed from the student's scene
+    student.close()
     presenter.close()
 
 

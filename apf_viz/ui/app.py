@@ -37,11 +37,10 @@ from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Role, Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
+from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import SessionView
 
 FPS = 30
-LABEL_ROOM = 4.0  # cells right of two runs compared, for the labels of the one on the right
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 # A step that leaves this many robots to decide anew (a light a crowd sees: about 0.1 ms each) is shown
 # before the next step pays for them: the page sees the light a frame's worth of decisions sooner.
@@ -116,7 +115,7 @@ class App:
         # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
         gui.main_panel.dock_right()
         self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
-        self.compare_renderer: SceneRenderer | None = None  # Compare: the second run, to the right
+        self.pair = ComparePair(self.renderer)  # the run, and under Compare the second run to its right
         self.verifier = SharedVerifier(session, self.request_render)
         self.screens: dict[int, BrowserScreen] = {}
         self._screens_lock = threading.Lock()
@@ -304,8 +303,7 @@ class App:
         cells = [x.cells for x in screens if x.cells is not None]
         self.renderer.view_cells = min(cells) if cells else None
         with self.server.atomic():
-            self.renderer.render(run_view, compare_title("A", run_view) if run_view.compare else None)
-            self._render_compare(run_view)
+            self.pair.render(run_view, self.session.config)
         for screen in due:
             view = views[screen.client.client_id]
             try:
@@ -366,38 +364,6 @@ class App:
         self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
         self._initial_bounds = self.renderer.bounds if bounds is None else bounds
         self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more
-
-    def _render_compare(self, view) -> None:
-        """The second run of Compare beside the first, at a fixed distance to its right (the width of
-        start ∪ pattern plus room for the runs to spread); the cameras frame both."""
-        other = view.compare
-        if other is None:
-            if self.compare_renderer is not None:
-                self.compare_renderer.clear()
-                self.compare_renderer = None
-            return
-        if self.compare_renderer is None:
-            self.compare_renderer = SceneRenderer(self.server, prefix="/compare", root="/shared")
-        c = self.session.config
-        xs = [p[0] for p in (*c.robots, *c.pattern)]
-        gap = max(xs) - min(xs) + len(c.robots) + 8
-        a = self.renderer
-        self.compare_renderer.fixed_origin = (a.origin[0] - gap, a.origin[1])
-        # One camera shows both runs: the second's labels are laid out for the first's zoom.
-        self.compare_renderer.view_cells = a.view_cells if a.view_cells is not None else a._visible_height()
-        self.compare_renderer.render(other, compare_title("B", other), beside=a.label_boxes)
-        b = self.compare_renderer.bounds
-        x0, y0, x1, y1 = a.bounds
-        # Labels run to the right of what they name (numbers, "the leader's frame"): room for them.
-        a.bounds = (min(x0, b[0]), min(y0, b[1]), max(x1, b[2]) + LABEL_ROOM, max(y1, b[3]))
-
-
-def compare_title(side: str, view: SessionView) -> str:
-    """A Compare run's title above it, in words a room reads: which algorithm, and how its run stands."""
-    state = view.outcome.upper() if view.outcome else "running"
-    # The title's gloss in brackets is left to the caption: the camera frames the runs, not their titles.
-    name = (view.algorithm_title or view.algorithm).split(" (")[0]
-    return f"{side}: {name} · {state}"
 
 
 def demo_session(**options) -> Session:

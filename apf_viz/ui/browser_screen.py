@@ -12,7 +12,9 @@ from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.roles import Role
 from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, camera_cells, scene_detail
+from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.session import Session
+from apf_viz.ui.view_model import SessionView
 
 CLASS_HZ = 12.0
 """How often a class page's panel and selection are brought up to date while the run plays (the canvas
@@ -44,6 +46,8 @@ class BrowserScreen:
         # go there.
         self.attachment = Attachment(app.session)
         self.own: SceneRenderer | None = None  # its own run, drawn in its own scene
+        self._own_pair: ComparePair | None = None  # that run, and its Compare's second run beside it
+        self._own_twin: object | None = None  # the Compare its camera was last framed with
         self._hiding: list = []  # its own frame over the shared scene's root, which hides it here
         self._request_render = app.request_render
         # Its own run's picture and panel may differ from what the page was last sent: its own commands,
@@ -91,13 +95,25 @@ class BrowserScreen:
         self._hiding = [self.client.scene.add_frame("/shared", show_axes=False, visible=False)]
         self.selection.clear()
         self.own = SceneRenderer(self.client, layer="all", root="/mine")
+        self._own_pair = ComparePair(self.own)
+        self._own_twin = own.screen.twin
+
+    def draw_own(self, view: SessionView) -> None:
+        """Its own run, and its Compare's second run beside it, in its own scene; a Compare begun or
+        ended there frames its camera anew (on both runs, or on the one)."""
+        assert self._own_pair is not None
+        self._own_pair.render(view, self.session.config)
+        twin = self.session.screen.twin
+        if twin is not self._own_twin:
+            self._own_twin = twin
+            self.frame(self.renderer)
 
     def detach_own(self) -> None:
         """Back to the shared run: its own run and everything drawn of it are dropped."""
         self.attachment.own = None
-        if self.own is not None:
-            self.own.clear()
-            self.own = None
+        if self._own_pair is not None:
+            self._own_pair.clear()
+        self.own = self._own_pair = self._own_twin = None
         for frame in self._hiding:
             frame.remove()
         self._hiding = []

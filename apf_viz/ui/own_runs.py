@@ -18,6 +18,7 @@ from collections.abc import Callable, Iterable
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.browser_screen import BrowserScreen
+from apf_viz.ui.compare import Twin
 from apf_viz.ui.session import Session
 
 MAX_OWN_RUNS = 24
@@ -40,7 +41,10 @@ def branch(shared: Session) -> Session:
         events = engine.state.events
         plugins = shared.run.plugins
         numbers = shared.numbers
+        compared = shared.screen.twin.algorithm if shared.screen.twin is not None else None
     own = Session.from_config(config.but(event_cap=events + EXTRA_EVENTS), plugins)
+    if compared is not None:  # the lecture's Compare too: the copy's second run follows the copy
+        own.screen.twin = Twin(compared, plugins)
     for record in records:
         own.engine.apply(record)
     own.private = True
@@ -122,7 +126,7 @@ class OwnRuns:
         cid = screen.client.client_id
         _, views = screen.session.views([cid])
         with screen.client.atomic():
-            screen.own.render(views[cid])
+            screen.draw_own(views[cid])
             screen.panels.refresh(views[cid])
 
     def play(self, frame_seconds: float, since: float) -> bool:
