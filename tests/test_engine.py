@@ -6,7 +6,8 @@ import pytest
 
 from apf_viz.algorithms.examples import CompactLeft, Stay
 from apf_viz.core.algorithm import Decision
-from apf_viz.core.engine import Engine, EngineError, Phase
+from apf_viz.core.engine import Engine, EngineError
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.formats import trace_text, write_atomic
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance, replay, trace_header

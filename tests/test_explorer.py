@@ -10,7 +10,8 @@ from collections import deque
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.core.algorithm import Decision
-from apf_viz.core.engine import Engine, Phase
+from apf_viz.core.engine import Engine
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.formats import load_trace
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import engine_for_trace, replay

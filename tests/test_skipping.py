@@ -15,7 +15,8 @@ from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, 
 from apf_viz.algorithms.examples import Stay
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.budget import MOVES_PER_KD, paper_D, run_budget
-from apf_viz.core.engine import Engine, Phase
+from apf_viz.core.engine import Engine
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler, step_rng

@@ -23,7 +23,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
-from apf_viz.core.engine_state import NEXT_EVENT, EngineState, Outcome, Phase
+from apf_viz.core.engine_state import COMPUTED, IDLE, LOOKED, NEXT_EVENT, EngineState, Outcome
 from apf_viz.core.events import Events
 from apf_viz.core.fast_forward import check_walks_requested
 from apf_viz.core.grid import Point, coordinate_problem
@@ -45,7 +45,6 @@ _MEMO_MAX_ROBOTS = 24
 
 
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
-_IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
 # function and costs more than the rest of a no-op Move.
 _new = tuple.__new__
@@ -256,7 +255,7 @@ class Engine(Events, Walking):
         eligible = self._eligible
         self._watches.clear(r)
         was = bool(eligible[r])
-        if st.phase[r] != _IDLE:
+        if st.phase[r] != IDLE:
             eligible[r] = True
             return not was
         decision = self._decide(r, self.look(r))
@@ -308,21 +307,21 @@ class Engine(Events, Walking):
         version = st.version
         if len(robots) == 1:  # ASYNC: one robot, one phase (two under lc-atomic)
             r = robots[0]
-            if phase == _IDLE:
+            if phase == IDLE:
                 events = [self._look(r, round)]
                 if self.light_semantics == "lc-atomic":
                     events.append(self._compute(r, round))
-            elif phase == _LOOKED:
+            elif phase == LOOKED:
                 events = [self._compute(r, round)]
             else:
                 events = self._move_one(r, round)
             st.last_act[r] = st.steps + 1
         else:
-            if phase == _IDLE:
+            if phase == IDLE:
                 events = [self._look(r, round) for r in robots]
                 if self.light_semantics == "lc-atomic":
                     events += [self._compute(r, round) for r in robots]
-            elif phase == _LOOKED:
+            elif phase == LOOKED:
                 events = [self._compute(r, round) for r in robots]
             else:
                 events = self._move(robots, round)
@@ -334,7 +333,7 @@ class Engine(Events, Walking):
             st.round = max(st.round, round)
         # Only a Move or a light change can make the robots quiescent: a Look makes a robot hold the view
         # it already had, and a Compute that keeps the light holds the decision on that view as pending.
-        self._update_outcome(phase == _COMPUTED or st.version != version)
+        self._update_outcome(phase == COMPUTED or st.version != version)
         return events
 
     def _checkpoint_after(self, position: int) -> None:
@@ -397,11 +396,11 @@ class Engine(Events, Walking):
         stale = self._stale()
         phase = self.state.phase
         for r in self._eligible.nonzero()[0].tolist():
-            if r not in stale and (phase[r] == _IDLE or not self._robot_quiescent(r)):
+            if r not in stale and (phase[r] == IDLE or not self._robot_quiescent(r)):
                 return True
-        if any(phase[r] != _IDLE and not self._robot_quiescent(r) for r in stale):
+        if any(phase[r] != IDLE and not self._robot_quiescent(r) for r in stale):
             return True
-        for r in [r for r in stale if phase[r] == _IDLE]:
+        for r in [r for r in stale if phase[r] == IDLE]:
             stale.discard(r)
             if self._settle(r):
                 self.eligible_gained += 1  # counted per part: the schedulers ask only whether it changed
@@ -419,9 +418,9 @@ class Engine(Events, Walking):
         st = self.state
         phase = st.phase[r]
         pending, snap = st.pending[r], st.snapshot[r]
-        if phase == _COMPUTED and pending is not None and pending.move is not None:
+        if phase == COMPUTED and pending is not None and pending.move is not None:
             return False
-        if phase == _LOOKED and snap is not None and not self._decide(r, snap).is_noop(st.lights[r]):
+        if phase == LOOKED and snap is not None and not self._decide(r, snap).is_noop(st.lights[r]):
             return False
         version, noop = self._probe[r]
         if version != st.version:

@@ -26,6 +26,10 @@ class Phase(IntEnum):
 
 NEXT_EVENT = ("look", "compute", "move")  # indexed by Phase
 
+# The phases as plain ints, for the hot paths (an IntEnum member's comparisons cost an attribute lookup
+# and a call each; the engine compares phases on every event).
+IDLE, LOOKED, COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
+
 
 @dataclass
 class EngineState:

@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from apf_viz.core.algorithm import Decision
-from apf_viz.core.engine_state import EngineState, Phase
+from apf_viz.core.engine_state import COMPUTED, IDLE, LOOKED, EngineState
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.history import Event
@@ -19,7 +19,6 @@ if TYPE_CHECKING:
     from apf_viz.core.watches import Watches
 
 # Plain ints on the hot path: attribute access on an Enum class costs more than the rest of a step.
-_IDLE, _LOOKED, _COMPUTED = int(Phase.IDLE), int(Phase.LOOKED), int(Phase.COMPUTED)
 # Events are built with tuple.__new__: a NamedTuple's own __new__ (keywords, defaults) is a Python
 # function and costs more than the rest of a no-op Move.
 _new = tuple.__new__
@@ -59,7 +58,7 @@ class Events:
         st.seen[r] = ids
         st.look_step[r] = st.steps + 1
         st.look_version[r] = st.version
-        st.phase[r] = _LOOKED
+        st.phase[r] = LOOKED
         return _new(Event, (r, "look", ids, None, None, None, None, round, False, None))
 
     def _observe(self, r: int) -> tuple[Snapshot, tuple[int, ...]]:
@@ -88,7 +87,7 @@ class Events:
         st.decided[r] = snap
         st.decided_seen[r] = st.seen[r]
         st.decided_look[r] = st.look_step[r]
-        st.phase[r] = _COMPUTED
+        st.phase[r] = COMPUTED
         if decision.light != st.lights[r]:
             st.lights[r] = decision.light
             st.lights_used.add(decision.light)
@@ -189,7 +188,7 @@ class Events:
         # A cycle that changed nothing on a still-current view proves this robot quiescent for now.
         if decision.move is None and st.look_version[r] == st.version:
             self._probe[r] = (st.version, True)
-        st.phase[r] = _IDLE
+        st.phase[r] = IDLE
         st.pending[r] = None
         st.snapshot[r] = None
         st.seen[r] = None

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
-from apf_viz.core.engine_state import EngineState, Phase
+from apf_viz.core.engine_state import IDLE, EngineState
 from apf_viz.core.fast_forward import (
     WalkMismatch,
     hidden_only_on_line,
@@ -31,7 +31,6 @@ _MAX_WALK_WAIT = 63  # cycles between two tries of a walk that did not go (see W
 # Cycles of a crowd's walker looked ahead for watches at once (Walking._forced_cycles): its decision
 # usually changes sooner, and a look further ahead costs no more.
 _FORCED_HORIZON = 256
-_IDLE = int(Phase.IDLE)  # a plain int on the hot path
 _new = tuple.__new__  # events built without the NamedTuple's Python-level __new__
 
 
@@ -89,7 +88,7 @@ class Walking:
         if np.count_nonzero(eligible) != 1 or self._watches.count != self.k - 1:
             return 0
         r = int(eligible.nonzero()[0][0])
-        if st.phase[r] != _IDLE:
+        if st.phase[r] != IDLE:
             return 0
         if self._walk_wait[r]:
             self._walk_wait[r] -= 1

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from apf_viz.core.engine import Phase
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.history import StepRecord
 from apf_viz.core.schedulers.base import StepRandom
 

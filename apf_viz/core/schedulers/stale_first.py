@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from apf_viz.core.engine import Phase
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.history import StepRecord
 from apf_viz.core.schedulers.base import NEVER, OneEventPerStep, StepRandom, candidates, most_starved
 

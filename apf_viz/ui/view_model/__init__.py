@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 
 from apf_viz.core.budget import paper_D
-from apf_viz.core.engine import NEXT_EVENT, Engine, Phase
+from apf_viz.core.engine import NEXT_EVENT, Engine
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.pattern_match import matches_only_mirrored

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from apf_viz.core.engine import Engine, Phase
+from apf_viz.core.engine import Engine
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import SYNCHRONOUS
 from apf_viz.ui.view_model.legend import symbol_html

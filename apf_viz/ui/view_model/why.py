@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import html
 
-from apf_viz.core.engine import Engine, Phase
+from apf_viz.core.engine import Engine
+from apf_viz.core.engine_state import Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line, Mark, explain, in_frame
