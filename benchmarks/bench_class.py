@@ -12,6 +12,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import multiprocessing
+import statistics
 import time
 
 import viser
@@ -256,4 +257,128 @@ def churn(n: int, rounds: int = 3) -> None:
         time.sleep(2.0)
         gc.collect()
         print(f"| {round_} | {connected} | {len(app.screens)} | {_rss_mb():.1f} |", flush=True)
+    app.stop()
+
+
+def _event_numbers(frame: bytes, event_uuid: list[str]) -> list[int]:
+    """The page's ``Event`` values a frame sets, in order (the first frames make the number input and
+    name its uuid: kept in ``event_uuid``)."""
+    import msgspec
+    import zstandard
+
+    size, compressed = int.from_bytes(frame[:8], "little"), int.from_bytes(frame[8:16], "little")
+    raw = zstandard.ZstdDecompressor().decompress(frame[16 : 16 + compressed], size)
+    if (event_uuid[0].encode() if event_uuid else b"Event") not in raw:
+        return []  # most frames: decoded no further (the client's own work, not the server's)
+    inner = msgspec.msgpack.decode(raw)
+    values = []
+    for m in inner["messages"]:
+        if m.get("type") == "GuiNumberMessage" and m.get("props", {}).get("label") == "Event":
+            event_uuid[:] = [m["uuid"]]
+            values.append(int(m["value"]))
+        elif (
+            m.get("type") == "GuiUpdateMessage"
+            and event_uuid
+            and m.get("uuid") == event_uuid[0]
+            and "value" in m.get("updates", {})
+        ):
+            values.append(int(m["updates"]["value"]))
+    return values
+
+
+def _sleep_and_wake(url: str, n: int, asleep, wake, target, report) -> None:
+    """n pages that read as a page does for 3 s, then nothing (``asleep`` set) until ``wake``: then each
+    reads what is waiting and on, until its Event number is ``target`` (the run's, paused); the seconds
+    each took are put on ``report``."""
+
+    async def awake(ws, uuid: list[str]) -> None:
+        await ws.send(_camera())
+        end = time.time() + 3.0
+        while time.time() < end:
+            with contextlib.suppress(TimeoutError):
+                _event_numbers(await asyncio.wait_for(ws.recv(), 0.5), uuid)
+
+    async def catch_up(ws, uuid: list[str], t0: float) -> tuple[float, bool]:
+        """Seconds until the page shows ``target``, and whether it had to connect anew (a page that
+        read nothing for long misses the server's keepalive pings and is let go; viser's page then
+        connects again, as this one does)."""
+        again = False
+        while True:
+            try:
+                frame = await asyncio.wait_for(ws.recv(), 60)
+            except websockets.ConnectionClosed:
+                again, uuid = True, []
+                ws = await websockets.connect(
+                    url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None
+                )
+                await ws.send(_camera())
+                continue
+            values = _event_numbers(frame, uuid)
+            if values and values[-1] == target.value:
+                took = time.perf_counter() - t0
+                await ws.close()  # after the time is taken: the close handshake may wait (close_timeout)
+                return took, again
+
+    async def main() -> None:
+        protocol = f"viser-v{viser.__version__}"
+        # A queue of one frame: asleep, the page stops reading its socket almost at once (as a laptop's
+        # browser does), and what the server sends waits in the sockets' buffers, then in the server.
+        connect = websockets.connect
+        sockets = [await connect(url, subprotocols=[protocol], max_size=None, max_queue=1) for _ in range(n)]
+        uuids: list[list[str]] = [[] for _ in sockets]
+        await asyncio.gather(*(awake(ws, u) for ws, u in zip(sockets, uuids, strict=True)))
+        asleep.set()  # from now on nothing is read: the sockets' buffers fill, the server's sends wait
+        while not wake.is_set():
+            await asyncio.sleep(0.05)
+        t0 = time.perf_counter()
+        results = await asyncio.gather(
+            *(catch_up(ws, u, t0) for ws, u in zip(sockets, uuids, strict=True)), return_exceptions=True
+        )
+        report.put([r if isinstance(r, tuple) else (float("nan"), False) for r in results])
+
+    asyncio.run(main())
+
+
+def sleep_and_wake(n: int, sleep: float) -> None:
+    """``--wake N``: N class pages fall asleep (read nothing) for ``sleep`` seconds while the heart demo
+    plays, the run is then paused, and they wake: how long until each shows the run's event; meanwhile
+    the server's frames/s and memory."""
+    app = App(demo_session(), port=free_port(), verbose=False)
+    url = app.addresses[1].replace("http://", "ws://").split("?")[0]
+    asleep, wake = multiprocessing.Event(), multiprocessing.Event()
+    target, report = multiprocessing.Value("q", -1), multiprocessing.Queue()
+    process = multiprocessing.Process(
+        target=_sleep_and_wake, args=(url, n, asleep, wake, target, report), daemon=True
+    )
+    process.start()
+    asleep.wait(120)
+    app.session.set_speed(SPEED)
+    before, frames, t0 = _rss_mb(), app.frames, time.perf_counter()
+    app.session.toggle_play()
+    end = t0 + sleep
+    while time.perf_counter() < end:
+        if app.session.engine.finished:  # the heart formed: again, so the run keeps changing
+            app.session.reset()
+            app.session.toggle_play()
+        time.sleep(0.2)
+    rate = (app.frames - frames) / (time.perf_counter() - t0)
+    app.session.pause()
+    app.request_render()  # as the Pause button does: every page's panel brought up to date
+    during = _rss_mb()
+    target.value = app.session.engine.state.events
+    time.sleep(0.5)  # the paused run's last frame drawn
+    wake.set()
+    results = report.get(timeout=180)
+    process.join(30)
+    times = sorted(t for t, _ in results)
+    again = sum(1 for _, a in results if a)
+    print(
+        "| pages asleep | asleep for | server frames/s meanwhile | memory before → asleep (MB) |"
+        " woken: showing the run's event after (s), median / slowest | of them connected anew |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|")
+    print(
+        f"| {n} | {sleep:.0f} s | {rate:.1f} | {before:.0f} → {during:.0f} | "
+        f"{statistics.median(times):.2f} / {times[-1]:.2f} | {again} |"
+    )
     app.stop()

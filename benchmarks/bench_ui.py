@@ -26,11 +26,13 @@
   (websocket clients that send a camera as a page does, read every message, and have each selected a
   robot); each page's scene updates/s in both, and the projector's share of its rate alone;
 - with ``--churn N``: N pages that connect and read nothing (laptops asleep) while the run plays, then
-  vanish without a goodbye (their process killed), three times: the server's memory after each round.
+  vanish without a goodbye (their process killed), three times: the server's memory after each round;
+- with ``--wake N [--asleep S]``: N pages that read nothing for S seconds (default 60) while the run
+  plays, then wake: how long until each shows the run's event, the server's frames/s meanwhile.
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
 python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60;
-python benchmarks/bench_ui.py --churn 200
+python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --wake 20
 """
 
 from __future__ import annotations
@@ -112,6 +114,8 @@ def main() -> None:
     ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
     ap.add_argument("--class", dest="pages", type=int, default=None, help="N lightweight class pages")
     ap.add_argument("--churn", type=int, default=None, help="N pages connected, asleep, then killed")
+    ap.add_argument("--wake", type=int, default=None, help="N pages asleep while the run plays, then awake")
+    ap.add_argument("--asleep", type=float, default=60.0, help="with --wake: seconds asleep")
     args = ap.parse_args()
     if args.pages is not None:
         from bench_class import lecture_hall
@@ -122,6 +126,11 @@ def main() -> None:
         from bench_class import churn
 
         churn(args.churn)
+        return
+    if args.wake is not None:
+        from bench_class import sleep_and_wake
+
+        sleep_and_wake(args.wake, args.asleep)
         return
     rng = random.Random(3)
     start = random_solvable_start(args.robots, rng)

@@ -11,6 +11,7 @@ import argparse
 import gc
 import threading
 import time
+import warnings
 from pathlib import Path
 
 import viser
@@ -108,6 +109,10 @@ class App:
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
+        # A page that leaves while its frame is drawn (a laptop closed, or asleep past the keepalive) gets
+        # that frame's last updates on a closed connection: expected, and nothing is lost (a page that
+        # comes back connects anew and is sent the whole state), so not a warning in the lecturer's terminal.
+        warnings.filterwarnings("ignore", r"Queued a \w+ on a closed connection", UserWarning)
         self.server = viser.ViserServer(host=host, port=port, label="apf-viz", verbose=verbose)
         gui = self.server.gui
         gui.configure_theme(control_width="large")
