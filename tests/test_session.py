@@ -339,12 +339,12 @@ def test_next_move_and_next_stage_run_until_something_happens():
     s = demo_session()
     forever = float("inf")  # no time budget: the test asserts what happens, not how fast
     message = s.run_until("move", seconds=forever)
-    assert s.engine.state.moves == 1 and message.startswith("a robot moved after")
+    assert s.engine.state.moves == 1 and message == f"a robot moved after {s.engine.step_index:,} steps"
     stage = s.view().stage
     message = s.run_until("stage", seconds=forever)
     assert s.view().stage != stage and message.startswith(s.view().stage)
     before = s.engine.step_index
-    assert s.run_until("stage", seconds=-1.0) == "still no new stage after 1 steps: press again"
+    assert s.run_until("stage", seconds=-1.0) == "still no new stage after 1 step: press again"
     assert s.engine.step_index == before + 1  # a spent budget stops after one step, whatever the clock
     s.set_scheduler("Manual")
     assert "Manual" in s.run_until("move")

@@ -99,16 +99,16 @@ class RunCommands(SessionCore):
                 if not self.run.step():
                     return f"the run is over ({e.outcome})" if e.finished else "nothing could run"
                 if e.finished:
-                    return f"{e.outcome} after {taken} steps"
+                    return f"{e.outcome} after {_steps(taken)}"
                 if what == "move" and e.state.moves > moves:
-                    return f"a robot moved after {taken} steps"
+                    return f"a robot moved after {_steps(taken)}"
                 if what == "stage" and e.state.version != version:  # stages change with lights or moves
                     version = e.state.version
                     now = stage_of(self.run, self.screen)
                     if now != stage:
-                        return f"{now} after {taken} steps"
+                        return f"{now} after {_steps(taken)}"
                 if time.monotonic() > deadline:
-                    return f"still no {wanted} after {taken:,} steps: press again"
+                    return f"still no {wanted} after {_steps(taken)}: press again"
             return f"no {wanted} within {limit:,} steps"
 
     def back(self) -> None:
@@ -180,3 +180,7 @@ class RunCommands(SessionCore):
 
     def pause(self) -> None:
         self.run.pause()
+
+
+def _steps(n: int) -> str:
+    return "1 step" if n == 1 else f"{n:,} steps"
