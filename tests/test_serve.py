@@ -225,7 +225,10 @@ def test_ctrl_c_while_the_server_starts_stops_it_without_a_traceback(after):
     time.sleep(after)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
-    assert proc.returncode in (0, 130), err
+    # Interrupted while it starts, it says so and returns 130; CPython then sometimes ends the process by
+    # SIGINT itself (about one start in four here, with the same line said), which a shell reports as
+    # 130 too.
+    assert proc.returncode in (0, 130, -signal.SIGINT), err
     assert "Traceback" not in err and len(err.strip().splitlines()) <= 1, err
 
 
