@@ -140,7 +140,7 @@ def main() -> int:
         f"| wall time ({args.scheduler}) | per move | peak memory |"
     )
     print("|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    rows = [(k, None) for k in map(int, filter(None, args.ks.split(",")))]
+    rows: list[tuple[int, int | None]] = [(k, None) for k in map(int, filter(None, args.ks.split(",")))]
     rows += [(args.box_k, b) for b in map(int, filter(None, args.boxes.split(",")))]
     ok = True
     try:

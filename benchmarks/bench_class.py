@@ -19,6 +19,7 @@ import viser
 import websockets
 from playwright.sync_api import sync_playwright
 from viser import _messages
+from websockets.typing import Subprotocol
 
 from apf_viz.ui.app import App, demo_session, free_port
 
@@ -82,7 +83,7 @@ def _pages(url: str, n: int, ready, stop, received, cpu) -> None:
 
 
 async def _main(url: str, n: int, ready, stop, received, cpu) -> None:
-    protocol = f"viser-v{viser.__version__}"
+    protocol = Subprotocol(f"viser-v{viser.__version__}")
     sockets = [await websockets.connect(url, subprotocols=[protocol], max_size=None) for _ in range(n)]
     ready.set()
     cpu0 = time.process_time()
@@ -203,7 +204,7 @@ def _connect_and_wait(url: str, n: int, ready, sleep: float) -> None:
     """n connections that read nothing (a laptop asleep), held ``sleep`` seconds or until killed."""
 
     async def hold() -> None:
-        protocol = f"viser-v{viser.__version__}"
+        protocol = Subprotocol(f"viser-v{viser.__version__}")
         sockets = [await websockets.connect(url, subprotocols=[protocol], max_size=None) for _ in range(n)]
         camera = _camera()
         for ws in sockets:  # a page reports its camera once it has loaded: the server then counts it in
@@ -246,6 +247,7 @@ def churn(n: int, rounds: int = 3) -> None:
             time.sleep(0.2)
         connected = len(app.screens)
         time.sleep(3.0)  # a few seconds of play with every one of them asleep
+        assert process.pid is not None
         os.kill(process.pid, signal.SIGKILL)  # abruptly: no close handshake
         process.join()
         deadline = time.time() + 60
@@ -308,9 +310,8 @@ def _sleep_and_wake(url: str, n: int, asleep, wake, target, report) -> None:
                 frame = await asyncio.wait_for(ws.recv(), 60)
             except websockets.ConnectionClosed:
                 again, uuid = True, []
-                ws = await websockets.connect(
-                    url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None
-                )
+                protocol = Subprotocol(f"viser-v{viser.__version__}")
+                ws = await websockets.connect(url, subprotocols=[protocol], max_size=None)
                 await ws.send(_camera())
                 continue
             values = _event_numbers(frame, uuid)
@@ -320,7 +321,7 @@ def _sleep_and_wake(url: str, n: int, asleep, wake, target, report) -> None:
                 return took, again
 
     async def main() -> None:
-        protocol = f"viser-v{viser.__version__}"
+        protocol = Subprotocol(f"viser-v{viser.__version__}")
         # A queue of one frame: asleep, the page stops reading its socket almost at once (as a laptop's
         # browser does), and what the server sends waits in the sockets' buffers, then in the server.
         connect = websockets.connect
@@ -346,7 +347,8 @@ def sleep_and_wake(n: int, sleep: float) -> None:
     app = App(demo_session(), port=free_port(), verbose=False)
     url = app.addresses[1].replace("http://", "ws://").split("?")[0]
     asleep, wake = multiprocessing.Event(), multiprocessing.Event()
-    target, report = multiprocessing.Value("q", -1), multiprocessing.Queue()
+    target = multiprocessing.Value("q", -1)
+    report: multiprocessing.Queue[list[tuple[float, bool]]] = multiprocessing.Queue()
     process = multiprocessing.Process(
         target=_sleep_and_wake, args=(url, n, asleep, wake, target, report), daemon=True
     )

@@ -69,15 +69,15 @@ def main() -> None:
     for name, start in ALL_FLIPS.items():
         k = len(start)
 
-        def run(start=start, k=k):
+        def run_all(start=start, k=k):
             return check(
                 algorithm, start, [(i, 0) for i in range(k)], all_flips(k), "async", 5_000_000, False
             )[0]
 
         t0 = time.perf_counter()
-        r = run()
+        r = run_all()
         seconds = time.perf_counter() - t0
-        peak = traced_peak(run) / 2**20
+        peak = traced_peak(run_all) / 2**20
         print(
             f"| {name} {start} | {r.verdict} | {r.states:,} | {seconds:.1f} s | {r.states / seconds:,.0f} | "
             f"{peak:.1f} MiB |",

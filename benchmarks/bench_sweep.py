@@ -11,7 +11,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from apf_viz.sweep import _cores, grid, parse_range, run_cell, run_sweep
+from apf_viz.sweep import grid, parse_range, run_cell, run_sweep, usable_cores
 
 
 def main() -> None:
@@ -27,7 +27,7 @@ def main() -> None:
     for c in cells:
         run_cell(c)
     serial = time.perf_counter() - t0
-    workers = _cores()
+    workers = usable_cores()
     t0 = time.perf_counter()
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(cluster)

@@ -28,8 +28,7 @@ def main() -> None:
     while sum(light == "done" for light in engine.state.lights) < 4 and session.step():
         pass
     while True:  # stop where some robot holds a snapshot that another robot's move made stale
-        start = list(session.config.robots)
-        moved = [any(s.seen_at != s.now_at for s in seen_robots(engine, r, start)) for r in range(engine.k)]
+        moved = [any(s.seen_at != s.now_at for s in seen_robots(engine, r, "held")) for r in range(engine.k)]
         stale = [r for r in range(engine.k) if moved[r]]
         if stale or not session.step():
             break
@@ -38,7 +37,7 @@ def main() -> None:
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=["--no-sandbox"])
         page = browser.new_page(viewport={"width": args.width, "height": args.height})
-        page.goto(f"http://127.0.0.1:{app.port}")
+        page.goto(app.addresses[0])  # the presenter address: the panel a lecturer sees
         page.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(3)
         for close in page.locator(".mantine-Notification-closeButton").all():
