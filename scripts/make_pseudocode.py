@@ -7,6 +7,7 @@ Run: python scripts/make_pseudocode.py apf_viz/algorithms/apf_opaque_grid/pseudo
 
 # ruff: noqa: E501
 
+import argparse
 import json
 import os
 import re
@@ -403,8 +404,13 @@ out = {
     "outside": OUTSIDE,
     "unreached": UNREACHED,
 }
-tmp = sys.argv[1] + ".tmp"
+parser = argparse.ArgumentParser(description="Write the paper's pseudocode, transcribed, as JSON.")
+parser.add_argument("out", help="apf_viz/algorithms/apf_opaque_grid/pseudocode.json")
+target = parser.parse_args().out
+if os.path.lexists(target) and (os.path.islink(target) or not os.path.isfile(target)):  # regular files only
+    sys.exit(f"make_pseudocode: {target} is not a regular file; nothing written")
+tmp = target + ".tmp"
 with open(tmp, "w", encoding="utf-8") as f:
     json.dump(out, f, ensure_ascii=False, indent=1)
-os.replace(tmp, sys.argv[1])  # atomically: a reader never sees half a file
-print(f"wrote {sys.argv[1]}")
+os.replace(tmp, target)  # atomically: a reader never sees half a file
+print(f"wrote {target}")
