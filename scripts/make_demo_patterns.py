@@ -5,9 +5,12 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import random
 from pathlib import Path
+
+from apf_viz.core.formats import write_atomic
 
 DRAWINGS = {
     "letter-A": ["..#..", ".#.#.", "#####", "#...#", "#...#"],
@@ -41,16 +44,16 @@ def points(rows: list[str]) -> list[list[int]]:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other
     out = Path("demo_patterns")
     for name, rows in DRAWINGS.items():
         data = {"name": name, "points": points(rows)}
-        (out / f"{name}.json").write_text(json.dumps(data) + "\n")
+        write_atomic(out / f"{name}.json", json.dumps(data) + "\n")
     rng = random.Random(2024)
     cells = [(x, y) for x in range(6) for y in range(6)]
     rnd = sorted(rng.sample(cells, 10))
-    (out / "random-10.json").write_text(
-        json.dumps({"name": "random-10", "points": [list(p) for p in rnd]}) + "\n"
-    )
+    data = {"name": "random-10", "points": [list(p) for p in rnd]}
+    write_atomic(out / "random-10.json", json.dumps(data) + "\n")
 
 
 if __name__ == "__main__":

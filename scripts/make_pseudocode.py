@@ -9,9 +9,10 @@ Run: python scripts/make_pseudocode.py apf_viz/algorithms/apf_opaque_grid/pseudo
 
 import argparse
 import json
-import os
 import re
 import sys
+
+from apf_viz.core.formats import InputError, write_atomic
 
 A1 = """
 Procedure Phase1()
@@ -407,10 +408,8 @@ out = {
 parser = argparse.ArgumentParser(description="Write the paper's pseudocode, transcribed, as JSON.")
 parser.add_argument("out", help="apf_viz/algorithms/apf_opaque_grid/pseudocode.json")
 target = parser.parse_args().out
-if os.path.lexists(target) and (os.path.islink(target) or not os.path.isfile(target)):  # regular files only
-    sys.exit(f"make_pseudocode: {target} is not a regular file; nothing written")
-tmp = target + ".tmp"
-with open(tmp, "w", encoding="utf-8") as f:
-    json.dump(out, f, ensure_ascii=False, indent=1)
-os.replace(tmp, target)  # atomically: a reader never sees half a file
+try:
+    write_atomic(target, json.dumps(out, ensure_ascii=False, indent=1))  # a reader never sees half a file
+except InputError as e:  # not a regular file: nothing written
+    sys.exit(f"make_pseudocode: {e}")
 print(f"wrote {target}")
