@@ -12,6 +12,12 @@ differs only in that cache, and only where its source is the source copied (:dat
 with any other viser, viser is left as it is. A page is sent what viser would have sent it: the same
 messages, binary buffers and fresh time stamp (the page paces messages by those stamps), the stamp last
 in the map instead of second.
+
+viser updates a node's or element's stored properties in place when one is assigned (so that a page that
+connects later is sent the current state), and pushes an update message with the change. A window that
+holds the creation message and was serialised before the change may be sent again only to a page whose
+window ends before that update message: the page then gets the earlier state and, in its next window,
+the update, and ends where it would have.
 """
 
 from __future__ import annotations
