@@ -1523,6 +1523,8 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     follower.get_by_text("Following the lecture").first.wait_for()
     presenter.get_by_text("Presenting").first.wait_for()
     assert not follower.get_by_role("button", name="Step").is_visible()  # its controls are absent
+    follower.get_by_role("button", name="Frame run").wait_for()  # its own camera's stays
+    assert not follower.get_by_role("button", name="Next move").is_visible()
     follower.get_by_text("the presenter's keys drive the run").first.wait_for()  # and its keys say so
     for key in ("Enter", " ", "PageDown", "Backspace", "m"):
         follower.keyboard.press(key)
@@ -1538,9 +1540,19 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     follower.get_by_role("button", name="Step").wait_for()  # the class now has the controls
     follower.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.step_index == 2)
+    follower.get_by_role("button", name="Next move").wait_for()
     presenter.get_by_label("Class may drive").uncheck()
     wait_for(lambda: not app.session.class_may_drive)
     follower.get_by_role("button", name="Step").wait_for(state="hidden")
+    follower.get_by_role("button", name="Next move").wait_for(state="hidden")
+    time.sleep(1.0)  # the checkbox gave the keys back: Space plays, and does not tick it again
+    presenter.keyboard.press(" ")
+    wait_for(lambda: app.session.playing)
+    presenter.keyboard.press(" ")
+    wait_for(lambda: not app.session.playing)
+    assert not app.session.class_may_drive
+    app.session.seek(2)
+    app.request_render()
     follower.keyboard.press("Enter")
     time.sleep(1.0)
     assert app.session.engine.step_index == 2  # taken back

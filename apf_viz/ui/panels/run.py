@@ -40,6 +40,7 @@ KEYS_FOLLOWING = (
     "<small>Keys: F frame the run · P presentation mode (the presenter's keys drive the run)</small>"
 )
 
+JUMPS = ("Next move", "Next stage", "Frame run")  # the Go to buttons; Frame run last: every page has it
 LAST_EVENT_REFRESH_S = 0.125
 """While playing, the last event's line changes at most this often: every event of a run played at up to
 8 steps a second, and no markdown re-rendered in every frame of a fast one (nobody reads 30 lines a
@@ -61,11 +62,7 @@ class RunFolder:
                 visible=False,
                 hint="let the class pages step, play and change the shared run (untick to take it back)",
             )
-            self.class_drives.on_update(
-                ctx.from_browser(
-                    lambda e: ctx.session.set_class_may_drive(self.class_drives.value, ctx.browser)
-                )
-            )
+            self.class_drives.on_update(ctx.from_browser(self._on_class_drives))
             self.demo = ctx.driving(
                 gui.add_dropdown("Demo", ("—", *scenarios()), initial_value="—"), shared=True
             )
@@ -88,7 +85,9 @@ class RunFolder:
             self.stops.on_click(ctx.guard(self._on_stop, "Lecture"))
             self.controls = ctx.driving(gui.add_button_group("Controls", ("Step", "Back", "Play", "Reset")))
             self.controls.on_click(ctx.guard(self._on_control))
-            gui.add_button_group("Go to", ("Next move", "Next stage", "Frame run")).on_click(self._on_jump)
+            # A page that may not drive keeps Frame run (its own camera) and not the jumps of the run.
+            self.jumps = gui.add_button_group("Go to", JUMPS)
+            self.jumps.on_click(self._on_jump)
             self.keys = gui.add_markdown(KEYS_DRIVING)
             gui.add_button(
                 "Presentation mode", hint="collapse this panel; a large caption on the canvas (P)"
@@ -117,6 +116,12 @@ class RunFolder:
             hint="go back to the recorded steps the last branch dropped, and follow them",
         )
         self.restore.on_click(self.ctx.guard(lambda e: s.return_to_set_aside()))
+
+    def _on_class_drives(self, event) -> None:
+        self.ctx.session.set_class_may_drive(self.class_drives.value, self.ctx.browser)
+        # The keys drive the run again: a checkbox left with the focus took Space for itself (and gave
+        # the class the run by a press meant for Play).
+        self.release_focus()
 
     def _to_fatal(self, event) -> None:
         step = self.ctx.session.view(self.ctx.browser).fatal[1]
@@ -205,7 +210,9 @@ class RunFolder:
         put(self.banner, content=view.banner)
         self._refresh_role()
         self._refresh_lecture(view)
-        fatal = view.fatal[1] is not None
+        drives = self.ctx.drives()
+        put(self.jumps, options=JUMPS if drives else JUMPS[-1:])
+        fatal = view.fatal[1] is not None and drives
         if self.fatal.visible != fatal:
             self.fatal.visible = fatal
         self._refresh_trace(view)
@@ -267,12 +274,14 @@ class RunFolder:
             self.lecture.value = title
 
     def _refresh_trace(self, view: SessionView) -> None:
-        following = view.trace_position is not None
+        drives = self.ctx.drives()  # a page that follows sees the trace's line, not its controls
+        following = view.trace_position is not None and drives
         if self.branch.visible != following:
             self.branch.visible = following
         put(self.trace, content=view.trace_line)
-        if self.restore.visible != (view.set_aside is not None):
-            self.restore.visible = view.set_aside is not None
+        restore = view.set_aside is not None and drives
+        if self.restore.visible != restore:
+            self.restore.visible = restore
         put(self.aside, content=view.aside_line)
 
 
