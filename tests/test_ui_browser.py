@@ -1532,6 +1532,12 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     time.sleep(1.0)
     assert app.session.engine.step_index == 0 and not app.session.playing  # nothing shared changed
     follower.get_by_text("this page follows the lecture").first.wait_for()  # and it was told why
+    follower.keyboard.press("p")  # presentation mode: the panel folds, and the caption says what it is
+    follower.get_by_text("the presenter's keys drive the run · P the panel").wait_for()
+    presenter.keyboard.press("p")
+    presenter.get_by_text("Presenting · P the panel · PageDown").wait_for()
+    follower.keyboard.press("p")
+    presenter.keyboard.press("p")
     presenter.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.step_index == 1)
     wait_for(lambda: event_value(follower) == 1)  # the class page follows the run

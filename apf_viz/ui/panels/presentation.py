@@ -92,9 +92,18 @@ class Presentation:
             self.ctx.frame(client)  # the caption's room at the bottom comes and goes
         self.ctx.changed()
 
+    def _page(self) -> str:
+        """What this page is, for its caption: presenting, following, driving with the class, its own."""
+        s = self.ctx.session
+        if s.private:
+            return "own"
+        if s.browser(self.ctx.browser).role == "presenter":
+            return "presenting"
+        return "class-drives" if self.ctx.drives() else "following"
+
     def refresh(self, view: SessionView) -> None:
         if self.html is not None:
-            words = lecture_html(view)
+            words = lecture_html(view, self._page())
             content = words + FIT.format(key=zlib.crc32(words.encode()))
             if self.html.content != content:
                 self.html.content = content

@@ -166,9 +166,10 @@ def _legend_html(view: SessionView) -> str:
     )
 
 
-def lecture_html(view: SessionView) -> str:
+def lecture_html(view: SessionView, page: str = "presenting") -> str:
     """Presentation mode's caption, large enough for the back of a lecture room: the stage, the last
-    event, the outcome located, and the lights in use with their meaning."""
+    event, the outcome located, and the lights in use with their meaning; last, what the ``page`` is
+    (a key of :data:`KEYS`) and its keys."""
     named = {  # each light in use: its swatch and name
         light: f"{_swatch(view.legend[light].color)}<b>{html.escape(light)}</b>"
         for light in view.lights_in_use
@@ -208,7 +209,7 @@ def lecture_html(view: SessionView) -> str:
         f'<div style="font-size:1.1em;line-height:1.3">{words}{outcome}{compared(view)}'
         f"<div><b>{symbol_html(view.stage)}</b></div>"
         f"<div>Event {view.event} · {last}</div>"
-        f'<div style="margin-top:6px">{lights}</div>{KEYS}</div>'
+        f'<div style="margin-top:6px">{lights}</div>{_KEYS_STYLE}{KEYS[page]}</div></div>'
     )
 
 
@@ -236,12 +237,18 @@ def _outcome_html(view: SessionView) -> str:
     return outcome
 
 
-# Presentation mode hides the panel and its list of keys: the caption names the ones a lecture needs.
-KEYS = (
-    '<div style="margin-top:6px;color:#777;font-size:0.75em">'
-    "P the panel · PageDown / PageUp next / previous stop · Enter step · Space play · "
-    "Esc gives the keys back from a field · Ctrl+K every key</div>"
-)
+# Presentation mode hides the panel and its list of keys: the caption says what the page is (the panel
+# that would say it is collapsed) and names the keys it has.
+_KEYS_STYLE = '<div style="margin-top:6px;color:#777;font-size:0.75em">'
+KEYS = {
+    "presenting": "<b>Presenting</b> · P the panel · PageDown / PageUp next / previous stop · Enter step · "
+    "Space play · Esc gives the keys back from a field · Ctrl+K every key",
+    "following": "<b>Following the lecture</b>: the presenter's keys drive the run · P the panel · F frame "
+    "the run · Try it yourself (in the panel) for a run of your own",
+    "class-drives": "<b>The presenter lets the class drive</b> · P the panel · Enter step · Space play",
+    "own": "<b>Your own run</b> · the projector is untouched · P the panel · Enter step · Backspace back · "
+    "Space play · Back to the lecture (in the panel)",
+}
 
 
 def compared(view: SessionView) -> str:
