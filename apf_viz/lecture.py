@@ -13,7 +13,8 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from apf_viz.core.formats import InputError, parse_json_model, read_text
+from apf_viz.core.files import read_text
+from apf_viz.core.formats import InputError, parse_json_model
 from apf_viz.demos import demo_dir, demo_files, scenarios
 
 MAX_LECTURE_BYTES = 1_000_000

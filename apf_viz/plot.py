@@ -12,7 +12,8 @@ import statistics
 from collections.abc import Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, replace_atomically
+from apf_viz.core.files import replace_atomically
+from apf_viz.core.formats import InputError
 
 FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png", "time_per_move.png")
 

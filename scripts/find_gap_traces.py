@@ -16,7 +16,8 @@ from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import audit_run, random_pattern, random_solvable_start
 from apf_viz.algorithms.apf_opaque_grid.resolutions import ALL, RESOLUTIONS
 from apf_viz.core.engine import Engine
-from apf_viz.core.formats import trace_text, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import trace_text
 from apf_viz.core.run import trace_header
 
 OUT = Path("tests/gap_traces")

@@ -10,7 +10,7 @@ import json
 import random
 from pathlib import Path
 
-from apf_viz.core.formats import write_atomic
+from apf_viz.core.files import write_atomic
 
 DRAWINGS = {
     "letter-A": ["..#..", ".#.#.", "#####", "#...#", "#...#"],

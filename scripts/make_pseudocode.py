@@ -12,7 +12,8 @@ import json
 import re
 import sys
 
-from apf_viz.core.formats import InputError, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import InputError
 
 A1 = """
 Procedure Phase1()

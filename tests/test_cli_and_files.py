@@ -11,7 +11,8 @@ from pathlib import Path
 import pytest
 
 from apf_viz.cli import main
-from apf_viz.core.formats import InputError, load_trace, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import InputError, load_trace
 from apf_viz.core.symmetry import unsolvable_axis
 
 GOOD_ROBOTS = {"robots": [[0, 0], [3, 0], [5, 0], [2, 2], [6, 2]]}

@@ -8,7 +8,8 @@ from apf_viz.algorithms.examples import CompactLeft, Stay
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.engine import Engine, EngineError
 from apf_viz.core.engine_state import Phase
-from apf_viz.core.formats import trace_text, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import trace_text
 from apf_viz.core.grid import Direction
 from apf_viz.core.run import advance, replay, trace_header
 from apf_viz.core.schedulers import make_scheduler

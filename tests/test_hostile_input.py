@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from apf_viz.core import formats, schedule
+from apf_viz.core import files, formats, schedule
 from apf_viz.core.formats import InputError, load_pattern, load_robots, load_trace
 from apf_viz.core.grid import COORD_LIMIT
 from apf_viz.core.schedule import load_schedule, parse_schedule_lines
@@ -37,26 +37,6 @@ def one_line_exit_2(out: subprocess.CompletedProcess, *needles: str) -> None:
 
 
 # ------------------------------------------------------------------------- 1. device files, read to a limit
-def endless_fifo(path: Path, chunk: bytes = b"\0" * 65536, total: int = 40_000_000) -> threading.Thread:
-    """A named pipe that claims a size of 0 and delivers ``total`` bytes (as /dev/zero would, but ends
-    so that a reader without a limit fails by its message, not by exhausting memory)."""
-    os.mkfifo(path)
-
-    def feed() -> None:
-        sent = 0
-        try:
-            with open(path, "wb") as f:
-                while sent < total:
-                    f.write(chunk)
-                    sent += len(chunk)
-        except BrokenPipeError:  # the reader stopped at its limit
-            pass
-
-    thread = threading.Thread(target=feed, daemon=True)
-    thread.start()
-    return thread
-
-
 @pytest.mark.parametrize(
     "load, limit_of",
     [
@@ -67,19 +47,43 @@ def endless_fifo(path: Path, chunk: bytes = b"\0" * 65536, total: int = 40_000_0
     ],
     ids=["robots", "pattern", "trace", "schedule"],
 )
-def test_a_file_that_claims_no_size_is_read_only_up_to_the_limit(tmp_path, monkeypatch, load, limit_of):
+def test_a_file_is_read_only_up_to_the_limit(tmp_path, monkeypatch, load, limit_of):
     if limit_of is not None:
         monkeypatch.setattr(*limit_of, 1_000_000)  # the real 1 GB would only make the test slow
-    fifo = tmp_path / "endless"
-    feeder = endless_fifo(fifo)
-    with pytest.raises(InputError, match=r"endless: file is too large \(more than [\d,]+ bytes\)"):
+    big = tmp_path / "big"
+    big.write_bytes(b"{" + b" " * 5_000_001)
+    with pytest.raises(InputError, match=r"big: file is too large \(more than [\d,]+ bytes\)"):
+        load(big)
+
+
+@pytest.mark.parametrize("load", [load_robots, load_pattern, load_trace, load_schedule])
+def test_a_fifo_is_refused_by_its_type_with_or_without_a_writer(tmp_path, load):
+    """A FIFO is never read: with no writer, open() would wait for ever; with one, it may never end."""
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    with pytest.raises(InputError, match=r"fifo: is a FIFO, not a regular file"):
         load(fifo)
-    feeder.join(timeout=30)
+
+    def feed() -> None:
+        try:
+            with open(fifo, "wb") as f:
+                f.write(b"{}" * 1000)
+        except BrokenPipeError:
+            pass
+
+    writer = threading.Thread(target=feed, daemon=True)
+    writer.start()
+    with pytest.raises(InputError, match=r"fifo: is a FIFO"):
+        load(fifo)
+    os.close(os.open(fifo, os.O_RDONLY | os.O_NONBLOCK))  # let the writer go, whatever the load did
+    writer.join(timeout=10)
 
 
 @pytest.mark.skipif(not Path("/dev/zero").exists(), reason="no /dev/zero here")
 def test_run_with_dev_zero_as_robots_is_one_line():
-    one_line_exit_2(run_cli("run", "--robots", "/dev/zero", "--pattern", str(CUP)), "/dev/zero", "too large")
+    one_line_exit_2(
+        run_cli("run", "--robots", "/dev/zero", "--pattern", str(CUP)), "/dev/zero", "is a character device"
+    )
 
 
 # ------------------------------------------------------------------------- 2, 3. tables that are not ours
@@ -322,15 +326,15 @@ def test_the_atomic_rename_itself_refuses_a_special_file(tmp_path):
     """Every writer (tables, images, counterexamples) goes through replace_atomically."""
     for path, kind in special_files(tmp_path):
         with pytest.raises(InputError, match=f"is {kind}"):
-            formats.write_atomic(path, "text")
+            files.write_atomic(path, "text")
         with pytest.raises(InputError, match=f"is {kind}"):
-            formats.replace_atomically(path, lambda tmp: Path(tmp).write_text("x"))
+            files.replace_atomically(path, lambda tmp: Path(tmp).write_text("x"))
     regular = tmp_path / "regular.txt"
     regular.write_text("old")
     link = tmp_path / "link.txt"
     link.symlink_to(regular)
-    formats.write_atomic(link, "new")  # a link to a regular file: the link is replaced, as before
-    assert link.read_text() == "new" and not link.is_symlink() and regular.read_text() == "old"
+    files.write_atomic(link, "new")  # a link to a regular file: written through, the link stays a link
+    assert link.is_symlink() and regular.read_text() == "new"
 
 
 def test_a_schedule_line_naming_a_robot_beyond_any_index_keeps_the_run_up_to_it(tmp_path):

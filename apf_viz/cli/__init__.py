@@ -12,6 +12,7 @@ import argparse
 import os
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from types import ModuleType
 
 from apf_viz.cli import (
@@ -43,7 +44,7 @@ from apf_viz.cli.common import (
     fail,
 )
 from apf_viz.core.fast_forward import WalkMismatch
-from apf_viz.core.formats import InputError
+from apf_viz.core.files import InputError, inputs_guarded, refuse_input_as_output
 
 COMMANDS: tuple[ModuleType, ...] = (
     run,
@@ -97,8 +98,27 @@ def build_parser() -> argparse.ArgumentParser:
             command.NAME, help=command.HELP, description=command.HELP, formatter_class=HelpFormatter
         )
         command.add_arguments(p)
-        p.set_defaults(func=command.run)
+        p.set_defaults(func=command.run, _outputs=getattr(command, "OUTPUTS", ()))
     return parser
+
+
+def _option(name: str) -> str:
+    return f"--{name.replace('_', '-')}"
+
+
+def refuse_inputs_as_outputs(args: argparse.Namespace) -> None:
+    """Before any work: no output option names a file that another option names (an input, or another
+    output), whether by the same path, a symbolic link or a hard link."""
+    outputs = {_option(n): v for n in args._outputs if (v := getattr(args, n, None)) is not None}
+    others = {
+        _option(n) if n != "results" else n: v
+        for n, v in vars(args).items()
+        if isinstance(v, Path) and _option(n) not in outputs
+    }
+    seen: dict[str, Path] = {}
+    for option, path in outputs.items():
+        refuse_input_as_output(path, {**others, **seen})
+        seen[option] = path
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -107,7 +127,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         argv = ["serve", *argv]  # the visualiser is the default command
     args = build_parser().parse_args(argv)
     try:
-        return args.func(args)
+        if args.command == "serve":  # the visualiser's saves are the user's own choice of file
+            return args.func(args)
+        refuse_inputs_as_outputs(args)
+        with inputs_guarded():
+            return args.func(args)
     except KeyboardInterrupt:  # before a command's own handling (an import, a file being read)
         print("apf-viz: interrupted", file=sys.stderr)
         return 130

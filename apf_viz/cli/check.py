@@ -11,6 +11,8 @@ from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem
 
 NAME = "check"
 HELP = "explore every schedule of a small start (model checking)"
+OUTPUTS = ("counterexample",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

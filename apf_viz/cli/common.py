@@ -13,7 +13,8 @@ from pathlib import Path
 from typing import NoReturn
 
 from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_command_line
-from apf_viz.core.formats import check_sizes, check_writable, load_pattern, load_robots, write_atomic
+from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.formats import check_sizes, load_pattern, load_robots
 from apf_viz.core.grid import as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary

@@ -7,11 +7,14 @@ from pathlib import Path
 
 from apf_viz.cli.common import add_run_options
 from apf_viz.cli.sessions import start_session, trace_session
-from apf_viz.core.formats import InputError, check_writable, write_atomic
+from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import AUTOMATIC
 
 NAME = "export"
 HELP = "a lecture or a run as one HTML page that plays from disk, with no server and no network"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -8,15 +8,14 @@ from pathlib import Path
 
 from apf_viz.cli.common import add_run_options, need_extra
 from apf_viz.cli.sessions import start_session, trace_session
-from apf_viz.core.formats import (
-    InputError,
-    check_writable,
-    write_atomic,
-)
+from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import AUTOMATIC
 
 NAME = "figure"
 HELP = "one moment of a run (or the paper's figures) as SVG, TikZ or PNG, in grid units, with a legend"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 FORMATS = ("svg", "tikz", "png")
 
 
@@ -52,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     if args.select is not None and not 0 <= args.select < len(session.robots):
         raise InputError(f"--select {args.select}: the run has robots 0 to {len(session.robots) - 1}")
     if args.format == "png":
-        from apf_viz.core.formats import replace_atomically
+        from apf_viz.core.files import replace_atomically
         from apf_viz.figure.export import figure_png
 
         data = figure_png(session, args.select, caption)

@@ -12,6 +12,8 @@ from apf_viz.cli.common import cluster, fail, need_extra, workers
 
 NAME = "lights"
 HELP = "which lights could be one colour? every merge of two, explored (apf-viz docs lights)"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -8,18 +8,14 @@ from pathlib import Path
 
 from apf_viz.cli.common import emit, fail
 from apf_viz.core import shapes
-from apf_viz.core.formats import (
-    MAX_INPUT_BYTES,
-    InputError,
-    check_writable,
-    pattern_json,
-    read_text,
-    robots_json,
-)
+from apf_viz.core.files import check_writable, read_text
+from apf_viz.core.formats import MAX_INPUT_BYTES, InputError, pattern_json, robots_json
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
 NAME = "pattern"
 HELP = "make a pattern (or robots) file from text, ASCII art or a shape"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 SHAPES = {

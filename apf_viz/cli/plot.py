@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import fail, need_extra
+from apf_viz.cli.common import need_extra
+from apf_viz.core.files import check_readable
 
 NAME = "plot"
 HELP = (
@@ -23,8 +24,7 @@ def run(args: argparse.Namespace) -> int:
     need_extra("plot", ["matplotlib", "pyarrow"])
     from apf_viz import lights, plot, sweep
 
-    if not args.results.is_file():
-        fail(f"{args.results}: no such file")
+    check_readable(args.results)  # missing, a folder or a FIFO: one line
     if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):
         written = [plot.plot_lights(lights.read_lights(args.results), args.out)]
     else:

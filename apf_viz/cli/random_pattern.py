@@ -5,11 +5,14 @@ from __future__ import annotations
 import argparse
 
 from apf_viz.cli.common import add_box_options, emit
-from apf_viz.core.formats import check_writable, pattern_json
+from apf_viz.core.files import check_writable
+from apf_viz.core.formats import pattern_json
 from apf_viz.core.random_configs import random_pattern
 
 NAME = "random-pattern"
 HELP = "print a random pattern as a pattern file"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -5,11 +5,14 @@ from __future__ import annotations
 import argparse
 
 from apf_viz.cli.common import add_box_options, emit
-from apf_viz.core.formats import check_writable, robots_json
+from apf_viz.core.files import check_writable
+from apf_viz.core.formats import robots_json
 from apf_viz.core.random_configs import random_robots
 
 NAME = "random-robots"
 HELP = "print a random solvable start as a robots file"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

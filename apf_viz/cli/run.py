@@ -17,7 +17,8 @@ from apf_viz.cli.common import (
 )
 from apf_viz.core.budget import EVENTS_PER_MOVE, EVENTS_PER_MOVE_PER_ROBOT, MOVES_PER_KD, run_budget
 from apf_viz.core.engine import Engine, LightSemantics
-from apf_viz.core.formats import RobotsFile, check_writable, trace_text, write_atomic
+from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.formats import RobotsFile, trace_text
 from apf_viz.core.run import RunSummary, advance, trace_header
 from apf_viz.core.schedule import (
     Schedule,
@@ -33,6 +34,8 @@ from apf_viz.core.schedulers import AUTOMATIC, DEFAULT_SCHEDULER, make_scheduler
 
 NAME = "run"
 HELP = "run an algorithm headless and report the outcome"
+OUTPUTS = ("trace", "schedule_out")
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def _schedule_adversary(args: argparse.Namespace, robots: RobotsFile, schedule: Schedule):

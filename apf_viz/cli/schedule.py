@@ -6,11 +6,14 @@ import argparse
 from pathlib import Path
 
 from apf_viz.cli.common import emit
-from apf_viz.core.formats import check_writable, load_trace, pattern_json, robots_json, write_atomic
+from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.formats import load_trace, pattern_json, robots_json
 from apf_viz.core.schedule import schedule_of_trace, schedule_text
 
 NAME = "schedule"
 HELP = "write the schedule (who acted and the flips, not what they saw) of a trace"
+OUTPUTS = ("out", "robots_out", "pattern_out")
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

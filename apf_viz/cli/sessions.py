@@ -8,6 +8,7 @@ from pathlib import Path
 
 from apf_viz.algorithms import algorithm_from_command_line
 from apf_viz.cli.common import shipped
+from apf_viz.core.files import read_bytes
 from apf_viz.core.formats import MAX_TRACE_BYTES, load_pattern, load_robots, load_trace
 from apf_viz.core.grid import as_point
 
@@ -20,7 +21,7 @@ def trace_session(trace: Path):
     assert path is not None
     load_trace(path)  # a missing or malformed file: one line, before anything
     session = demo_session()
-    session.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)
+    session.load_trace(path.name, read_bytes(path, MAX_TRACE_BYTES), MAX_TRACE_BYTES)
     return session, path.name
 
 

@@ -7,11 +7,13 @@ from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
 from apf_viz.cli.common import cluster, fail, need_extra, positive_seconds, workers
-from apf_viz.core.formats import check_writable
+from apf_viz.core.files import check_writable
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
 NAME = "sweep"
 HELP = "run a grid of runs on Dask into one results table (apf-viz docs sweeps)"
+OUTPUTS = ("out",)
+"""The options naming files this command writes (never one of its inputs)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

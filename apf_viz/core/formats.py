@@ -8,16 +8,13 @@ a temporary file in the same folder, then a rename.
 from __future__ import annotations
 
 import json
-import os
-import stat
-import tempfile
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import Annotated, Any, BinaryIO, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
 
+from apf_viz.core.files import InputError, read_lines, read_text
 from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Direction, Point, as_point, coordinate_problem
 from apf_viz.core.history import Event
@@ -26,10 +23,6 @@ TRACE_FORMAT = "apf-viz-trace"
 TRACE_VERSION = 1
 MAX_INPUT_BYTES = 5_000_000  # a robots or pattern file read from disk
 MAX_TRACE_BYTES = 1_000_000_000  # a trace read from disk: a 100-robot run writes about 300 MB
-
-
-class InputError(ValueError):
-    """A bad input file or value; ``str(e)`` is a one-line message naming the file and the problem."""
 
 
 GridPoint = Annotated[tuple[StrictInt, StrictInt], Field(description="[x, y] on the grid")]
@@ -177,53 +170,6 @@ def _one_line(err: ValidationError) -> str:
     return f"{loc}: {msg}{more}" if loc else f"{msg}{more}"
 
 
-@contextmanager
-def _reading(path: Path | str) -> Iterator[BinaryIO]:
-    """The file opened for reading, every failure an :class:`InputError` naming it."""
-    p = Path(path)
-    try:
-        with p.open("rb") as f:
-            yield f
-    except FileNotFoundError:
-        raise InputError(f"{p}: no such file") from None
-    except IsADirectoryError:
-        raise InputError(f"{p}: is a directory, not a file") from None
-    except UnicodeDecodeError:
-        raise InputError(f"{p}: not UTF-8 text") from None
-    except OSError as e:
-        raise InputError(f"{p}: cannot read ({e.strerror})") from None
-
-
-def _too_large(p: Path | str, limit: int) -> InputError:
-    return InputError(f"{p}: file is too large (more than {limit:,} bytes)")
-
-
-def _read_text(path: Path | str, limit: int = MAX_INPUT_BYTES) -> str:
-    """At most ``limit`` bytes, whatever ``stat`` says: a device or a pipe reports a size of 0 and may
-    never end (``/dev/zero``), so the limit is on what is read, not on what the file claims."""
-    with _reading(path) as f:
-        data = f.read(limit + 1)
-        if len(data) > limit:
-            raise _too_large(path, limit)
-        return data.decode("utf-8")
-
-
-def read_lines(path: Path | str, limit: int) -> Iterator[tuple[int, str]]:
-    """The file's non-blank lines with their numbers, read one at a time (a long trace or schedule is
-    never held whole), and at most ``limit`` bytes in all, however long a line."""
-    read = 0
-    with _reading(path) as f:
-        n = 0
-        while raw := f.readline(limit - read + 1):
-            read += len(raw)
-            if read > limit:
-                raise _too_large(path, limit)
-            n += 1
-            line = raw.decode("utf-8")
-            if line.strip():
-                yield n, line
-
-
 def numbered_lines(text: str) -> Iterator[tuple[int, str]]:
     """The non-blank lines of a text with their numbers (as :func:`read_lines` gives a file's)."""
     return ((n, line) for n, line in enumerate(text.splitlines(), 1) if line.strip())
@@ -253,11 +199,6 @@ def parse_json_model(model: type[BaseModel], text: str, where: str) -> Any:
     return _validate(model, _parse_json(text, where), where)
 
 
-def read_text(path: Path | str, limit: int) -> str:
-    """A UTF-8 file of at most ``limit`` bytes, whatever ``stat`` says (:func:`_read_text`)."""
-    return _read_text(path, limit)
-
-
 def parse_robots(text: str, where: str = "robots") -> RobotsFile:
     return _validate(RobotsFile, _parse_json(text, where), where)
 
@@ -267,11 +208,11 @@ def parse_pattern(text: str, where: str = "pattern") -> PatternFile:
 
 
 def load_robots(path: Path | str) -> RobotsFile:
-    return parse_robots(_read_text(path), str(path))
+    return parse_robots(read_text(path, MAX_INPUT_BYTES), str(path))
 
 
 def load_pattern(path: Path | str) -> PatternFile:
-    return parse_pattern(_read_text(path), str(path))
+    return parse_pattern(read_text(path, MAX_INPUT_BYTES), str(path))
 
 
 def header_line(numbered: Iterable[tuple[int, str]], where: str, what: str) -> tuple[Iterator, int, Any]:
@@ -328,81 +269,6 @@ def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "p
     problem = size_problem(len(pattern.points), len(robots.robots))
     if problem:
         raise InputError(f"{pattern_name}: {problem}")
-
-
-# ---------------------------------------------------------------------------------------------- writing
-_SPECIAL_FILES = (
-    (stat.S_ISCHR, "a character device"),
-    (stat.S_ISBLK, "a block device"),
-    (stat.S_ISFIFO, "a FIFO"),
-    (stat.S_ISSOCK, "a socket"),
-)
-
-
-def not_regular(path: Path | str) -> str | None:
-    """Why an output could not replace what ``path`` names (a device, a FIFO, a socket: a rename over it
-    would replace the node itself, e.g. the machine's /dev/null), or None: nothing there, or a regular
-    file (through a symbolic link, the link is what is replaced)."""
-    try:
-        mode = os.stat(path).st_mode
-    except (FileNotFoundError, NotADirectoryError):
-        return None
-    for test, kind in _SPECIAL_FILES:
-        if test(mode):
-            return f"{path}: is {kind}, not a regular file; refusing to replace it (give a file's path)"
-    return None
-
-
-def _refuse_special(path: Path | str) -> None:
-    problem = not_regular(path)
-    if problem:
-        raise InputError(problem)
-
-
-def check_writable(path: Path | str) -> None:
-    """Refuse, before any work is done, an output path that :func:`write_atomic` could not write: its
-    folder missing or read-only, the path a folder, or anything but a regular file (:func:`not_regular`).
-    The message names the path as given."""
-    p = Path(path)
-    folder = p.parent
-    if p.is_dir():
-        raise InputError(f"{path}: is a directory, not a file")
-    _refuse_special(p)
-    if not folder.is_dir():
-        raise InputError(f"{path}: cannot write: folder {str(folder)!r} does not exist")
-    if not os.access(folder, os.W_OK | os.X_OK):
-        raise InputError(f"{path}: cannot write: folder {str(folder)!r} is not writable")
-
-
-def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: str = ".tmp") -> None:
-    """The whole file or nothing: ``write(temporary path)`` in the same folder, then rename over ``path``
-    (a table or an image written by another library goes through here too)."""
-    p = Path(path)
-    _refuse_special(p)  # before a temporary file is made beside it (in /dev, for /dev/null)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=suffix, dir=p.parent or ".")
-    os.close(fd)
-    try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a saved file gets the usual permissions
-        write(tmp)
-        _refuse_special(p)  # again at the rename: the path may have changed meanwhile
-        os.replace(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def write_atomic(path: Path | str, text: str) -> None:
-    """Write the whole text file or nothing (fsynced before the rename)."""
-
-    def write(tmp: str) -> None:
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-
-    replace_atomically(path, write)
 
 
 def robots_json(robots: Iterable[Point], y_up: Sequence[bool] | None = None) -> str:

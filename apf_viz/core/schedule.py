@@ -25,7 +25,8 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, model_validator
 
 from apf_viz.core.engine import Engine, LightSemantics
-from apf_viz.core.formats import InputError, _parse_json, _validate, header_line, numbered_lines, read_lines
+from apf_viz.core.files import read_lines
+from apf_viz.core.formats import InputError, _parse_json, _validate, header_line, numbered_lines
 from apf_viz.core.history import Event, RecordedStep
 from apf_viz.core.run import steps_of_trace
 

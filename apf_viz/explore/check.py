@@ -8,7 +8,8 @@ from collections.abc import Callable, Sequence
 
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.engine import Engine
-from apf_viz.core.formats import trace_text, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import trace_text
 from apf_viz.core.grid import Point
 from apf_viz.core.run import trace_header
 from apf_viz.explore.explorer import Decisions, Explorer, Result

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import InputError
 from apf_viz.figure.drawing import drawing_of
 from apf_viz.figure.svg import to_svg
 from apf_viz.figure.tikz import to_tikz

@@ -9,7 +9,7 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import check_writable, write_atomic
+from apf_viz.core.files import check_writable, write_atomic
 from apf_viz.lights.merges import KEY, Merge, ks_label, starts_for
 from apf_viz.lights.stages import explore_merge, fold_random, random_cells, verdict_row, verify_start
 from apf_viz.lights.table import read_lights, write_lights

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import AtWork, MergedLights
-from apf_viz.core.formats import write_atomic
+from apf_viz.core.files import write_atomic
 from apf_viz.core.grid import Point, as_point
 from apf_viz.lights.merges import (
     DEMO_SCALES,

@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, replace_atomically
+from apf_viz.core.files import check_readable, replace_atomically
+from apf_viz.core.formats import InputError
 from apf_viz.lights.merges import COLUMNS
 from apf_viz.lights.stories import story
 
@@ -14,6 +15,7 @@ def read_lights(path: Path) -> list[dict]:
     """The rows of a lab's table, or [] when there is none; another file is refused, never overwritten."""
     if not path.exists():
         return []
+    check_readable(path)  # a FIFO would block the reader
     try:
         import pyarrow.parquet as pq
 
@@ -29,6 +31,7 @@ def is_lights_table(path: Path) -> bool:
     import pyarrow.parquet as pq
 
     try:
+        check_readable(path)
         return tuple(pq.read_schema(path).names) == COLUMNS
     except Exception:
         return False

@@ -10,7 +10,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import AtWork, MergedLights
-from apf_viz.core.formats import InputError, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import InputError
 from apf_viz.core.grid import as_point
 
 COLUMNS = (

@@ -10,7 +10,8 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, check_writable
+from apf_viz.core.files import check_writable
+from apf_viz.core.formats import InputError
 from apf_viz.progress import show_progress
 from apf_viz.sweep.cells import KEY, Cell, row, run_cell
 from apf_viz.sweep.results import read_results, write_results

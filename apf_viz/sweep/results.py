@@ -6,7 +6,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, replace_atomically, write_atomic
+from apf_viz.core.files import check_readable, replace_atomically, write_atomic
+from apf_viz.core.formats import InputError
 from apf_viz.sweep.cells import _LATER_COLUMNS, COLUMNS, KEY
 
 
@@ -15,6 +16,7 @@ def read_results(path: Path) -> list[dict]:
     wrote (another CSV, a Parquet file with other columns, notes) is refused, never overwritten."""
     if not path.exists():
         return []
+    check_readable(path)  # a FIFO would block the reader
     try:
         if path.suffix == ".csv":
             import csv

@@ -18,6 +18,7 @@ import viser
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
 from apf_viz.core.engine import Engine
+from apf_viz.core.files import read_bytes
 from apf_viz.core.formats import (
     MAX_TRACE_BYTES,
     InputError,
@@ -393,7 +394,7 @@ def session_from_args(args: argparse.Namespace) -> Session:
         session = demo_session(**options, plugins=plugins)
         path = Path(args.trace)
         load_trace(path)  # validates the file with a one-line error before the UI starts
-        session.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)  # the command line's own file
+        session.load_trace(path.name, read_bytes(path, MAX_TRACE_BYTES), MAX_TRACE_BYTES)  # the CLI's file
         return session
     robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
     pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)

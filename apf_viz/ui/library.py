@@ -10,7 +10,8 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
-from apf_viz.core.formats import InputError, load_pattern, pattern_json, write_atomic
+from apf_viz.core.files import write_atomic
+from apf_viz.core.formats import InputError, load_pattern, pattern_json
 from apf_viz.core.grid import Point, as_point
 
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9 _-]{0,59}")
