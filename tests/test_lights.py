@@ -17,6 +17,7 @@ from apf_viz.core.formats import InputError, load_trace
 from apf_viz.core.run import advance, engine_for_trace, replay
 from apf_viz.core.schedule import Schedule, follow, schedule_of_trace
 from apf_viz.core.schedulers import make_scheduler
+from apf_viz.explore.escape import escape_evidence
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLE = ROOT / "docs" / "lights.parquet"  # the lab's full matrix (docs/LIGHTS.md says how it was made)
@@ -182,6 +183,9 @@ def _violation_reached(header, events) -> str:
         assert at.startswith(str((x, y)))
         far = max(max(abs(x - sx), abs(y - sy)) for sx, sy in header.robots)
         assert far > 2 * len(header.robots) + 4  # beyond any margin the explorer gives this start
+        # Shown, not assumed: continued by a fair scheduler, the robot is still walking away at the cap
+        # (four shipped escapes once stopped at a corner past the box and formed, under every scheduler).
+        assert escape_evidence(header, events, algorithm, int(robot)) is not None, "the walk ends"
     elif verdict is None:  # a random run cut by its budget: the robots never stopped
         from apf_viz.core.budget import run_budget
 
@@ -260,3 +264,15 @@ def test_a_start_the_base_algorithm_fails_on_is_left_out_and_said(tmp_path):
     assert all(r["detail"] and r["y_up"] for r in failed)
     # Kept beside the table, it is not explored again.
     assert lights.base_verified_starts("apf-opaque-grid-literal", (1, 2), path, 1, None, None) == kept
+
+
+def test_a_robot_that_leaves_the_box_and_stops_is_no_escape():
+    """The explorer's escape of merge(off=decider), as once shipped: robot 0 leaves the box, then stops at
+    its corner a few cells beyond, and every fair continuation forms. The lab now looks on instead."""
+    from apf_viz.explore.escape import continuations, escaping_robot
+
+    header, events = load_trace(ROOT / "tests" / "data" / "left-the-box-off-decider.jsonl")
+    algorithm = get_algorithm(header.algorithm)
+    robot = escaping_robot(header.options["detail"])
+    assert escape_evidence(header, events, algorithm, robot) is None
+    assert {c.outcome for c in continuations(header, events, algorithm, robot)} == {"formed"}

@@ -174,7 +174,8 @@ def print_summary(summary: RunSummary, as_json: bool) -> None:
     else:
         limit = ""
         if summary.outcome == "limit":
-            limit = f" (the run's cap: {summary.max_moves:,} moves or {summary.max_events:,} events)"
+            held = f" or {summary.max_recorded:,} steps held in memory" if summary.max_recorded else ""
+            limit = f" (the run's cap: {summary.max_moves:,} moves, {summary.max_events:,} events{held})"
         print(
             f"{summary.outcome}{limit}: {summary.events} events, {summary.moves} moves "
             f"(moves/(k·D) = {summary.moves_per_kD:.3f}), {summary.cycles} cycles, {summary.skipped} "

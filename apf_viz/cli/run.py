@@ -89,8 +89,9 @@ def _add_limits(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--max-events",
         type=positive,
-        help="stop with outcome 'limit' at this many events, never past them (under lc-atomic, where a "
-        "Look is two events, possibly one short) (default: the run's budget, "
+        help="stop with outcome 'limit' at this many events, never past them under any scheduler or light "
+        "semantics (a step that would pass them, such as a round of several robots, is not taken) (default: "
+        "the run's budget, "
         f"{EVENTS_PER_MOVE} per budgeted move, or {EVENTS_PER_MOVE} + {EVENTS_PER_MOVE_PER_ROBOT}·k with "
         "--all-activations)",
     )

@@ -23,6 +23,7 @@ from typing import Literal
 import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision, Pattern
+from apf_viz.core.budget import MAX_RECORDED
 from apf_viz.core.engine_state import COMPUTED, IDLE, LOOKED, NEXT_EVENT, EngineState, Outcome
 from apf_viz.core.events import Events
 from apf_viz.core.fast_forward import check_walks_requested
@@ -85,8 +86,11 @@ class Engine(Events, Walking):
         light_semantics: ``"compute"`` (a new light is visible from the end of Compute) or
             ``"lc-atomic"`` (Look and Compute are one atomic event).
         max_events: the run ends with outcome ``limit`` before its events could pass this many (None: no
-            limit); under lc-atomic, where a Look step is two events, it may end one event short.
+            limit), under every scheduler: a step that would pass it (a synchronous round of many robots,
+            a Look and Compute as one under lc-atomic) is not taken; it may end a step short of it.
         max_moves: the same for moves (None: no limit).
+        max_recorded: the run ends with outcome ``limit`` when its history holds this many entries (a
+            step each, a fast-forwarded walk one): memory bounded at any distance (None: no limit).
         checkpoint_every: steps between state checkpoints used by :meth:`seek`.
         skip_noops: schedulers choose only among robots whose next event can change something
             (:meth:`eligible`); False keeps every no-op cycle (``--all-activations``).
@@ -110,6 +114,7 @@ class Engine(Events, Walking):
         light_semantics: LightSemantics = "compute",
         max_events: int | None = None,
         max_moves: int | None = None,
+        max_recorded: int | None = MAX_RECORDED,
         checkpoint_every: int = 64,
         skip_noops: bool = True,
         use_watches: bool = True,
@@ -125,6 +130,7 @@ class Engine(Events, Walking):
         # the next step could pass max_events, so it never holds more (one short of it, at worst).
         self._most_events_a_step = 2 if light_semantics == "lc-atomic" else 1
         self.max_moves = max_moves
+        self.max_recorded = max_recorded
         self.checkpoint_every = checkpoint_every
         self.skip_noops = skip_noops
         self.use_watches = use_watches
@@ -292,11 +298,20 @@ class Engine(Events, Walking):
         st = self.state
         if st.outcome is not None:
             raise EngineError(f"the run is over ({st.outcome})")
+        if self.max_events is not None and st.events + self._events_of(record) > self.max_events:
+            st.outcome = "limit"  # a round of many robots, or a Look and Compute as one, would pass it
+            return []
         position = st.steps
         events = self._apply(record)
         self.history.record(position, record, events)
         self._checkpoint_after(position)
         return events
+
+    def _events_of(self, record: StepRecord) -> int:
+        """The events this step makes: one per robot, two for a Look under lc-atomic (with its Compute)."""
+        robots = record[0]
+        both = self.light_semantics == "lc-atomic" and self.state.phase[robots[0]] == IDLE
+        return len(robots) * (2 if both else 1)
 
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
@@ -356,9 +371,12 @@ class Engine(Events, Walking):
             return
         if changed and self._quiescent():
             st.outcome = "formed" if matches_pattern(self.current_points(), self.pattern) else "stuck"
-        elif (self.max_events is not None and st.events + self._most_events_a_step > self.max_events) or (
-            self.max_moves is not None and st.moves >= self.max_moves
+        elif (
+            (self.max_events is not None and st.events + self._most_events_a_step > self.max_events)
+            or (self.max_moves is not None and st.moves >= self.max_moves)
+            or (self.max_recorded is not None and self.history.entries >= self.max_recorded - 1)
         ):
+            # (a step is recorded after this check, a walk before: either way at most max_recorded)
             st.outcome = "limit"
 
     def _quiescent(self) -> bool:

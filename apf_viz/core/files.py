@@ -193,6 +193,28 @@ def read_lines(path: Path | str, limit: int) -> Iterator[tuple[int, str]]:
 
 
 # ---------------------------------------------------------------------------------------------- writing
+def make_folder(path: Path) -> list[Path]:
+    """Make the folder ``path`` and its missing parents; the folders made, deepest first (for
+    :func:`remove_if_empty`)."""
+    missing = []
+    p = path
+    while not p.exists() and p != p.parent:
+        missing.append(p)
+        p = p.parent
+    path.mkdir(parents=True, exist_ok=True)
+    return missing
+
+
+def remove_if_empty(made: list[Path]) -> None:
+    """Remove the folders :func:`make_folder` made that are still empty: a command that failed leaves no
+    empty folder behind."""
+    for folder in made:
+        try:
+            folder.rmdir()
+        except OSError:  # not empty (or gone): kept
+            return
+
+
 def not_regular(path: Path | str) -> str | None:
     """Why an output could not replace what ``path`` names (a device, a FIFO, a socket: a rename over it
     would replace the node itself, e.g. the machine's /dev/null), or None: nothing there, or a regular

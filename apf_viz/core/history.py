@@ -231,6 +231,7 @@ class Steps(Sequence[RecordedStep]):
         return StepRecord(robots, round)
 
 
+_REPEATS_KEPT = 1 << 16  # distinct Look and Compute steps remembered for sharing (then forgotten)
 _THIN_EVERY = 64  # thin the checkpoints whenever their number is a multiple of this
 _DENSE_AGE = 4096  # checkpoints younger than this many steps are all kept
 
@@ -252,6 +253,7 @@ class History:
 
     def __init__(self, initial: EngineState) -> None:
         self._packed: list[_Packed | Walk] = []
+        self._repeated: dict[_Packed, _Packed] = {}  # recent Look and Compute steps, each kept once
         self._length = 0  # steps recorded (a walk stands for many)
         # Each entry's first step, kept once a walk is recorded (until then entry i is step i).
         self._starts: list[int] | None = None
@@ -265,6 +267,11 @@ class History:
     @property
     def length(self) -> int:
         return self._length
+
+    @property
+    def entries(self) -> int:
+        """Entries held in memory: a step each, a fast-forwarded walk one for all its steps."""
+        return len(self._packed)
 
     def packed(self, i: int) -> _Packed:
         """Step i (0 ≤ i < length) as stored: packed, a walk's step expanded."""
@@ -306,6 +313,10 @@ class History:
         """Store the step taken at ``position`` (0-based). A step equal to the recorded one keeps the
         future (a redo); a different one branches: the old future is dropped."""
         step = _pack(record, events)
+        if step[2][-1][1] != "move":  # a Look or a Compute repeats, cycle after cycle: kept once
+            step = self._repeated.setdefault(step, step)
+            if len(self._repeated) > _REPEATS_KEPT:
+                self._repeated = {}
         if position == self._length:  # the usual case: recording at the end
             self._append(step, 1)
             return

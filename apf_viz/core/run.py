@@ -67,6 +67,7 @@ class RunSummary:
     max_moves: int | None  # the run's caps (its budget unless the command line gave them)
     max_events: int | None
     lights_used: list[str]
+    max_recorded: int | None = None  # steps the run may hold in memory (core/budget.py)
 
     @classmethod
     def of(cls, engine: Engine, outcome: str | None = None) -> RunSummary:
@@ -87,6 +88,7 @@ class RunSummary:
             max_moves=engine.max_moves,
             max_events=engine.max_events,
             lights_used=sorted(st.lights_used, key=lambda s: order.get(s, len(order))),
+            max_recorded=engine.max_recorded,
         )
 
 

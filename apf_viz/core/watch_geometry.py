@@ -15,10 +15,16 @@ BIG = 1 << 62  # beyond every coordinate (COORD_LIMIT): an unbounded side of a b
 VECTOR_SPAN = 1 << 30  # offsets below this: products of two fit in int64
 
 
+MAX_LISTED = 4096
+"""The most lattice points a segment is listed by; callers keep longer ones by direction and length."""
+
+
 def lattice_points(x: int, y: int, dx: int, dy: int) -> list[Point]:
     """The lattice points of the segment from (x, y) to (x + dx, y + dy), without (x, y) itself: nothing
     moves onto a watching robot."""
     g = gcd(dx, dy)
+    if g > MAX_LISTED:  # a list that grows with a distance: the caller was to keep the segment whole
+        raise ValueError(f"a segment of {g:,} lattice points is not listed (at most {MAX_LISTED:,})")
     ux, uy = dx // g, dy // g
     return [(x + t * ux, y + t * uy) for t in range(1, g + 1)]
 

@@ -328,11 +328,13 @@ class Watches(QuietSteps):
             if i not in intact:
                 continue
             x, y = int(P[r, 0]), int(P[r, 1])
-            points = lattice_points(x, y, p[0] - x, p[1] - y)
-            within = self._within[r]
-            if len(points) <= SHORT and not any(q in robot_at for q in points[:-1]) and inside(p, within):
-                self._link(r, i, points)
-                continue
+            dx, dy = p[0] - x, p[1] - y
+            # The length first: a witness may walk a billion cells away, and its segment is not listed then.
+            if gcd(dx, dy) <= SHORT and inside(p, self._within[r]):
+                points = lattice_points(x, y, dx, dy)
+                if not any(q in robot_at for q in points[:-1]):
+                    self._link(r, i, points)
+                    continue
             slots.discard((r, i))
             del self._witness_of[r][i]
             intact.discard(i)

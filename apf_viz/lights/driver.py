@@ -9,7 +9,7 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from apf_viz.core.files import check_writable, write_atomic
+from apf_viz.core.files import check_writable, make_folder, remove_if_empty, write_atomic
 from apf_viz.lights.merges import KEY, Merge, ks_label, starts_for
 from apf_viz.lights.stages import explore_merge, fold_random, random_cells, verdict_row, verify_start
 from apf_viz.lights.table import read_lights, write_lights
@@ -28,12 +28,30 @@ def run_lab(
     progress: Callable[[str], None] | None = None,
 ) -> list[dict]:
     """Every stage for every merge not already in ``out``; returns every row of the file."""
-    from apf_viz import sweep
-
     check_writable(out)
     rows = read_lights(out)
     traces = traces or out.with_name(out.stem + "-traces")
-    traces.mkdir(parents=True, exist_ok=True)
+    made = make_folder(traces)
+    try:
+        return _run_stages(chosen, ks, out, rows, traces, random_runs, workers, cluster, progress)
+    except BaseException:
+        remove_if_empty(made)  # a bad --cluster, Ctrl+C before any trace: no empty folder left
+        raise
+
+
+def _run_stages(
+    chosen: Sequence[Merge],
+    ks: Sequence[int],
+    out: Path,
+    rows: list[dict],
+    traces: Path,
+    random_runs: int,
+    workers: int | None,
+    cluster: str | None,
+    progress: Callable[[str], None] | None,
+) -> list[dict]:
+    from apf_viz import sweep
+
     ks_text = ks_label(ks)
     done = {tuple(r[c] for c in KEY) for r in rows}
     todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]

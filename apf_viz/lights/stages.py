@@ -49,7 +49,7 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
     assert isinstance(algorithm, MergedLights)
     counted = AtWork(algorithm)
     t0 = time.perf_counter()
-    states = 0
+    states = left_box = 0
     for n, (name, start) in enumerate(starts, 1):
         k = len(start)
         result, y_up = explore_every_flip(counted, start)
@@ -63,13 +63,20 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
         if result.verdict == "budget":
             return verdict_row(merge, ks, "inconclusive", "explorer", result.detail, t0=t0, **base)
         text = counterexample_text(algorithm, start, line_pattern(k), y_up, "async", result)
-        path = Path(traces) / f"{merge.variant}.jsonl"
-        write_atomic(path, text)
         violation = (
             result.detail
             if result.detail.startswith(result.verdict)
             else f"{result.verdict}: {result.detail}"
         )
+        if result.verdict == "escape":
+            evidence = _escape_shown(algorithm, text, result.detail)
+            if evidence is None:  # it left the explored box, and every fair continuation ended: look on
+                left_box += 1
+                continue
+            violation = f"{violation}; {evidence}"
+        violation += f"; {_left(left_box)}" if left_box else ""
+        path = Path(traces) / f"{merge.variant}.jsonl"
+        write_atomic(path, text)
         return verdict_row(
             merge,
             ks,
@@ -83,8 +90,31 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
         )
     verdict = "survives" if counted.count else "untested"
     return verdict_row(
-        merge, ks, verdict, "explorer", "", starts=len(starts), states=states, exercised=counted.count, t0=t0
+        merge, ks, verdict, "explorer", _left(left_box), starts=len(starts), states=states,
+        exercised=counted.count, t0=t0,
+    )  # fmt: skip
+
+
+def _left(starts: int) -> str:
+    """The starts on which a robot left the explored box but every fair continuation ended."""
+    if not starts:
+        return ""
+    return (
+        f"on {starts} start{'s' if starts > 1 else ''} before, a robot left the explored box but every fair "
+        "continuation ended (not an escape)"
     )
+
+
+def _escape_shown(algorithm, text: str, detail: str) -> str | None:
+    """How a fair continuation of the explorer's escape shows a walk without end, or None
+    (:mod:`apf_viz.explore.escape`)."""
+    from apf_viz.core.formats import parse_trace
+    from apf_viz.explore.escape import escape_evidence, escaping_robot
+
+    header, events = parse_trace(text)
+    robot = escaping_robot(detail)
+    evidence = escape_evidence(header, events, algorithm, robot)
+    return None if evidence is None else evidence.describe(robot)
 
 
 def verdict_row(merge: Merge, ks, verdict, stage, violation, *, t0: float, **values) -> dict:

@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from apf_viz.core.files import check_writable
+from apf_viz.core.files import check_writable, make_folder, remove_if_empty
 from apf_viz.core.formats import InputError
 from apf_viz.progress import show_progress
 from apf_viz.sweep.cells import KEY, Cell, row, run_cell
@@ -56,7 +56,7 @@ def dask_client(cluster: str | None, workers: int | None):
     if cluster:
         try:
             return Client(cluster, timeout="10s"), None
-        except (OSError, TimeoutError) as e:
+        except Exception as e:  # unreachable, or a protocol whose package is missing (ucx://): one line
             reason = str(e) if str(e) not in ("", "None") else type(e).__name__
             raise InputError(f"--cluster {cluster}: cannot reach a Dask scheduler there ({reason})") from None
     local = LocalCluster(
@@ -90,13 +90,16 @@ def run_sweep(
     seconds) and at the end, also after Ctrl+C. Returns all rows of the file."""
     check_writable(out)
     rows = read_results(out)  # before any work: a file that is not a results table is refused
-    if traces is not None:
-        traces.mkdir(parents=True, exist_ok=True)
+    made = make_folder(traces) if traces is not None else []
     done = {tuple(r[c] for c in KEY) for r in rows}
     todo = [replace(c, timeout=run_timeout) for c in cells if c.key() not in done]
     if not todo:
         return rows
-    client, local = dask_client(cluster, workers)
+    try:
+        client, local = dask_client(cluster, workers)
+    except BaseException:
+        remove_if_empty(made)
+        raise
     futures = {client.submit(run, c, str(traces) if traces else None, pure=False): c for c in todo}
     tracker = _Tracker(client, futures, progress)
     try:
