@@ -242,3 +242,67 @@ def test_serve_demo_opens_a_scenario_named_by_a_word():
     session = session_from_args(args)
     assert session.screen.scenario_note == scenarios()["The L2 lockstep counterexample"].shows
     assert session.run.following  # a trace scenario: Step follows it
+
+
+def test_a_pages_malformed_messages_are_one_line_on_the_terminal_and_change_nothing():
+    """Before, each was a traceback of 12–16 lines from websockets' handler (viser cannot decode it)."""
+    import asyncio
+
+    import msgspec
+    import viser
+    import websockets
+
+    proc, port = serve("serve")
+    try:
+        wait_for_page(port, proc)
+        bad = [
+            msgspec.msgpack.encode({"type": "NoSuchMessage"}),
+            msgspec.msgpack.encode({"type": "GuiUpdateMessage"}),
+            msgspec.msgpack.encode([1, 2]),
+            b"\xc1",
+        ]
+
+        async def send(payload: bytes) -> None:
+            url, protocol = f"ws://127.0.0.1:{port}", f"viser-v{viser.__version__}"
+            async with websockets.connect(url, subprotocols=[protocol]) as ws:
+                try:
+                    await ws.send(payload)
+                    await asyncio.sleep(0.5)
+                except websockets.exceptions.ConnectionClosed:
+                    pass
+
+        for payload in bad:
+            asyncio.run(send(payload))
+        wait_for_page(port, proc)  # still serving
+    finally:
+        proc.terminate()
+        _, err = proc.communicate(timeout=30)
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert "Traceback" not in err, err
+    assert len(lines) == 1 and "a page sent a message the server could not use (KeyError" in lines[0], err
+
+
+def test_one_line_holds_back_what_comes_within_its_interval():
+    import logging
+
+    from apf_viz.ui.page_errors import EVERY, OneLine
+
+    now = [100.0]
+    one = OneLine(clock=lambda: now[0])
+
+    def record() -> logging.LogRecord:
+        try:
+            raise ValueError("bad\nmessage")
+        except ValueError:
+            return logging.LogRecord(
+                "websockets.server", logging.ERROR, "x", 1, "failed", None, sys.exc_info()
+            )
+
+    first = record()
+    assert one.filter(first) and first.exc_info is None and "\n" not in first.getMessage()
+    assert not one.filter(record()) and not one.filter(record())
+    now[0] += EVERY
+    later = record()
+    assert one.filter(later) and "2 more since" in later.getMessage()
+    plain = logging.LogRecord("asyncio", logging.INFO, "x", 1, "no exception", None, None)
+    assert one.filter(plain) and plain.getMessage() == "no exception"

@@ -19,7 +19,7 @@ MOVES_PER_KD = 50
 MAX_RECORDED = 4_000_000
 """The most steps a run holds in memory (a fast-forwarded walk is one, however long): a run whose robots
 walk far while the adversary interleaves them records a step per event, so without this bound its memory
-grows with the distance. About 200 bytes a step at k = 12 (docs/PERFORMANCE.md): under 1 GB."""
+grows with the distance. The worst measured at this cap: 1.06 GB resident (docs/PERFORMANCE.md)."""
 EVENTS_PER_MOVE = 20  # skipping: ~3 measured; light changes without a move come on top
 EVENTS_PER_MOVE_PER_ROBOT = 4  # all activations: ~3 per robot per move measured (one no-op cycle)
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.formats import TraceHeader
-from apf_viz.core.grid import Point
+from apf_viz.core.grid import Point, as_point
 from apf_viz.core.history import Event
 from apf_viz.core.run import advance, engine_for_trace, replay
 from apf_viz.core.schedulers import make_scheduler
@@ -67,7 +67,7 @@ def continuations(
     header: TraceHeader, events: Sequence[Event], algorithm: Algorithm, robot: int
 ) -> Iterator[Continuation]:
     """The trace replayed, then continued by each fair scheduler and seed in turn."""
-    box = [tuple(p) for p in header.robots] + [tuple(p) for p in header.pattern]
+    box = [as_point(p) for p in header.robots] + [as_point(p) for p in header.pattern]
     for scheduler in FAIR:
         for seed in SEEDS:
             engine = engine_for_trace(header, algorithm, max_events=len(events) + CONTINUED_EVENTS)

@@ -36,6 +36,7 @@ from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.network import check_listen, reachable_host
 from apf_viz.ui.network import free_port as free_port  # where tests and benchmarks find it
 from apf_viz.ui.own_runs import OwnRuns
+from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Role, Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
@@ -110,6 +111,7 @@ class App:
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
+        quiet_page_errors()  # a page's malformed message: one line on the terminal, not a traceback
         # A page that leaves while its frame is drawn (a laptop closed, or asleep past the keepalive) gets
         # that frame's last updates on a closed connection: expected, and nothing is lost (a page that
         # comes back connects anew and is sent the whole state), so not a warning in the lecturer's terminal.
