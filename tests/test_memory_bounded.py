@@ -88,3 +88,18 @@ def test_max_events_is_never_passed(scheduler, semantics):
         engine = Engine(robots, pattern, algorithm, light_semantics=semantics, max_events=cap)
         advance(engine, make_scheduler(scheduler), 1)
         assert engine.outcome == "limit" and engine.state.events <= cap, (cap, engine.state.events)
+
+
+def test_a_walk_down_a_column_another_robot_shares_ends():
+    """The family fast-forward does not cover (docs/CLI.md): the far robot walks down the column of a
+    robot on the line, whose watch has the walker as its witness, 12,960 cells away; every cycle is a step,
+    and the run still forms, well inside the memory cap."""
+    from apf_viz.core.adversarial_starts import generate
+
+    case = generate("on-column", 19, k=3, far=20000)
+    assert case.robots[2] == (1, 12960) and case.robots[0][0] == 1  # two robots on column x = 1
+    algorithm, _ = algorithm_from_command_line(DEFAULT_ALGORITHM)
+    engine = Engine(case.robots, case.pattern, algorithm, y_up=case.y_up, fast_forward=True)
+    advance(engine, make_scheduler("stale-first"), 19)
+    assert engine.outcome == "formed"
+    assert engine.history.entries > 12_000  # step by step, not one walk: the docs' claim, held
