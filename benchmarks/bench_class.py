@@ -22,6 +22,7 @@ from viser import _messages
 from websockets.typing import Subprotocol
 
 from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.own_runs import OWN_SPEED
 
 WINDOW_S = 10.0
 SPEED = 30.0
@@ -136,7 +137,9 @@ def _measure(app: App, projector, student, start_record: str) -> tuple[float, fl
     return a, b, sent
 
 
-def lecture_hall(n: int, args: list[str], start_record: str) -> None:
+def lecture_hall(n: int, args: list[str], start_record: str, own: bool = False) -> None:
+    """The projector alone, then beside n class pages: each with a robot selected, or (``own``) each
+    trying a run of its own, playing at the fastest an own run may."""
     app = App(demo_session(), port=free_port(), verbose=False)
     presenter_url, class_url = app.addresses
     with sync_playwright() as p:
@@ -149,6 +152,7 @@ def lecture_hall(n: int, args: list[str], start_record: str) -> None:
         student.get_by_label("Event").wait_for(timeout=60_000)
         time.sleep(2.0)
         alone = _measure(app, projector, student, start_record)
+        rss_alone = _rss_mb()
         print("| pages | projector updates/s | student page updates/s | server frames/s |")
         print("|---:|---:|---:|---:|")
         print(f"| 2 (no class) | {alone[0]:.1f} | {alone[1]:.1f} | {alone[2]:.1f} |", flush=True)
@@ -159,26 +163,54 @@ def lecture_hall(n: int, args: list[str], start_record: str) -> None:
             time.sleep(0.2)
         robots = app.session.engine.current_points()
         light = [cid for cid, x in app.screens.items() if x.state.role == "class"][1:]
+        if own:
+            app.session.pause()
+            app.session.reset()  # each own run branches at the start: it plays the whole window
         for i, cid in enumerate(sorted(light)):
+            if own:  # Try it yourself, then Play at the fastest an own run may
+                screen = app.screens[cid]
+                app.own_runs.try_alone(screen)
+                screen.session.set_speed(OWN_SPEED)
+                screen.session.toggle_play()
+                continue
             app.session.click(robots[i % len(robots)], cid)  # each has selected a robot of its own
         app.request_render()
         time.sleep(2.0)
         cpu0, wall0 = time.process_time(), time.perf_counter()
+        owned = [x.session for x in app.own_runs.attached()]
+        before = sum(run.engine.state.events for run in owned)
         full = _measure(app, projector, student, start_record)
+        if own:
+            played = sum(run.engine.state.events for run in owned) - before
+            still = sum(run.playing for run in owned)
+            print(f"(the {len(owned)} own runs played {played:,} events meanwhile; {still} still playing)")
         server_cpu = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
         share = full[0] / alone[0] if alone[0] else float("nan")
+        what = "each playing its own run" if own else "each a robot selected"
         print(
-            f"| 2 + {n} class pages (each a robot selected) | {full[0]:.1f} ({share:.2f} of alone) | "
+            f"| 2 + {n} class pages ({what}) | {full[0]:.1f} ({share:.2f} of alone) | "
             f"{full[1]:.1f} | {full[2]:.1f} |"
         )
         connected = len(app.screens)
         held = time.perf_counter() - wall0
+        rss_with = _rss_mb()
         pages.stop()
         received = pages.received / max(1, n)
         print(
             f"({connected} pages connected; each lightweight page read {received / 1e6:.1f} MB; CPU while "
             f"measured: the server {server_cpu:.2f} cores, the {n} lightweight pages about "
             f"{pages.cpu / (held + 4.0):.2f})"
+        )
+        deadline = time.time() + 60
+        while len(app.screens) > 2 and time.time() < deadline:
+            time.sleep(0.2)
+        time.sleep(2.0)
+        import gc
+
+        gc.collect()
+        print(
+            f"(server memory: {rss_alone:.0f} MB before the class, {rss_with:.0f} MB with it, "
+            f"{_rss_mb():.0f} MB after its {n} pages left; {len(app.own_runs.attached())} own runs left)"
         )
         browser.close()
     app.stop()

@@ -25,6 +25,8 @@
   projector page at 1024×768 and a real student page, first alone, then with N lightweight class pages
   (websocket clients that send a camera as a page does, read every message, and have each selected a
   robot); each page's scene updates/s in both, and the projector's share of its rate alone;
+- with ``--own N``: the same, each of the N class pages trying a run of its own and playing it at the
+  fastest an own run may; and the server's memory before, with and after the class;
 - with ``--churn N``: N pages that connect and read nothing (laptops asleep) while the run plays, then
   vanish without a goodbye (their process killed), three times: the server's memory after each round;
 - with ``--wake N [--asleep S]``: N pages that read nothing for S seconds (default 60) while the run
@@ -32,7 +34,8 @@
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
 python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60;
-python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --wake 20
+python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --wake 20;
+python benchmarks/bench_ui.py --own 24
 """
 
 from __future__ import annotations
@@ -113,14 +116,15 @@ def main() -> None:
     ap.add_argument("--speed", type=float, default=2000.0, help="steps/s requested while playing")
     ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
     ap.add_argument("--class", dest="pages", type=int, default=None, help="N lightweight class pages")
+    ap.add_argument("--own", type=int, default=None, help="N class pages each playing a run of its own")
     ap.add_argument("--churn", type=int, default=None, help="N pages connected, asleep, then killed")
     ap.add_argument("--wake", type=int, default=None, help="N pages asleep while the run plays, then awake")
     ap.add_argument("--asleep", type=float, default=60.0, help="with --wake: seconds asleep")
     args = ap.parse_args()
-    if args.pages is not None:
+    if args.pages is not None or args.own is not None:
         from bench_class import lecture_hall
 
-        lecture_hall(args.pages, ARGS, START_RECORD)
+        lecture_hall(args.pages or args.own, ARGS, START_RECORD, own=args.own is not None)
         return
     if args.churn is not None:
         from bench_class import churn

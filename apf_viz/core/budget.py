@@ -19,7 +19,8 @@ MOVES_PER_KD = 50
 MAX_RECORDED = 4_000_000
 """The most steps a run holds in memory (a fast-forwarded walk is one, however long): a run whose robots
 walk far while the adversary interleaves them records a step per event, so without this bound its memory
-grows with the distance. The worst measured at this cap: 1.06 GB resident (docs/PERFORMANCE.md)."""
+grows with the distance. The worst measured at this cap: 1.9 GB resident (docs/PERFORMANCE.md); it lets the
+largest run measured, k = 1,000 to formed (3.0 million steps, 1.7 GiB), finish."""
 EVENTS_PER_MOVE = 20  # skipping: ~3 measured; light changes without a move come on top
 EVENTS_PER_MOVE_PER_ROBOT = 4  # all activations: ~3 per robot per move measured (one no-op cycle)
 

@@ -294,12 +294,8 @@ class App:
 
     def _render(self) -> None:
         everyone = self._screens()
-        for screen in everyone:  # a page trying its own run: drawn from it alone, when it changed
-            if screen.own is not None and screen.stale:
-                try:
-                    self.own_runs.render(screen)
-                except RuntimeError:  # the browser left while its frame was drawn
-                    continue
+        if self.own_runs.draw(everyone, 1.0 / FPS):  # pages trying their own runs: paced, within a share
+            self._dirty.set()
         screens = [x for x in everyone if x.own is None]
         # While the run plays, a class page's panel and selection are brought up to date a dozen times a
         # second, in turn (the canvas they share is drawn for all at once, every frame): the projector

@@ -53,6 +53,7 @@ class BrowserScreen:
         # Its own run's picture and panel may differ from what the page was last sent: its own commands,
         # clicks, zoom and play set it; an own run unchanged is not drawn again (ui/own_runs.py).
         self.stale = True
+        self.drawn_at = 0.0  # when its own run was last drawn (perf_counter): own runs are paced
         self.panels = Panels(
             client,
             cast(Session, self.attachment),

@@ -25,10 +25,15 @@ MAX_OWN_RUNS = 24
 """Runs of their own at once; the next page to ask is told to wait for one to end."""
 EXTRA_EVENTS = 100_000
 """How far an own run may go past where it branched (a few MB of history); it then ends ("budget")."""
-OWN_SHARE = 0.2
+OWN_SHARE = 0.15
 """The share of each frame that every own run's Play together may take; the shared run keeps the rest."""
 OWN_SPEED = 60.0
 """The fastest an own run plays, in steps a second (the projector's run may go faster)."""
+OWN_DRAWS = 6.0
+"""The most often an own run is drawn, a second: its page sees its run at ten frames a second, and a
+class of them costs the server a third of the messages that drawing every frame would."""
+OWN_DRAW_SHARE = 0.1
+"""The share of each frame that drawing the own runs may take; the pages not drawn are drawn next."""
 
 
 def branch(shared: Session) -> Session:
@@ -128,6 +133,24 @@ class OwnRuns:
         with screen.client.atomic():
             screen.draw_own(views[cid])
             screen.panels.refresh(views[cid])
+
+    def draw(self, screens: Iterable[BrowserScreen], frame_seconds: float) -> bool:
+        """Draw the pages whose own run changed: each at most :data:`OWN_DRAWS` times a second, those
+        waiting longest first, within :data:`OWN_DRAW_SHARE` of the frame; whether any is left to draw."""
+        now = time.perf_counter()
+        end = now + OWN_DRAW_SHARE * frame_seconds
+        waiting = sorted((x for x in screens if x.own is not None and x.stale), key=lambda x: x.drawn_at)
+        left = False
+        for screen in waiting:
+            if now - screen.drawn_at < 1.0 / OWN_DRAWS or time.perf_counter() > end:
+                left = True
+                continue
+            try:
+                self.render(screen)
+            except RuntimeError:  # the browser left while its frame was drawn
+                continue
+            screen.drawn_at = now
+        return left
 
     def play(self, frame_seconds: float, since: float) -> bool:
         """Plays the own runs that play, which are then drawn anew; whether any plays."""
