@@ -419,3 +419,13 @@ def test_max_events_under_lc_atomic_is_never_passed(cap):
                    light_semantics="lc-atomic", max_events=cap, fast_forward=fast)  # fmt: skip
         advance(e, make_scheduler("async"), 1)
         assert e.outcome == "limit" and cap - 1 <= e.state.events <= cap, (cap, e.state.events)
+
+
+@pytest.mark.parametrize("command", ["sweep", "lights"])
+def test_a_cluster_address_of_a_protocol_not_installed_is_one_line_and_leaves_no_folder(tmp_path, command):
+    """Before: a 40-line traceback (ucx:// needs a package Dask does not bring) and an empty traces folder."""
+    args = ["--ks", "3", "--seeds", "1"] if command == "sweep" else ["--ks", "1-2", "--merges", "off=call"]
+    args += ["--cluster", "ucx://x:1", "--out", "r.parquet", "--traces", "tr"]
+    out = run_cli(command, *args, cwd=tmp_path)
+    one_line_exit_2(out, "--cluster ucx://x:1: cannot reach a Dask scheduler there")
+    assert list(tmp_path.iterdir()) == []
