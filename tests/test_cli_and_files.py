@@ -130,7 +130,7 @@ def test_run_json_output_trace_and_replay(write_json, tmp_path, capsys):
     assert code == 0 and out["outcome"] == "formed"
     assert set(out) == {
         "outcome", "final", "k", "D", "moves", "events", "cycles", "skipped", "moves_per_kD", "max_moves",
-        "max_events", "lights_used",
+        "max_events", "lights_used", "max_recorded",
     }  # fmt: skip
     assert (out["k"], out["D"]) == (5, 7) and out["max_moves"] == 50 * 5 * 7  # D: the start is 7 wide
     assert out["final"] == [[0, 0], [1, 0], [2, 0], [0, 2], [1, 2]]

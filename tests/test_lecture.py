@@ -367,3 +367,37 @@ def test_enter_at_a_compare_stop_whose_run_is_over_says_each_sides_state():
     said = s.why_not_step()
     assert said.startswith("the run is over (stuck)")
     assert f"the run beside it is over too, at event {end.event} ({end.outcome})" in said
+
+
+@pytest.mark.parametrize("moved", ["play", "step", "back", "branch"])
+def test_pagedown_after_the_run_moved_lands_where_pagedown_alone_lands(moved):
+    """Before, Play at stop 3 and then PageDown showed stop 4's words over the formed heart (event 542):
+    the next stop ran on from wherever the run had gone. Now it starts from the stop's own state."""
+    lecture = lectures()["The algorithm in 12 stops"]
+    alone = demo_session()
+    alone.start_lecture(lecture)
+    for _ in range(3):
+        alone.next_stop()
+    s = demo_session()
+    s.start_lecture(lecture)
+    s.next_stop()
+    s.next_stop()  # stop 3
+    if moved == "play":
+        for _ in range(400):
+            if not s.step():
+                break
+    elif moved == "step":
+        s.step()
+    elif moved == "back":
+        s.back()
+    else:  # back, then a step the history did not record: a branch drops the stop's future
+        scheduler = s.run.config.scheduler
+        s.seek(0)
+        s.set_scheduler("round-robin")
+        s.step()
+        s.step()
+        s.set_scheduler(scheduler)
+    s.next_stop()
+    assert s.engine.state.events == alone.engine.state.events
+    assert s.engine.current_points() == alone.engine.current_points()
+    assert s.view().lecture == alone.view().lecture

@@ -37,6 +37,8 @@ class Lectern(Protocol):
 
     def step(self) -> bool: ...
 
+    def seek(self, step: float) -> None: ...
+
     def view(self) -> SessionView: ...
 
 
@@ -64,6 +66,9 @@ class Lecturer:
         self.session, self.lecture, self.limit = session, lecture, limit
         self.position = -1
         self.reached: Reached | None = None
+        # Where the current stop left the run: its engine, history generation and step. A stop's words
+        # hold there only, so the next stop starts from there, not from wherever Play went meanwhile.
+        self._mark: tuple[int, int, int] | None = None
 
     @property
     def stop(self) -> Stop | None:
@@ -85,12 +90,29 @@ class Lecturer:
         """Stand at stop ``index``: from the stop itself when it follows the current one, else replayed
         from the last stop at or before it that loads a scenario."""
         stops = self.lecture.stops
-        first = index if index == self.position + 1 else max(i for i in range(index + 1) if stops[i].scenario)
+        follows = index == self.position + 1 and self._back_at_stop()
+        first = index if follows else max(i for i in range(index + 1) if stops[i].scenario)
         reached = Reached(index, True, self.session.engine.state.events)
         for i in range(first, index + 1):
             reached = self._apply(i, stops[i])
         self.position, self.reached = index, reached
+        e = self.session.engine
+        self._mark = (id(e), e.history.generation, e.step_index)
         return reached
+
+    def _back_at_stop(self) -> bool:
+        """Put the run back where the current stop left it, if it moved on (Play, Step, Back) along the
+        same history; False if it cannot (another run loaded, a branch dropped those steps): the stop is
+        then replayed from its scenario. Either way the next stop is reached as PageDown alone reaches it."""
+        if self.position < 0:
+            return True  # the first stop loads its scenario
+        e = self.session.engine
+        mark = self._mark
+        if mark is None or mark[:2] != (id(e), e.history.generation) or e.history.length < mark[2]:
+            return False
+        if e.step_index != mark[2]:
+            self.session.seek(mark[2])
+        return True
 
     def check(self) -> list[Reached]:
         """Every stop in order, as a lecture check the evening before."""
