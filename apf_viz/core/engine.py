@@ -126,8 +126,7 @@ class Engine(Events, Walking):
         self.algorithm = algorithm
         self.light_semantics: LightSemantics = light_semantics
         self.max_events = max_events
-        # A robot's step makes one event, or two under lc-atomic (its Look and Compute): the run ends where
-        # the next step could pass max_events, so it never holds more (one short of it, at worst).
+        # A robot's step makes one event, or two under lc-atomic (its Look and Compute).
         self._most_events_a_step = 2 if light_semantics == "lc-atomic" else 1
         self.max_moves = max_moves
         self.max_recorded = max_recorded
@@ -298,20 +297,16 @@ class Engine(Events, Walking):
         st = self.state
         if st.outcome is not None:
             raise EngineError(f"the run is over ({st.outcome})")
-        if self.max_events is not None and st.events + self._events_of(record) > self.max_events:
-            st.outcome = "limit"  # a round of many robots, or a Look and Compute as one, would pass it
+        # A round of many robots, or a Look and its Compute as one under lc-atomic, may not pass the cap.
+        both = self.light_semantics == "lc-atomic" and st.phase[record[0][0]] == IDLE
+        if self.max_events is not None and st.events + len(record[0]) * (1 + both) > self.max_events:
+            st.outcome = "limit"
             return []
         position = st.steps
         events = self._apply(record)
         self.history.record(position, record, events)
         self._checkpoint_after(position)
         return events
-
-    def _events_of(self, record: StepRecord) -> int:
-        """The events this step makes: one per robot, two for a Look under lc-atomic (with its Compute)."""
-        robots = record[0]
-        both = self.light_semantics == "lc-atomic" and self.state.phase[robots[0]] == IDLE
-        return len(robots) * (2 if both else 1)
 
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state

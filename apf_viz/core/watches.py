@@ -328,8 +328,7 @@ class Watches(QuietSteps):
             if i not in intact:
                 continue
             x, y = int(P[r, 0]), int(P[r, 1])
-            dx, dy = p[0] - x, p[1] - y
-            # The length first: a witness may walk a billion cells away, and its segment is not listed then.
+            dx, dy = p[0] - x, p[1] - y  # the length first: a far witness's segment is never listed
             if gcd(dx, dy) <= SHORT and inside(p, self._within[r]):
                 points = lattice_points(x, y, dx, dy)
                 if not any(q in robot_at for q in points[:-1]):
