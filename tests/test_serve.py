@@ -215,7 +215,7 @@ def test_a_step_leaving_many_robots_to_decide_is_drawn_before_the_next_step(monk
     assert (max(played) == 1) == (dear == 0), played
 
 
-@pytest.mark.parametrize("after", [0.3, 1.0, 2.5])
+@pytest.mark.parametrize("after", [0.1, 0.3, 1.0, 2.5])
 def test_ctrl_c_while_the_server_starts_stops_it_without_a_traceback(after):
     """Early (imports), while viser starts, or once serving: the process ends, and says no more than a
     line."""
