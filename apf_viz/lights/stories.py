@@ -29,7 +29,7 @@ def story(trace: Path) -> str:
         first = f"at event {at} robot {ev.robot} turns {turns} ({ev.rule_id}) and shows {ev.light}"
     else:
         first = f"no robot shows {hidden} in these events"
-    verdict = header.options.get("verdict", engine.outcome or "")
+    verdict = header.options.get("verdict", engine.outcome or "limit")  # a trace that stops running: its cap
     return f"{first}; {_ending(verdict, header, events, engine)}"
 
 
@@ -57,7 +57,10 @@ def _ending(verdict: str, header, events, engine) -> str:
         last = rules[-1] if rules else "?"
         return f"then robot {robot} walks away without end ({last}, {len(rules)} moves so far)"
     if verdict == "limit":
-        return f"then it runs on until the event budget ({len(events)} events)"
+        return (
+            f"then it runs on without forming until its budget, 50·k·D moves or 20 events a move "
+            f"({engine.state.moves:,} moves, {len(events):,} events)"
+        )
     return f"then {header.options.get('detail', verdict)}"
 
 
