@@ -3,8 +3,9 @@
     python benchmarks/bench_far.py --fars 10000,100000,1000000 --seeds 1-3
 
 For each family of :mod:`apf_viz.core.adversarial_starts` (k = 3), each distance and seed, the run under
-``--scheduler`` with walks, then step by step, each to its end or ``--seconds``: a row per run (seconds,
-steps held, outcome) and a line per family and distance (the medians, the speed-up).
+``--scheduler`` with walks, then step by step, each to its end or ``--seconds``: a row per run (the
+start's D, as drawn: a family's distance is log-uniform up to ``far``; seconds, steps held, outcome) and
+a line per family and distance (the medians, the speed-up).
 """
 
 from __future__ import annotations
@@ -15,10 +16,16 @@ import time
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
 from apf_viz.core.adversarial_starts import FAMILIES, generate
-from apf_viz.core.budget import run_budget
+from apf_viz.core.budget import paper_D, run_budget
 from apf_viz.core.engine import Engine
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
+
+
+def start_D(family: str, far: int, seed: int) -> int:
+    """The paper's D of the start drawn (a family draws its distance log-uniformly up to ``far``)."""
+    case = generate(family, seed, k=3, far=far)
+    return paper_D(case.robots, case.pattern)
 
 
 def one(
@@ -48,8 +55,8 @@ def main() -> None:
     args = p.parse_args()
     lo, _, hi = args.seeds.partition("-")
     seeds = range(int(lo), int(hi or lo) + 1)
-    print("| family | far | seed | with walks: s, steps, outcome | step by step: s, steps, outcome |")
-    print("|---|---:|---:|---|---|")
+    print("| family | far | seed | D | with walks: s, steps, outcome | step by step: s, steps, outcome |")
+    print("|---|---:|---:|---:|---|---|")
     summary = []
     for family in args.families.split(","):
         for far in map(int, args.fars.split(",")):
@@ -60,7 +67,8 @@ def main() -> None:
                 fast.append(a[0])
                 slow.append(b[0])
                 cells = [f"{r[0]:.2f}, {r[1]:,}, {r[2]}" for r in (a, b)]
-                print(f"| {family} | {far:,} | {seed} | {cells[0]} | {cells[1]} |", flush=True)
+                d = start_D(family, far, seed)
+                print(f"| {family} | {far:,} | {seed} | {d:,} | {cells[0]} | {cells[1]} |", flush=True)
             f, s = statistics.median(fast), statistics.median(slow)
             summary.append(
                 f"{family} at {far:,}: median {f:.2f} s with walks, {s:.2f} s step by step ({s / f:.0f}×)"
