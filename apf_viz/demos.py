@@ -12,6 +12,8 @@ from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
+from apf_viz.core.files import read_text
+from apf_viz.core.formats import MAX_INPUT_BYTES
 from apf_viz.core.grid import as_point
 
 _PACKAGE = Path(__file__).resolve().parent
@@ -79,14 +81,14 @@ class _Scenarios(BaseModel):
 @cache
 def scenarios() -> dict[str, Scenario]:
     """The ready scenarios of ``demo_patterns/scenarios.json``, by name, in the file's order."""
-    parsed = _Scenarios.model_validate_json((demo_dir() / "scenarios.json").read_text())
+    parsed = _Scenarios.model_validate_json(read_text(demo_dir() / "scenarios.json", MAX_INPUT_BYTES))
     return {s.name: s for s in parsed.scenarios}
 
 
 def pattern_of_size(k: int) -> tuple[str, list[tuple[int, int]]] | None:
     """The first demo pattern (by name) with ``k`` points, if there is one."""
     for name, path in demo_files().items():
-        points = json.loads(path.read_text()).get("points", [])
+        points = json.loads(read_text(path, MAX_INPUT_BYTES)).get("points", [])
         if len(points) == k:
             return name, [as_point(p) for p in points]
     return None

@@ -14,7 +14,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from apf_viz.core.files import read_text
-from apf_viz.core.formats import InputError, parse_json_model
+from apf_viz.core.formats import MAX_INPUT_BYTES, InputError, parse_json_model
 from apf_viz.demos import demo_dir, demo_files, scenarios
 
 MAX_LECTURE_BYTES = 1_000_000
@@ -193,5 +193,5 @@ class _Figures(BaseModel):
 @cache
 def figures() -> dict[str, Figure]:
     """The paper's figures reproduced (``demo_patterns/figures.json``), by label, in the paper's order."""
-    parsed = _Figures.model_validate_json((demo_dir() / "figures.json").read_text(encoding="utf-8"))
+    parsed = _Figures.model_validate_json(read_text(demo_dir() / "figures.json", MAX_INPUT_BYTES))
     return {f.label: f for f in parsed.figures}

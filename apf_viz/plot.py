@@ -19,7 +19,9 @@ FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png", "time_p
 
 
 def _save(fig, path: Path) -> None:
-    replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"), ".png")
+    replace_atomically(
+        path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"), ".png", through_links=False
+    )
 
 
 def _finish(fig, ax, path: Path, xlabel: str, ylabel: str, title: str) -> Path:

@@ -235,18 +235,27 @@ def _refuse_special(path: Path | str) -> None:
         raise InputError(problem)
 
 
-def write_target(path: Path | str) -> Path:
+def write_target(path: Path | str, through_links: bool = True) -> Path:
     """Where a write to ``path`` lands: ``path`` itself, or through symbolic links the file they name
-    (written through, as a shell's ``>`` does: the link stays a link)."""
+    (written through, as a shell's ``>`` does: the link stays a link). A file whose name apf-viz makes
+    itself (a trace in a traces folder, a figure, a plot, a table beside ``--out``: ``through_links``
+    False) is never written through a link: whatever the link points at was not named by the user."""
     p = Path(path)
-    return Path(os.path.realpath(p)) if p.is_symlink() else p
+    if not p.is_symlink():
+        return p
+    if not through_links:
+        raise InputError(
+            f"{path}: is a symbolic link; a file apf-viz names itself is never written through one "
+            "(remove the link, or choose another folder)"
+        )
+    return Path(os.path.realpath(p))
 
 
-def check_writable(path: Path | str) -> None:
+def check_writable(path: Path | str, through_links: bool = True) -> None:
     """Refuse, before any work is done, an output path that :func:`write_atomic` could not write: its
     folder missing or read-only, the path a folder, anything but a regular file (:func:`not_regular`), or
     a file this command has read. The message names the path as given."""
-    p = write_target(path)
+    p = write_target(path, through_links)
     if p.is_dir():
         raise InputError(f"{path}: is a directory, not a file")
     _refuse_special(p)
@@ -258,11 +267,14 @@ def check_writable(path: Path | str) -> None:
         raise InputError(f"{path}: cannot write: folder {str(folder)!r} is not writable")
 
 
-def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: str = ".tmp") -> None:
+def replace_atomically(
+    path: Path | str, write: Callable[[str], None], suffix: str = ".tmp", through_links: bool = True
+) -> None:
     """The whole file or nothing: ``write(temporary path)`` in the same folder, then rename over ``path``
-    (through a symbolic link, over the file it names; a table or an image written by another library goes
-    through here too). Never over a file this command has read (:func:`inputs_guarded`)."""
-    p = write_target(path)
+    (through a symbolic link, over the file it names, unless ``through_links`` is False: see
+    :func:`write_target`; a table or an image written by another library goes through here too). Never
+    over a file this command has read (:func:`inputs_guarded`)."""
+    p = write_target(path, through_links)
     _refuse_special(p)  # before a temporary file is made beside it (in /dev, for /dev/null)
     _refuse_read_input(p, path)
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=suffix, dir=p.parent or ".")
@@ -280,8 +292,9 @@ def replace_atomically(path: Path | str, write: Callable[[str], None], suffix: s
         raise
 
 
-def write_atomic(path: Path | str, text: str) -> None:
-    """Write the whole text file or nothing (fsynced before the rename)."""
+def write_atomic(path: Path | str, text: str, through_links: bool = True) -> None:
+    """Write the whole text file or nothing (fsynced before the rename; ``through_links``: see
+    :func:`write_target`)."""
 
     def write(tmp: str) -> None:
         with open(tmp, "w", encoding="utf-8") as f:
@@ -289,4 +302,4 @@ def write_atomic(path: Path | str, text: str) -> None:
             f.flush()
             os.fsync(f.fileno())
 
-    replace_atomically(path, write)
+    replace_atomically(path, write, through_links=through_links)

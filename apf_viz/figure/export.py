@@ -90,6 +90,6 @@ def paper_figures(folder: Path) -> list[Path]:
         session, caption = figure_session(label)
         for fmt, suffix in SUFFIXES.items():
             path = folder / f"figure-{label}{suffix}"
-            write_atomic(path, figure_text(session, fmt, None, caption))
+            write_atomic(path, figure_text(session, fmt, None, caption), through_links=False)
             written.append(path)
     return written

@@ -29,6 +29,8 @@ def run_lab(
 ) -> list[dict]:
     """Every stage for every merge not already in ``out``; returns every row of the file."""
     check_writable(out)
+    for beside in (base_path(out), random_path(out)):  # files it names itself: checked before any work
+        check_writable(beside, through_links=False)
     rows = read_lights(out)
     traces = traces or out.with_name(out.stem + "-traces")
     made = make_folder(traces)
@@ -71,7 +73,7 @@ def _run_stages(
             variants = [survivors[0].algorithm] + [m.variant for m in survivors]
             runs = sweep.run_sweep(
                 random_cells(variants, random_runs),
-                out.with_name(out.stem + "-random.parquet"),
+                random_path(out),
                 traces=traces,
                 workers=workers,
                 cluster=cluster,
@@ -82,6 +84,11 @@ def _run_stages(
             ]
             write_lights(out, rows)
     return rows
+
+
+def random_path(out: Path) -> Path:
+    """Where the random runs' table is kept beside the table."""
+    return out.with_name(out.stem + "-random.parquet")
 
 
 def base_path(out: Path) -> Path:
@@ -119,7 +126,7 @@ def base_verified_starts(
                     progress(f"apf-viz lights: the base algorithm on {len(known)}/{len(starts)} starts, "
                              f"{time.monotonic() - t0:.0f} s{', ETA done' if not left else ''}")  # fmt: skip
         finally:
-            write_atomic(path, _base_json(algorithm, known))
+            write_atomic(path, _base_json(algorithm, known), through_links=False)
             shut_down(futures, client, local)
     return [(name, start) for name, start in starts if known[name]["verdict"] == "verified"]
 

@@ -76,7 +76,7 @@ def explore_merge(merge: Merge, ks: Sequence[int], traces: str, starts: Sequence
             violation = f"{violation}; {evidence}"
         violation += f"; {_left(left_box)}" if left_box else ""
         path = Path(traces) / f"{merge.variant}.jsonl"
-        write_atomic(path, text)
+        write_atomic(path, text, through_links=False)
         return verdict_row(
             merge,
             ks,

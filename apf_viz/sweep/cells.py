@@ -197,7 +197,7 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         name = f"{where}-s{cell.seed}-{cell.scheduler}-{cell.algorithm}-{cell.light_semantics}"
         path = Path(traces) / (name.replace("/", "_").replace("@", "_at_").replace(",", "+") + ".jsonl")
         header = trace_header(engine, cell.scheduler, cell.seed)
-        write_atomic(path, trace_text(header, engine.history.events()))
+        write_atomic(path, trace_text(header, engine.history.events()), through_links=False)
         trace = str(path)
     outcome = st.outcome or "timeout"
     hidden = algorithm.count if isinstance(algorithm, AtWork) else 0

@@ -7,7 +7,8 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 
-from apf_viz.core.formats import InputError
+from apf_viz.core.files import read_bytes
+from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.lecture_export import LectureExport
@@ -23,7 +24,7 @@ def load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) 
     path = demo_files(folder).get(name)
     if path is None:
         raise InputError(f"no demo called {name[:80]!r}")
-    return load(path.name, path.read_bytes())
+    return load(path.name, read_bytes(path, MAX_TRACE_BYTES))
 
 
 class FilesFolder:

@@ -2,7 +2,15 @@
 
 from __future__ import annotations
 
-from apf_viz.core.formats import MAX_TRACE_BYTES, InputError, pattern_json, robots_json, trace_text
+from apf_viz.core.files import read_bytes
+from apf_viz.core.formats import (
+    MAX_INPUT_BYTES,
+    MAX_TRACE_BYTES,
+    InputError,
+    pattern_json,
+    robots_json,
+    trace_text,
+)
 from apf_viz.core.grid import as_point
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
@@ -90,11 +98,11 @@ class FileCommands(SessionCore):
         files = scenario.files()
         if "trace" in files:
             path = files["trace"]
-            self.load_trace(path.name, path.read_bytes(), MAX_TRACE_BYTES)  # our own file
+            self.load_trace(path.name, read_bytes(path, MAX_TRACE_BYTES), MAX_TRACE_BYTES)  # our own file
             self.scenario_note = scenario.shows
             return scenario.shows
-        pattern = loader.pattern_upload(files["pattern"].name, files["pattern"].read_bytes())
-        robots = loader.robots_upload(files["robots"].name, files["robots"].read_bytes())
+        pattern = loader.pattern_upload(files["pattern"].name, read_bytes(files["pattern"], MAX_INPUT_BYTES))
+        robots = loader.robots_upload(files["robots"].name, read_bytes(files["robots"], MAX_INPUT_BYTES))
         with self.lock:
             points = tuple(as_point(p) for p in robots.robots)
             y_up = tuple(robots.flips(self.seed))
