@@ -429,3 +429,18 @@ def test_a_cluster_address_of_a_protocol_not_installed_is_one_line_and_leaves_no
     out = run_cli(command, *args, cwd=tmp_path)
     one_line_exit_2(out, "--cluster ucx://x:1: cannot reach a Dask scheduler there")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_cluster_address_where_a_peer_accepts_and_never_speaks_is_one_line(monkeypatch):
+    """Before, sweep and lights waited for ever: Dask's own timeout does not cover a silent peer."""
+    import socket
+
+    from apf_viz.sweep import driver
+
+    monkeypatch.setattr(driver, "CONNECT_SECONDS", 2.0)
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen(4)
+        address = f"tcp://127.0.0.1:{silent.getsockname()[1]}"
+        with pytest.raises(InputError, match="no Dask scheduler answered there within 2 s"):
+            driver.dask_client(address, None)

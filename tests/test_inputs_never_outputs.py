@@ -142,3 +142,11 @@ def test_a_fifo_with_no_writer_as_an_input_is_refused_at_once(tmp_path):
         out = run_cli(*command, cwd=tmp_path)
         one_line_exit_2(out, "f: is a FIFO, not a regular file")
     assert not (tmp_path / "x.html").exists()
+
+
+@pytest.mark.skipif(not Path("/proc/kmsg").exists(), reason="no /proc/kmsg here")
+def test_a_file_that_claims_to_be_regular_but_would_wait_is_refused():
+    """/proc/kmsg says it is a regular file, and a read waits for the kernel's next message: the read is
+    non-blocking, so it is refused (or, unreadable, refused as such) instead of waiting for ever."""
+    out = run_cli("run", "--robots", "/proc/kmsg", "--pattern", str(PATTERN), cwd=ROOT)
+    one_line_exit_2(out, "/proc/kmsg: cannot read")

@@ -101,7 +101,7 @@ def reading(path: Path | str) -> Iterator[BinaryIO]:
 
     Opened with O_NONBLOCK so that a FIFO with no writer does not block the open; its type is then read
     from the open file (not from the path, which could change in between) and anything but a regular
-    file is refused."""
+    file is refused; reads stay non-blocking."""
     p = Path(path)
     try:
         fd = os.open(p, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
@@ -116,7 +116,8 @@ def reading(path: Path | str) -> Iterator[BinaryIO]:
         problem = _not_readable(p, st.st_mode)
         if problem:
             raise InputError(problem)
-        os.set_blocking(fd, True)
+        # Left non-blocking: a regular file never waits, and a file that only claims to be one (a
+        # procfs file such as /proc/kmsg) cannot make a read wait for ever either.
         f = os.fdopen(fd, "rb")
     except BaseException:
         os.close(fd)
@@ -163,6 +164,8 @@ def read_bytes(path: Path | str, limit: int) -> bytes:
     says (a file may grow while it is read)."""
     with reading(path) as f:
         data = f.read(limit + 1)
+    if data is None:  # a non-blocking read with nothing to give
+        raise InputError(f"{path}: cannot read (it has nothing to give without waiting)")
     if len(data) > limit:
         raise too_large(path, limit)
     return data

@@ -54,11 +54,7 @@ def dask_client(cluster: str | None, workers: int | None):
     from dask.distributed import Client, LocalCluster
 
     if cluster:
-        try:
-            return Client(cluster, timeout="10s"), None
-        except Exception as e:  # unreachable, or a protocol whose package is missing (ucx://): one line
-            reason = str(e) if str(e) not in ("", "None") else type(e).__name__
-            raise InputError(f"--cluster {cluster}: cannot reach a Dask scheduler there ({reason})") from None
+        return _remote_client(Client, cluster), None
     local = LocalCluster(
         n_workers=workers or usable_cores(),
         threads_per_worker=1,
@@ -73,6 +69,39 @@ def dask_client(cluster: str | None, workers: int | None):
         silence_logs=logging.CRITICAL,
     )
     return Client(local), local
+
+
+CONNECT_SECONDS = 15.0
+"""How long a Dask scheduler may take to answer: Dask's own timeout does not cover a peer that accepts
+the connection and never speaks."""
+
+
+def _remote_client(client_class, cluster: str):
+    """A client of the scheduler at ``cluster``, made in a thread of its own so that a peer that never
+    answers cannot hold the command: past :data:`CONNECT_SECONDS`, one line (the thread is left behind,
+    a daemon, and ends with the process)."""
+    import queue
+    import threading
+
+    made: queue.Queue = queue.Queue()
+
+    def connect() -> None:
+        try:
+            made.put(client_class(cluster, timeout="10s"))
+        except Exception as e:  # unreachable, or a protocol whose package is missing (ucx://)
+            made.put(e)
+
+    threading.Thread(target=connect, name="dask-connect", daemon=True).start()
+    try:
+        got = made.get(timeout=CONNECT_SECONDS)
+    except queue.Empty:
+        raise InputError(
+            f"--cluster {cluster}: no Dask scheduler answered there within {CONNECT_SECONDS:.0f} s"
+        ) from None
+    if isinstance(got, Exception):
+        reason = str(got) if str(got) not in ("", "None") else type(got).__name__
+        raise InputError(f"--cluster {cluster}: cannot reach a Dask scheduler there ({reason})")
+    return got
 
 
 def run_sweep(
