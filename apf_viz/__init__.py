@@ -1,9 +1,10 @@
 """apf-viz: an interactive workbench for asynchronous opaque luminous robots on the infinite grid."""
 
+# contextlib, os and sys are loaded by Python's own start: before the handler below, only signal is new.
+import contextlib
 import os
 import signal
 import sys
-import threading
 
 __version__ = "0.1.0"
 
@@ -19,5 +20,6 @@ def interrupted_while_starting(signum: int, frame: object) -> None:
 # sys.argv[0] is still "-m"), never a notebook importing the library; `cli.main` restores Python's own
 # handler, so that a command's Ctrl+C keeps what it has done.
 _STARTING = sys.argv[:1] == ["-m"] or os.path.basename(sys.argv[0] if sys.argv else "") == "apf-viz"
-if _STARTING and threading.current_thread() is threading.main_thread():
-    signal.signal(signal.SIGINT, interrupted_while_starting)
+if _STARTING:
+    with contextlib.suppress(ValueError):  # imported from a thread other than the main one: nothing to do
+        signal.signal(signal.SIGINT, interrupted_while_starting)
