@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from apf_viz.cli.common import emit
+from apf_viz.cli.common import emit, shipped
 from apf_viz.core.files import check_writable, write_atomic
 from apf_viz.core.formats import load_trace, pattern_json, robots_json
 from apf_viz.core.schedule import schedule_of_trace, schedule_text
@@ -17,7 +17,9 @@ OUTPUTS = ("out", "robots_out", "pattern_out")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--from-trace", required=True, type=Path, help="the trace file (JSON Lines)")
+    p.add_argument(
+        "--from-trace", required=True, type=Path, help="the trace file (JSON Lines), or a shipped trace's name"
+    )
     p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
     p.add_argument(
         "--robots-out", type=Path, help="also write the trace's start (with its flips) as a robots file"
@@ -29,6 +31,7 @@ def run(args: argparse.Namespace) -> int:
     for out in (args.out, args.robots_out, args.pattern_out):
         if out:
             check_writable(out)  # before reading a trace of a million lines, not after
+    args.from_trace = shipped(args.from_trace, "trace", "--from-trace")  # a shipped trace by its name too
     header, events = load_trace(args.from_trace)
     lc_atomic = header.light_semantics == "lc-atomic"
     y_up = header.y_up if header.y_up is not None else [True] * len(header.robots)  # as the replay does
