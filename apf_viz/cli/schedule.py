@@ -18,7 +18,7 @@ OUTPUTS = ("out", "robots_out", "pattern_out")
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
-        "--from-trace", required=True, type=Path, help="the trace file (JSON Lines), or a shipped trace's name"
+        "--from-trace", required=True, type=Path, help="the trace (JSON Lines), or a shipped trace's name"
     )
     p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")
     p.add_argument(
