@@ -266,12 +266,18 @@ def test_a_start_the_base_algorithm_fails_on_is_left_out_and_said(tmp_path):
     assert lights.base_verified_starts("apf-opaque-grid-literal", (1, 2), path, 1, None, None) == kept
 
 
-def test_a_robot_that_leaves_the_box_and_stops_is_no_escape():
-    """The explorer's escape of merge(off=decider), as once shipped: robot 0 leaves the box, then stops at
-    its corner a few cells beyond, and every fair continuation forms. The lab now looks on instead."""
+LEFT_THE_BOX = sorted((ROOT / "tests" / "data").glob("left-the-box-*.jsonl"))
+
+
+@pytest.mark.parametrize("path", LEFT_THE_BOX, ids=[p.stem.split("box-")[1] for p in LEFT_THE_BOX])
+def test_a_robot_that_leaves_the_box_and_stops_is_no_escape(path):
+    """The explorer's escapes of four merges, as once shipped (leader1=call, off=decider, off=symmetric,
+    terminal1=decider): a robot leaves the box, then stops at its corner a few cells beyond, and every
+    fair continuation forms. The lab now looks on instead."""
     from apf_viz.explore.escape import continuations, escaping_robot
 
-    header, events = load_trace(ROOT / "tests" / "data" / "left-the-box-off-decider.jsonl")
+    assert len(LEFT_THE_BOX) == 4
+    header, events = load_trace(path)
     algorithm = get_algorithm(header.algorithm)
     robot = escaping_robot(header.options["detail"])
     assert escape_evidence(header, events, algorithm, robot) is None
