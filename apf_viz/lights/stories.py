@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from apf_viz.algorithms.merged_lights import MergedLights, split_name
+from apf_viz.core.budget import EVENTS_PER_MOVE, MOVES_PER_KD
 
 
 def story(trace: Path) -> str:
@@ -58,7 +59,8 @@ def _ending(verdict: str, header, events, engine) -> str:
         return f"then robot {robot} walks away without end ({last}, {len(rules)} moves so far)"
     if verdict == "limit":
         return (
-            f"then it runs on without forming until its budget, 50·k·D moves or 20 events a move "
+            f"then it runs on without forming until its budget, {MOVES_PER_KD}·k·D moves or "
+            f"{EVENTS_PER_MOVE} events a move "
             f"({engine.state.moves:,} moves, {len(events):,} events)"
         )
     return f"then {header.options.get('detail', verdict)}"

@@ -6,6 +6,7 @@ are reproducible: the same scenario, seed and adversary give the same events). P
 from __future__ import annotations
 
 import re
+import weakref
 from collections import Counter
 from dataclasses import dataclass
 from typing import Protocol
@@ -68,7 +69,7 @@ class Lecturer:
         self.reached: Reached | None = None
         # Where the current stop left the run: its engine, history generation and step. A stop's words
         # hold there only, so the next stop starts from there, not from wherever Play went meanwhile.
-        self._mark: tuple[int, int, int] | None = None
+        self._mark: tuple[weakref.ref[Engine], int, int] | None = None
 
     @property
     def stop(self) -> Stop | None:
@@ -97,7 +98,7 @@ class Lecturer:
             reached = self._apply(i, stops[i])
         self.position, self.reached = index, reached
         e = self.session.engine
-        self._mark = (id(e), e.history.generation, e.step_index)
+        self._mark = (weakref.ref(e), e.history.generation, e.step_index)
         return reached
 
     def _back_at_stop(self) -> bool:
@@ -107,11 +108,13 @@ class Lecturer:
         if self.position < 0:
             return True  # the first stop loads its scenario
         e = self.session.engine
-        mark = self._mark
-        if mark is None or mark[:2] != (id(e), e.history.generation) or e.history.length < mark[2]:
+        if self._mark is None:
             return False
-        if e.step_index != mark[2]:
-            self.session.seek(mark[2])
+        engine, generation, step = self._mark  # a weak reference: a new engine may reuse the old one's id()
+        if engine() is not e or generation != e.history.generation or e.history.length < step:
+            return False
+        if e.step_index != step:
+            self.session.seek(step)
         return True
 
     def check(self) -> list[Reached]:

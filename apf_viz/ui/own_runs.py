@@ -30,8 +30,8 @@ OWN_SHARE = 0.15
 OWN_SPEED = 60.0
 """The fastest an own run plays, in steps a second (the projector's run may go faster)."""
 OWN_DRAWS = 6.0
-"""The most often an own run is drawn, a second: its page sees its run at ten frames a second, and a
-class of them costs the server a third of the messages that drawing every frame would."""
+"""The most often an own run is drawn, a second: its page sees its run at six frames a second, and a
+class of them costs the server a fifth of the messages that drawing every frame (30 a second) would."""
 OWN_DRAW_SHARE = 0.1
 """The share of each frame that drawing the own runs may take; the pages not drawn are drawn next."""
 
