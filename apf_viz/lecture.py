@@ -11,7 +11,7 @@ from functools import cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from apf_viz.core.files import read_text
 from apf_viz.core.formats import MAX_INPUT_BYTES, InputError, parse_json_model
@@ -19,6 +19,9 @@ from apf_viz.demos import demo_dir, demo_files, scenarios
 
 MAX_LECTURE_BYTES = 1_000_000
 MAX_EVENT = 10_000_000  # a stop runs at most this far (a lecture is checked the evening before)
+# A stop's words are read from the back of a room at 20 px beside its picture: more than this does not fit
+# the caption, and is more than a room reads while looking at the robots. Split a longer stop in two.
+MAX_SAY_WORDS = 45
 
 Outcome = Literal["formed", "collision", "stuck", "limit", "end"]  # "end": the run can go no further
 State = Literal["running", "formed", "collision", "stuck", "limit"]  # a run's state when a stop is reached
@@ -84,6 +87,38 @@ class Expect(BaseModel):
         return self
 
 
+# A coordinate pair in a stop's words: the screen gives coordinates on the grid (the event line) and in a
+# robot's own frame (Why); words that give one say which.
+_COORDINATES = re.compile(r"\(\s*[−-]?\d+\s*,\s*[−-]?\d+\s*\)")
+_FRAME_NAMED = re.compile(r"\bframe\b|\bon the grid\b|\bgrid coordinates\b", re.I)
+# Words that cannot be true together with a stage line: (the words' claim, the stage line's, in words).
+_CONTRADICTIONS = (
+    (re.compile(r"\bno leader\b|\bnot (?:yet )?elected\b", re.I), re.compile(r"leader elected|the leader\b"),
+     "say no leader was elected"),
+    (re.compile(r"\bnever forms?\b|\bnot formed\b", re.I), re.compile(r"^Formed"),
+     "say the run does not form"),
+)  # fmt: skip
+
+
+def word_count(text: str) -> int:
+    return len(text.split())
+
+
+def frameless_coordinates(text: str) -> str | None:
+    """The first coordinate pair in ``text`` when the text names no frame for it (the leader's, a
+    robot's own, the grid), else None."""
+    m = _COORDINATES.search(text)
+    return m.group(0) if m and not _FRAME_NAMED.search(text) else None
+
+
+def contradiction(text: str, stage_line: str) -> str | None:
+    """How ``text`` (a stop's title and words) contradicts the caption's stage line, if it does."""
+    for said, staged, what in _CONTRADICTIONS:
+        if said.search(text) and staged.search(stage_line):
+            return f"its words {what}, the stage line says “{stage_line}”"
+    return None
+
+
 def panel_words(text: str) -> str | None:
     """The panel or folder that ``text`` sends the room to (presentation mode hides every one), if any."""
     m = _PANEL_WORDS.search(text)
@@ -108,6 +143,13 @@ class Stop(BaseModel):
         if self.scenario is not None and self.scenario not in scenarios():
             raise ValueError(f"no Demo scenario called {self.scenario[:80]!r}")
         return self
+
+    @field_validator("say")
+    @classmethod
+    def _fits_the_caption(cls, say: str) -> str:
+        if (n := word_count(say)) > MAX_SAY_WORDS:
+            raise ValueError(f"{n} words; a stop says at most {MAX_SAY_WORDS} (split it into two stops)")
+        return say
 
 
 class Lecture(BaseModel):

@@ -163,19 +163,24 @@ def test_after_play_or_a_step_past_a_stop_the_caption_says_where_the_run_is():
     s = demo_session()
     s.start_lecture(lectures()["The algorithm in 12 stops"])
     stop = lectures()["The algorithm in 12 stops"].stops[0]
-    assert s.view().lecture == ("The algorithm in 12 stops · stop 1 of 12", stop.title, stop.say)
+    assert s.view().lecture == ("stop 1 of 12 · The algorithm in 12 stops", stop.title, stop.say)
     s.step()
     where, title, words = s.view().lecture
-    assert where == "The algorithm in 12 stops · after stop 1 of 12 · event 1" and stop.say not in words
-    assert "PageDown: stop 2, “Phase 1: the terminals of L_1”" in words
+    assert where == "off stop 1 of 12 · The algorithm in 12 stops" and stop.say not in words
+    assert title == "Played on from stop 1 — event 1"
+    assert "PageDown: stop 2, “Phase 1: the terminals of L_1”" in words and "PageUp: back to stop 1" in words
     s.toggle_play()
-    assert s.view().lecture[0].endswith("after stop 1 of 12 · playing")
+    assert s.view().lecture[1].startswith("Playing on from stop 1")
     s.pause()
+    s.previous_stop()  # off the stop, PageUp goes back to it
+    assert s.lecturer.position == 0 and s.view().lecture[2] == stop.say
     s.next_stop()
     s.next_stop()
     s.back()
-    where, _, words = s.view().lecture
-    assert "before stop 3 of 12" in where and "PageDown replays it" in words
+    _, title, words = s.view().lecture
+    assert title.startswith("Stepped back from stop 3") and "PageUp: back to stop 3" in words
+    s.seek(s.engine.history.length)  # back on the stop's own step: its words again
+    assert s.view().lecture[2] == lectures()["The algorithm in 12 stops"].stops[2].say
 
 
 def test_a_stop_that_is_never_reached_fails_the_check_with_exit_1(tmp_path, capsys):
@@ -212,14 +217,14 @@ def test_a_malformed_lecture_is_one_line_naming_the_field_and_exit_2(tmp_path, c
 def test_next_and_previous_stop_walk_the_session_and_replay_from_the_scenario():
     s = demo_session()
     s.start_lecture(lectures()["The algorithm in 12 stops"])
-    assert s.view().lecture[0] == "The algorithm in 12 stops · stop 1 of 12"
+    assert s.view().lecture[0] == "stop 1 of 12 · The algorithm in 12 stops"
     events = []
     for _ in range(4):
         s.next_stop()
         events.append(s.engine.state.events)
-    assert events == sorted(events) and s.view().lecture[0].endswith("stop 5 of 12")
+    assert events == sorted(events) and s.view().lecture[0].startswith("stop 5 of 12")
     s.previous_stop()  # replayed from the heart's start: the same event as when it was reached
-    assert s.engine.state.events == events[-2] and s.view().lecture[0].endswith("stop 4 of 12")
+    assert s.engine.state.events == events[-2] and s.view().lecture[0].startswith("stop 4 of 12")
     assert s.view().lecture[2] == s.screen.lecture.say  # the view carries the words to the caption
     s.start_lecture(None)
     assert s.view().lecture is None
@@ -236,7 +241,7 @@ def test_an_uploaded_lecture_that_is_malformed_keeps_the_run_and_the_lecture():
         s.load_lecture("mine.json", b"\xff\xfe")
     assert (s.engine.state.events, s.screen.lecture) == before
     said = s.load_lecture("mine.json", lecture_json(until={"rule": "A1.off.terminal"}).encode())
-    assert said.startswith("stop 1") and s.view().lecture[0] == "t · stop 1 of 2"
+    assert said.startswith("stop 1") and s.view().lecture[0] == "stop 1 of 2 · t"
 
 
 def test_parse_lecture_refuses_a_first_stop_without_a_scenario():
@@ -344,26 +349,29 @@ def test_serve_with_a_bad_lecture_stops_before_the_ui_with_one_line(tmp_path):
     assert done.stderr.strip().count("\n") == 0 and "stops[1].until.outcome" in done.stderr
 
 
-def test_enter_at_a_compare_stop_whose_run_is_over_says_each_sides_state():
-    """Stop 5 of "Where the paper breaks": the run on the left is stuck; Enter goes on with the run beside
-    it alone (the same scheduler and seed) to its own end, then says where each side stands."""
+def test_at_a_compare_stop_whose_run_is_over_enter_steps_and_space_plays_the_run_beside_it():
+    """Stop 6 of "Where the paper breaks" (Resolution G1): the run on the left is stuck; its words say
+    Space plays the run on the right on to FORMED. Enter steps it one event; Space plays it (the same
+    scheduler and seed) to its end; then Step says where each side stands."""
     s = demo_session()
     lecture = lectures()["Where the paper breaks under ASYNC"]
     s.start_lecture(lecture)
-    for _ in range(4):
+    for _ in range(5):
         s.next_stop()
-    assert s.lecturer.position == 4 and s.engine.outcome == "stuck"
+    assert s.lecturer.position == 5 and s.engine.outcome == "stuck"
+    assert "Space plays it on to FORMED" in lecture.stops[5].say
     before = s.view()
     assert before.compare is not None and before.compare.outcome is None
     assert s.step()  # the left run is over; the right one takes a step
     after = s.view()
-    assert after.event == before.event and after.compare.event > before.compare.event
-    steps = 0
-    while s.step():
-        steps += 1
-        assert steps < 100_000
+    assert after.event == before.event and after.compare.event == before.compare.event + 1
+    s.toggle_play()
+    assert s.playing
+    for _ in range(100_000):
+        if not s.play_steps(10):
+            break
     end = s.view().compare
-    assert end.outcome == "formed"  # as the stop's words say
+    assert end.outcome == "formed" and not s.playing  # as the stop's words say
     said = s.why_not_step()
     assert said.startswith("the run is over (stuck)")
     assert f"the run beside it is over too, at event {end.event} ({end.outcome})" in said

@@ -314,7 +314,7 @@ def test_last_event_says_who_did_what_and_the_last_actor_is_marked():
     s.click((5, 1))
     v = s.view()
     assert v.last_events[:3] == (
-        "robot 2 · Move → (4, 1)",
+        "robot 2 · Move → (4, 1) on the grid",
         "robot 2 · Compute: stays off, move left — compact-left.slide",
         "robot 2 · Look: sees 3 robots",
     )
@@ -355,7 +355,7 @@ def test_the_move_of_a_decision_to_stay_is_said_to_stay():
     s.set_scheduler("Manual")
     for _ in range(3):
         s.click((0, 0))  # the leftmost robot: nothing to its left, so it stays (and shows done)
-    assert s.view().last_events[0] == "robot 0 · Move: stays at (0, 0)"
+    assert s.view().last_events[0] == "robot 0 · Move: stays at (0, 0) on the grid"
 
 
 def test_a_collision_is_located_in_words_and_cells():

@@ -630,7 +630,7 @@ def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_colli
             wait_for(lambda n=n: served.session.engine.step_index == n)  # one event per click
         page.get_by_role("heading", name="✖ COLLISION").wait_for()
         last = page.locator("p", has_text="Last event:").first
-        wait_for(lambda: last.inner_text().endswith("robot 3 · Move → (0, 1): COLLISION"))
+        wait_for(lambda: last.inner_text().endswith("robot 3 · Move → (0, 1) on the grid: COLLISION"))
         page.get_by_text("robot 3 moved onto robot 1 at (0, 1)").first.wait_for()
         page.get_by_text("event 41 of 41 — its end").wait_for()
         shot(page, "cex-collision")

@@ -335,31 +335,30 @@ def test_the_lockstep_escape_ends_with_a_banner_and_its_walk_drawn():
     ],
 )
 def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, said):
-    from apf_viz.ui.view_model.legend import lecture_html
+    from apf_viz.ui.view_model.caption import caption_html
 
     s = demo_session()
     s.load_scenario(scenario)
-    assert said not in lecture_html(s.view())
+    assert said not in caption_html(s.view(), details=True)
     s.seek(10**9)
-    assert said in lecture_html(s.view())
+    assert said in caption_html(s.view(), details=True)
 
 
-def test_the_caption_names_every_light_in_use_at_a_deadlocks_end_in_one_row():
-    """At the end the waits take the caption's room: the lights become one row of names (their meanings
-    are in the Legend), so that none is pushed out of the caption's box."""
-    from apf_viz.ui.view_model.legend import lecture_html
+def test_the_caption_names_every_light_in_use_and_keeps_their_meanings_for_the_details():
+    """The words show the lights as one row of names; the details (I) give each its meaning, and the
+    stage line names a stuck run's outcome, not the phase it was in."""
+    from apf_viz.ui.view_model.caption import caption_html
 
     s = demo_session()
     s.load_scenario("The literal paper deadlocks")
-    v = s.view()
-    meaning = v.legend["off"].meaning
-    assert meaning in lecture_html(v)  # before the end: each light with its meaning
     s.seek(10**9)
     v = s.view()
-    caption = lecture_html(v)
-    assert v.outcome == "stuck" and meaning not in caption
+    meaning = v.legend["off"].meaning
+    words, details = caption_html(v), caption_html(v, details=True)
+    assert v.outcome == "stuck" and meaning not in words and meaning in details
     assert set(v.lights_in_use) >= {"off", "terminal1", "leader1"}
-    assert all(f"<b>{light}</b>" in caption for light in v.lights_in_use)
+    assert all(f"<b>{light}</b>" in words for light in v.lights_in_use)
+    assert "STUCK" in words and "walking to its corner" not in words and "walking" in v.stage
 
 
 @pytest.mark.skipif(shutil.which("fc-list") is None, reason="no fontconfig (fc-list)")

@@ -109,5 +109,6 @@ def describe(ev: Event) -> str:
     if ev.phase == "compute":
         return f"robot {ev.robot} · Compute → light {ev.light}"
     if ev.phase == "move" and ev.to is not None:
-        return f"robot {ev.robot} · Move → ({ev.to[0]}, {ev.to[1]})" + (" COLLISION" if ev.collision else "")
+        where = f"robot {ev.robot} · Move → ({ev.to[0]}, {ev.to[1]}) on the grid"
+        return where + (" COLLISION" if ev.collision else "")
     return f"robot {ev.robot} · Look"

@@ -12,7 +12,16 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from apf_viz.core.engine import Engine
-from apf_viz.lecture import MAX_EVENT, Expect, Lecture, Stop, Until, panel_words
+from apf_viz.lecture import (
+    MAX_EVENT,
+    Expect,
+    Lecture,
+    Stop,
+    Until,
+    contradiction,
+    frameless_coordinates,
+    panel_words,
+)
 from apf_viz.ui.screen_state import SharedScreen
 from apf_viz.ui.view_model import SessionView, stage_of
 from apf_viz.ui.view_model.run_source import RunSource
@@ -82,10 +91,23 @@ class Lecturer:
         return self.go(self.position + 1)
 
     def previous(self) -> Reached | None:
-        """The stop before (None before the first), replayed from its scenario."""
+        """The stop before (None before the first), replayed from its scenario; off the current stop
+        (played or stepped away from it), back to the current stop itself."""
+        if self.position >= 0 and not self._at_mark():
+            if self._back_at_stop() and self.reached is not None:
+                return self.reached
+            return self.go(self.position)
         if self.position <= 0:
             return None
         return self.go(self.position - 1)
+
+    def _at_mark(self) -> bool:
+        """The run stands exactly where the current stop left it."""
+        if self._mark is None:
+            return False
+        engine, generation, step = self._mark
+        e = self.session.engine
+        return engine() is e and generation == e.history.generation and e.step_index == step
 
     def go(self, index: int) -> Reached:
         """Stand at stop ``index``: from the stop itself when it follows the current one, else replayed
@@ -170,6 +192,10 @@ def broken_claims(stop: Stop, view: SessionView) -> tuple[str, ...]:
         for text in (stop.title, stop.say)
         if (words := panel_words(text))
     ]
+    if pair := frameless_coordinates(stop.say):
+        out.append(f"its words give {pair} in no named frame (the leader's, a robot's own, on the grid)")
+    if said := contradiction(f"{stop.title}. {stop.say}", view.stage_line):
+        out.append(said)
     if stop.select is not None and stop.select >= len(view.robots):
         k = len(view.robots)
         out.append(f"selects robot {stop.select}, but the run has {k} robots (0–{k - 1})")
@@ -180,7 +206,7 @@ def shown(view: SessionView) -> str:
     """The stage, the lights and the marks on screen, in the words ``expect`` takes."""
     lights = ", ".join(f"{light} {n}" for light, n in sorted(Counter(r.light for r in view.robots).items()))
     marks = ", ".join(f"“{m.label}”" for m in view.overlays.marks) or "none"
-    said = f"stage “{view.stage}”; lights {lights}; marks {marks}; state {view.outcome or 'running'}"
+    said = f"stage “{view.stage_line}”; lights {lights}; marks {marks}; state {view.outcome or 'running'}"
     if view.selected is not None:
         hidden = len(view.hidden)
         said += f"; robot {view.selected} sees {len(view.robots) - 1 - hidden}, {hidden} hidden"
@@ -200,8 +226,8 @@ def _broken_expectations(expect: Expect, view: SessionView) -> list[str]:
         other = "not compared" if view.compare is None else view.compare.outcome or "running"
         if other != expect.compare_state:
             out.append(f"expects the run beside it {expect.compare_state}, it is {other}")
-    if expect.stage is not None and expect.stage not in view.stage:
-        out.append(f"expects the stage “{expect.stage}”, it is “{view.stage}”")
+    if expect.stage is not None and expect.stage not in view.stage_line:
+        out.append(f"expects the stage “{expect.stage}”, the stage line says “{view.stage_line}”")
     labels = [m.label for m in view.overlays.marks]
     for label in expect.drawn or []:
         if not any(re.search(rf"(?<!\w){re.escape(label)}(?!\w)", x) for x in labels):

@@ -223,9 +223,11 @@ class RunController:
         with self.lock:
             self._playing = False
 
-    def toggle_play(self) -> None:
+    def toggle_play(self, beside: bool = False) -> None:
+        """Play or pause; ``beside``: the run has ended but Compare's run beside it can go on alone, so
+        Play plays that one (the session steps it)."""
         with self.lock:
-            self._playing = not self._playing and not self.engine.finished
+            self._playing = not self._playing and (beside or not self.engine.finished)
 
     def set_speed(self, speed: float) -> None:
         """Steps per second while playing, clamped to 1 .. MAX_SPEED (a browser may send anything)."""

@@ -5,6 +5,7 @@ the presenter's, its camera). :class:`~apf_viz.ui.session.Session` changes them;
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -34,8 +35,9 @@ class SharedScreen:
 
 @dataclass(frozen=True)
 class LectureStop:
-    """A guided lecture's stop as it was reached: its words hold at ``event`` only; once the run is
-    played or stepped past it (or back before it), the screen says where the run is instead."""
+    """A guided lecture's stop as it was reached: its words hold at that state only (the run, its history
+    and the step reached); once the run is played or stepped off it, the screen says where the run is
+    instead."""
 
     lecture: str  # the lecture's title
     index: int  # 0-based
@@ -44,6 +46,14 @@ class LectureStop:
     say: str
     event: int  # the event at which the stop was reached
     next_title: str | None = None  # the next stop's title (None: the last stop)
+    step: int = 0  # the history step reached
+    generation: int = 0  # the history's generation then (a branch that drops steps bumps it)
+    run: weakref.ref | None = field(default=None, compare=False, repr=False)  # the engine, held weakly
+
+    def holds(self, engine: object, step: int, generation: int) -> bool:
+        """The run stands where this stop left it (the same engine, history and step)."""
+        same = self.run is None or self.run() is engine
+        return same and step == self.step and generation == self.generation
 
 
 @dataclass

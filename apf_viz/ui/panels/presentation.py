@@ -3,10 +3,11 @@ floats over the bottom of the canvas — a lecture stop's words, the stage, the 
 outcome, the lights in use — while the keyboard drives the run (ui/panels/shortcuts.py). Another
 browser's screen is not touched.
 
-The caption always shows all of its words: it spans the canvas's width, the camera leaves its share of
-the height free, and the page itself shrinks the words' size until they fit the box (a few steps, never
-below 60 %), starting each new caption at the top (a scroll never carries over to the next stop). It sits
-at the bottom: the page's notifications appear at the top left."""
+The caption is set for the back of a room (ui/view_model/caption.py): its sizes are never shrunk to fit.
+It spans the canvas's width, at most CAPTION_ROOM of its height, and the camera leaves that share free;
+I swaps a stop's words for the details (who waits on what, the last event, the lights, the keys) on the
+same strip, in this browser only. Each new caption starts at its top (a scroll never carries over to the
+next stop). It sits at the bottom: the page's notifications appear at the top left."""
 
 from __future__ import annotations
 
@@ -17,25 +18,21 @@ import viser
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.legend import lecture_html
+from apf_viz.ui.view_model.caption import DETAILS_KEY, caption_html
 
 # The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
 # that room free (ui/app.py), so the caption never covers the run.
-CAPTION_ROOM = 0.38
+CAPTION_ROOM = 0.35
 CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of a room
 MARGIN = 10  # px between the caption and the canvas's edges
 
 # Runs in the page each time the caption changes (an image that fails to load runs its onerror; a new
-# caption is a new image): back to the top, then smaller words until they fit; and again whenever the
-# caption's box changes size (the page reports its canvas after the box was first placed).
-FIT = (
+# caption is a new image): back to the top of the caption's scrolling box.
+TO_TOP = (
     '<img alt="" src="data:,{key}" style="display:none" onerror="'
-    "var r=this.parentElement,b=r;"
+    "var b=this.parentElement;"
     "while(b&&!/(auto|scroll)/.test(getComputedStyle(b).overflowY))b=b.parentElement;"
-    "if(b){{b.apfFit=function(){{b.scrollTop=0;var s=100;r.style.fontSize='';"
-    "while(b.scrollHeight>b.clientHeight+1&&s>60){{s-=5;r.style.fontSize=s+'%';}}}};b.apfFit();"
-    "if(!b.apfSized){{b.apfSized=1;new ResizeObserver(function(){{b.apfFit();}}).observe(b);}}}}"
-    '">'
+    'if(b)b.scrollTop=0;">'
 )
 
 
@@ -45,10 +42,18 @@ class Presentation:
         self.panel: viser.PanelHandle | None = None
         self.html: viser.GuiHtmlHandle | None = None
         self._placed: tuple[int, int] | None = None  # the caption's (width, height) last sent
+        self.details = False  # the caption shows the details, not the stop's words (I)
+        self._stop: tuple[str, str] | None = None  # the lecture stop shown: a new one opens on its words
         command = gui.add_command(
             "Presentation mode", description="collapse the panel; a large caption on the canvas", hotkey="P"
         )
         command.on_trigger(ctx.guard(self.toggle, mine=True))
+        details = gui.add_command(
+            "Caption details",
+            description="the caption's details: waits, last event, lights, keys",
+            hotkey=DETAILS_KEY,
+        )
+        details.on_trigger(ctx.guard(self.toggle_details, mine=True))
         ctx.toggle_presentation = self.toggle
         ctx.presenting = lambda: self.on
 
@@ -64,6 +69,12 @@ class Presentation:
         if placed != self._placed:
             self._placed = placed
             self.panel.float(x=MARGIN, y=-MARGIN, width=placed[0], height=placed[1])
+
+    def toggle_details(self, event=None) -> None:
+        """The stop's words or the details, in this browser's caption (nothing without a caption)."""
+        if self.on:
+            self.details = not self.details
+            self.ctx.changed()
 
     @property
     def on(self) -> bool:
@@ -103,7 +114,10 @@ class Presentation:
 
     def refresh(self, view: SessionView) -> None:
         if self.html is not None:
-            words = lecture_html(view, self._page())
-            content = words + FIT.format(key=zlib.crc32(words.encode()))
+            stop = view.lecture[:2] if view.lecture is not None else None
+            if stop != self._stop:
+                self._stop, self.details = stop, False
+            words = caption_html(view, self._page(), self.details)
+            content = words + TO_TOP.format(key=zlib.crc32(words.encode()))
             if self.html.content != content:
                 self.html.content = content

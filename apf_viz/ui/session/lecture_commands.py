@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
@@ -22,6 +23,7 @@ class LectureCommands(SessionCore):
         def load_scenario(self, name: str) -> str: ...
         def step(self, browser: Hashable | None = None) -> bool: ...
         def seek(self, step: float) -> None: ...
+        def pause(self) -> None: ...
 
     # ------------------------------------------------------------------ a guided lecture
     @shared_only
@@ -40,11 +42,13 @@ class LectureCommands(SessionCore):
         """The lecture's next stop (PageDown): run to its condition; what happened, for a notification."""
         if self.lecturer is None:
             return "no lecture loaded"
+        self.pause()  # a stop's words hold at its state: Play would carry the run past it
         return self._at_stop(self.lecturer.next(), "the lecture's last stop")
 
     def previous_stop(self) -> str:
         if self.lecturer is None:
             return "no lecture loaded"
+        self.pause()
         return self._at_stop(self.lecturer.previous(), "the lecture's first stop")
 
     def _at_stop(self, reached: Reached | None, edge: str) -> str:
@@ -55,9 +59,11 @@ class LectureCommands(SessionCore):
         stops = lecturer.lecture.stops
         stop = stops[reached.index]
         following = stops[reached.index + 1].title if reached.index + 1 < len(stops) else None
+        e = self.engine
         self.screen.lecture = LectureStop(
-            lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event, following
-        )
+            lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event,
+            following, e.step_index, e.history.generation, weakref.ref(e),
+        )  # fmt: skip
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"
 

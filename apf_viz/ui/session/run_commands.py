@@ -79,6 +79,13 @@ class RunCommands(SessionCore):
             if self.mode != "run":
                 self.run.pause()
                 return 0
+            if self.engine.finished and self.run.playing:  # Compare: the run beside it plays on alone
+                taken = 0
+                while taken < allowance and self.step():
+                    taken += 1
+                if not taken:
+                    self.run.pause()
+                return taken
             return self.run.play_steps(allowance)
 
     def run_until(self, what: Literal["move", "stage"], limit: int = 1_000_000, seconds: float = 3.0) -> str:
@@ -169,7 +176,9 @@ class RunCommands(SessionCore):
         with self.lock:
             if self.mode != "run":
                 return self._why_editing("Play")
-            self.run.toggle_play()
+            twin = self.screen.twin.engine if self.screen.twin is not None else None
+            beside = self.engine.finished and twin is not None and not twin.finished
+            self.run.toggle_play(beside and self.scheduler_name not in BY_HAND)
             return None
 
     def _why_editing(self, control: str) -> str:

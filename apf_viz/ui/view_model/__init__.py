@@ -116,7 +116,7 @@ def _screen_fields(run: RunSource, screen: SharedScreen) -> dict[str, Any]:
         "anchor": screen.studio.anchor if editing else None,
         "click_advances": screen.click_advances,
         "scenario_note": screen.scenario_note,
-        "lecture": lecture_words(screen.lecture, run.engine.state.events, run.playing),
+        "lecture": lecture_words(screen.lecture, run.engine, run.playing),
         "lecture_title": screen.lecture.lecture if screen.lecture is not None else "",
     }
 
@@ -136,28 +136,27 @@ def _told(view: SessionView, run: RunSource, crash: str | None, stuck: bool) -> 
     return replace(view, **_sentences(view, crash, stuck, mirrored))
 
 
-def lecture_words(stop: LectureStop | None, event: int, playing: bool) -> tuple[str, str, str] | None:
-    """A lecture's caption: (where, title, words). The stop's words hold at the event it was reached; once
-    the run is played or stepped away from it, they would describe another moment: the caption then says
-    where the run stands relative to the lecture, and how to go on."""
+def lecture_words(stop: LectureStop | None, engine: Engine, playing: bool) -> tuple[str, str, str] | None:
+    """A lecture's caption: (where, title, words). The stop's words hold at the state it was reached; once
+    the run is played or stepped off it, they would describe another moment: the caption then says so,
+    where the run stands, and where PageDown and PageUp go."""
     if stop is None:
         return None
-    where = f"{stop.lecture} · stop {stop.index + 1} of {stop.count}"
-    if event == stop.event and not playing:
+    where = f"stop {stop.index + 1} of {stop.count} · {stop.lecture}"
+    if stop.holds(engine, engine.step_index, engine.history.generation) and not playing:
         return where, stop.title, stop.say
-    now = "playing" if playing else f"event {event}"
-    if event < stop.event:
-        return (
-            f"{stop.lecture} · before stop {stop.index + 1} of {stop.count} · {now}",
-            stop.title,
-            f"The run is back before this stop (reached at event {stop.event}). PageDown replays it.",
-        )
-    ahead = f"PageDown: stop {stop.index + 2}, “{stop.next_title}”." if stop.next_title else "The last stop."
+    event = engine.state.events
+    how = "playing on" if playing else ("stepped back" if engine.step_index < stop.step else "played on")
+    ahead = (
+        f"PageDown: stop {stop.index + 2}, “{stop.next_title}”."
+        if stop.next_title
+        else "That was the last stop."
+    )
     return (
-        f"{stop.lecture} · after stop {stop.index + 1} of {stop.count} · {now}",
-        stop.title,
-        f"The run has gone on past this stop (reached at event {stop.event}); its words were about that "
-        f"moment. {ahead}",
+        f"off stop {stop.index + 1} of {stop.count} · {stop.lecture}",
+        f"{how.capitalize()} from stop {stop.index + 1} — event {event}",
+        f"The words of stop {stop.index + 1}, “{stop.title}”, were about event {stop.event}. {ahead} "
+        f"PageUp: back to stop {stop.index + 1}.",
     )
 
 

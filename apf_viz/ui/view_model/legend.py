@@ -31,7 +31,7 @@ def symbol_html(text: str) -> str:
     return SYMBOL.sub(typeset, html.escape(text))
 
 
-def _swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
+def swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
     """A legend swatch drawn as the canvas draws the mark: a disc, a square, a ring, a square ring, a
     line or a burst."""
     outline = MARK_COLORS["outline"]
@@ -67,20 +67,20 @@ def _engine_marks() -> list[tuple[str, str, str]]:
     """The engine's marks, as (swatch, words, what hovering says): the same for every algorithm."""
     c = MARK_COLORS
     return [
-        (_swatch(PHASE_COLORS["looked"], "ring"), "has looked", "holds a snapshot, has not computed"),
-        (_swatch(PHASE_COLORS["computed"], "ring"), "has computed", "its light is set, its move pending"),
-        (_swatch(c["last"], "ring"), "acted last", "the robot of the last event"),
-        (_swatch(c["selected"], "ring"), "selected", "click a robot to select it"),
+        (swatch(PHASE_COLORS["looked"], "ring"), "has looked", "holds a snapshot, has not computed"),
+        (swatch(PHASE_COLORS["computed"], "ring"), "has computed", "its light is set, its move pending"),
+        (swatch(c["last"], "ring"), "acted last", "the robot of the last event"),
+        (swatch(c["selected"], "ring"), "selected", "click a robot to select it"),
         (
             "<b>◆</b>",
             "its own +y",
             "the diamond: the robot's +y, down if the adversary flipped it (many robots: drawn once zoomed "
             "in enough to see it)",
         ),
-        (_swatch(c["pending"], "line"), "pending move", "many robots: a dot where it goes"),
-        (_swatch(c["ray"], "line"), "rays: what it saw", "to its snapshot; idle: what it would see now"),
+        (swatch(c["pending"], "line"), "pending move", "many robots: a dot where it goes"),
+        (swatch(c["ray"], "line"), "rays: what it saw", "to its snapshot; idle: what it would see now"),
         (
-            _swatch(c["ghost"], "ring"),
+            swatch(c["ghost"], "ring"),
             "ghost 3′: seen there",
             "robot 3 as the selected robot saw it, in the light it saw, since changed (a light-only change:"
             " a small badge beside the robot)",
@@ -91,27 +91,27 @@ def _engine_marks() -> list[tuple[str, str, str]]:
             "holds a snapshot in which another robot has moved or relit since",
         ),
         (
-            _swatch(c["hidden"], "disc"),
+            swatch(c["hidden"], "disc"),
             "hidden from selected",
             "greyed: the selected robot does not see it; a small dark square marks the robot that hides it",
         ),
         (
-            _swatch(c["region"], "square"),
+            swatch(c["region"], "square"),
             "Why: regions tested",
             "the regions its last rule tested, each its own colour, numbered as in Why",
         ),
         (
-            _swatch(c["collision"], "burst"),
+            swatch(c["collision"], "burst"),
             "collision",
             "where a collision happens: the cell a robot moved into",
         ),
         (
-            _swatch(c["never"], "square-ring"),
+            swatch(c["never"], "square-ring"),
             "will never act",
             "stuck: no robot's next cycle changes anything",
         ),
-        (_swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
-        (_swatch(c["diverged"], "diamond"), "diverges here", "Compare: the robot whose event first differs"),
+        (swatch(c["axis"], "line"), "symmetry axis", "Edit robots: why a start is unsolvable"),
+        (swatch(c["diverged"], "diamond"), "diverges here", "Compare: the robot whose event first differs"),
     ]
 
 
@@ -133,7 +133,7 @@ def legend_html(view: SessionView) -> str:
 def _legend_html(view: SessionView) -> str:
     cells = [
         (
-            _swatch(style.color),
+            swatch(style.color),
             f"<b>{html.escape(light)}</b>"
             + (f' <span style="color:#555">{symbol_html(style.meaning)}</span>' if style.meaning else ""),
             style.meaning or "",
@@ -142,12 +142,12 @@ def _legend_html(view: SessionView) -> str:
     ]
     for mark in view.overlays.marks:  # in the colours the scene draws them
         if isinstance(mark, Cells):
-            cells.append((_swatch(TARGET_COLORS[mark.style], "square"), symbol_html(mark.label), ""))
+            cells.append((swatch(TARGET_COLORS[mark.style], "square"), symbol_html(mark.label), ""))
         else:
             color = (
                 getattr(mark, "color", None) or MARK_COLORS["frame" if isinstance(mark, Frame) else "line"]
             )
-            cells.append((_swatch(color, "line"), symbol_html(mark.label), ""))
+            cells.append((swatch(color, "line"), symbol_html(mark.label), ""))
     cells += _engine_marks()
     row = "display:flex;align-items:center;gap:5px;min-width:0"
     clip = "white-space:nowrap;overflow:hidden;text-overflow:ellipsis"
@@ -164,107 +164,6 @@ def _legend_html(view: SessionView) -> str:
         f'<div style="font-size:0.8em">{grid}<div style="margin-top:4px;color:#555">{UPSIDE_DOWN}</div>'
         f'<div style="margin-top:4px;color:#555">{WORDS}</div></div>'
     )
-
-
-def lecture_html(view: SessionView, page: str = "presenting") -> str:
-    """Presentation mode's caption, large enough for the back of a lecture room: the stage, the last
-    event, the outcome located, and the lights in use with their meaning; last, what the ``page`` is
-    (a key of :data:`KEYS`) and its keys."""
-    named = {  # each light in use: its swatch and name
-        light: f"{_swatch(view.legend[light].color)}<b>{html.escape(light)}</b>"
-        for light in view.lights_in_use
-        if light in view.legend
-    }
-    # With an outcome, a never-ending walk or a lecture stop's words, the caption's room is theirs: the
-    # lights are one wrapped row of names (the Legend folder has their meanings), else the caption ran
-    # past its box and hid the last lights (a deadlock's waits take three lines).
-    busy = bool(view.outcome or view.endless is not None or view.lecture is not None)
-    if busy:
-        lights = (
-            '<div style="display:flex;flex-wrap:wrap;align-items:center;gap:4px 14px">'
-            + "".join(
-                f'<span style="display:inline-flex;align-items:center;gap:6px">{name}</span>'
-                for name in named.values()
-            )
-            + "</div>"
-        )
-    else:
-        lights = "".join(
-            f'<div style="display:flex;align-items:center;gap:8px">{name}&nbsp;'
-            f'<span style="color:#444">{symbol_html(view.legend[light].meaning)}</span></div>'
-            for light, name in named.items()
-        )
-    last = html.escape(view.last_events[0]) if view.last_events else "—"
-    outcome = _outcome_html(view)
-    words = ""
-    if view.lecture is not None:  # a guided lecture: its stop's words first, large
-        where, title, say = view.lecture
-        words = (
-            f'<div style="color:#666;font-size:0.85em">{html.escape(where)}</div>'
-            f'<div style="font-size:1.25em;font-weight:bold">{symbol_html(title)}</div>'
-            f'<div style="margin-bottom:6px">{symbol_html(say)}</div>'
-        )
-    # A failure's outcome and its explanation come right after the stop's words: the point of the stop.
-    return (
-        f'<div style="font-size:1.1em;line-height:1.3">{words}{outcome}{compared(view)}'
-        f"<div><b>{symbol_html(view.stage)}</b></div>"
-        f"<div>Event {view.event} · {last}</div>"
-        f'<div style="margin-top:6px">{lights}</div>{_KEYS_STYLE}{KEYS[page]}</div></div>'
-    )
-
-
-def _outcome_html(view: SessionView) -> str:
-    """The caption's outcome, located and explained (whose stale decision, or who waits on what), or a
-    walk that never ends at the end of its trace; "" while the run goes on."""
-    outcome = ""
-    if view.outcome:
-        where = f"<div>{html.escape(view.collision[0])}</div>" if view.collision else ""
-        why = view.fatal[0] or view.waits  # the lecture's point: whose stale decision, or who waits on what
-        if why:
-            where += (
-                f'<div style="color:#444;font-size:0.9em">{symbol_html(why).replace(chr(10), "<br>")}</div>'
-            )
-        outcome = (
-            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{view.outcome.upper()}</div>{where}'
-        )
-    elif view.endless is not None:  # a walk that never ends, at the end of its trace
-        verdict, words = view.endless
-        heading = f"↻ {verdict}: it never ends"
-        outcome = (
-            f'<div style="font-size:1.3em;font-weight:bold;margin:2px 0">{html.escape(heading)}</div>'
-            f'<div style="color:#444;font-size:0.9em">{html.escape(words)}</div>'
-        )
-    return outcome
-
-
-# Presentation mode hides the panel and its list of keys: the caption says what the page is (the panel
-# that would say it is collapsed) and names the keys it has.
-_KEYS_STYLE = '<div style="margin-top:6px;color:#777;font-size:0.75em">'
-KEYS = {
-    "presenting": "<b>Presenting</b> · P the panel · PageDown / PageUp next / previous stop · Enter step · "
-    "Space play · Esc gives the keys back from a field · Ctrl+K every key",
-    "following": "<b>Following the lecture</b>: the presenter's keys drive the run · P the panel · F frame "
-    "the run · Try it yourself (in the panel) for a run of your own",
-    "class-drives": "<b>The presenter lets the class drive</b> · P the panel · Enter step · Space play",
-    "own": "<b>Your own run</b> · the projector is untouched · P the panel · Enter step · Backspace back · "
-    "Space play · Back to the lecture (in the panel)",
-}
-
-
-def compared(view: SessionView) -> str:
-    """Compare: how each side stands, in words (the left run's verdict alone would tell half the story)."""
-    other = view.compare
-    if other is None:
-        return ""
-
-    def side(name: str, v: SessionView) -> str:
-        state = v.outcome.upper() if v.outcome else f"running (event {v.event})"
-        return f"<b>{name}</b> {html.escape(v.algorithm_title or v.algorithm)}: <b>{state}</b>"
-
-    part = ""
-    if view.divergence is not None:  # on the canvas, a diamond on that robot in both runs
-        part = f" · they part at event {view.divergence[0]}, robot {view.divergence[2]} (◆)"
-    return f'<div style="margin:2px 0">{side("A", view)} · {side("B", other)}{part}</div>'
 
 
 def slide_legend(view: SessionView) -> list[Entry]:

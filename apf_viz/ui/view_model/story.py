@@ -23,7 +23,8 @@ _FLIPPED = {"up": "down", "down": "up", "left": "left", "right": "right"}
 
 
 def describe_event(ev, stays: bool = False, was: str | None = None, y_up: bool = True) -> str:
-    """One event in words: "robot 3 · Move → (1, 0)", "robot 1 · Compute: off → leader1, stay — A1.off.on-K"
+    """One event in words: "robot 3 · Move → (1, 0) on the grid",
+    "robot 1 · Compute: off → leader1, stay — A1.off.on-K"
     (``stays``: the Move of a decision to stay; ``was``: the light before a Compute, when known;
     ``y_up``: the robot's flip, to say a vertical move in its own frame as well as on screen)."""
     head = f"robot {ev.robot} · "
@@ -36,11 +37,12 @@ def describe_event(ev, stays: bool = False, was: str | None = None, y_up: bool =
         else:
             light = f"{was} → {ev.light}" if was != ev.light else f"stays {ev.light}"
         return head + f"Compute: {light}, {move_words(ev.move, y_up)}{rule}"
+    # The screen's coordinates, said so: a lecture's words give the leader's frame, Why a robot's own.
     if ev.collision:
-        return head + f"Move → ({ev.to[0]}, {ev.to[1]}): COLLISION"
+        return head + f"Move → ({ev.to[0]}, {ev.to[1]}) on the grid: COLLISION"
     if stays:
-        return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]})"
-    return head + f"Move → ({ev.to[0]}, {ev.to[1]})"
+        return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]}) on the grid"
+    return head + f"Move → ({ev.to[0]}, {ev.to[1]}) on the grid"
 
 
 def move_words(move, y_up: bool) -> str:

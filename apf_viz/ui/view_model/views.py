@@ -129,3 +129,17 @@ class SessionView:
     # still going, so there is no outcome.
     endless: tuple[str, str] | None = None
     phase_rings: bool = True  # draw the looked / computed rings (not once the pattern is formed)
+
+    @property
+    def stage_line(self) -> str:
+        """The caption's stage line: the outcome once there is one (a stuck or collided run is no longer
+        in the phase it was in), a walk that never ends at its trace's end, else the algorithm's stage."""
+        if self.outcome == "collision":
+            return "COLLISION: two robots on one cell"
+        if self.outcome == "stuck":
+            return "STUCK: no robot will act again"
+        if self.outcome == "limit":
+            return "LIMIT: stopped at its event budget, not formed"
+        if self.endless is not None:
+            return f"{self.endless[0]}: it never ends"
+        return self.stage
