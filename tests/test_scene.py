@@ -263,8 +263,8 @@ def test_a_cells_label_never_covers_a_robot():
 
 def test_a_frames_label_goes_under_its_origin_unless_a_robot_or_its_number_is_there():
     alone = np.array([[10.0, 10.0]], dtype=np.float32)
-    assert frame_label_at((0.0, 0.0), 1, alone)[:2] == (0.0, pytest.approx(-0.6))
-    assert frame_label_at((0.0, 0.0), -1, alone)[:2] == (0.0, pytest.approx(0.6))  # away from +y
+    assert frame_label_at((0.0, 0.0), 1, alone)[:2] == (0.0, pytest.approx(-0.8))  # under its robot's disc
+    assert frame_label_at((0.0, 0.0), -1, alone)[:2] == (0.0, pytest.approx(0.5))  # away from +y
     # A robot just under the origin (its number at its upper right reaches the label's row): beyond the
     # x arm instead, on the origin's row.
     under = np.array([[0.0, -1.0]], dtype=np.float32)
@@ -308,7 +308,7 @@ def test_zoomed_out_a_frames_label_does_not_cover_the_targets_label():
     assert not (box[0] < targets[2] and targets[0] < box[2] and box[1] < targets[3] and targets[1] < box[3])
     # Without the targets' label in the way it goes under the origin, as when zoomed in.
     assert frame_label_at((0.0, 0.0), 1, robots, "the leader's frame", height)[1] == pytest.approx(
-        -0.25 - height
+        -0.45 - height
     )
 
 
@@ -445,17 +445,21 @@ def test_a_long_label_makes_way_for_its_neighbours_numbers():
     """Robots a cell apart (Compare's runs, zoomed out): a robot's "2 stale diverges here" would cover
     its neighbour's number at its upper right; it moves below or to the left, and no two labels, nor a
     label and another robot, overlap where a free place exists."""
-    from apf_viz.ui.scene.labels import _overlaps, label_box, number_labels, spread
+    from apf_viz.ui.scene.labels import _overlaps, number_labels, spec_box, spread
 
     pts = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
     height = 0.6
     laid = spread(number_labels(pts, True, stale=(0,), diverged=0), pts, height)
-    assert [text for text, _ in laid] == ["0 stale diverges here", "1", "2", "3"]
-    assert laid[1:] == number_labels(pts, True, ())[1:]  # the plain numbers stay where they were
-    boxes = [label_box(text, (x, y, x), height) for text, (x, y, _) in laid]
+    assert [text for text, *_ in laid] == ["0 stale diverges here", "1", "2", "3"]
+    plain = number_labels(pts, True, ())[1:]
+    assert [(t, p) for t, p, _ in laid[1:]] == plain  # the plain numbers stay where they were
+    boxes = [spec_box(spec, height) for spec in laid]
     assert not any(_overlaps(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1 :])
     discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts[1:]]
     assert not any(_overlaps(boxes[0], d) for d in discs)
+    # and it still touches its robot: within half a cell of its centre
+    x0, y0, x1, y1 = boxes[0]
+    assert max(x0 - 0.0, 0.0, 0.0 - x1) <= 0.5 and max(y0 - 0.0, 0.0, 0.0 - y1) <= 0.5
 
 
 def test_without_numbers_manual_draws_no_label_per_robot_and_a_lone_stale_word_may_move():

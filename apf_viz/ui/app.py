@@ -306,6 +306,9 @@ class App:
             run_view, views = self.session.views([x.client.client_id for x in due])
         cells = [x.cells for x in screens if x.cells is not None]
         self.renderer.view_cells = min(cells) if cells else None
+        # Labels laid out for the framed page that shows them largest: apart there, apart on every page.
+        heights = [h for x in screens if (h := x.text_height()) is not None]
+        self.renderer.text_height = max(heights) if heights else None
         with self.server.atomic():
             self.pair.render(run_view, self.session.config)
         for screen in due:

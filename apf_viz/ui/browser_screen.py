@@ -10,8 +10,17 @@ import numpy as np
 from apf_viz.ui.attachment import Attachment
 from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.recorder import canvas_size
 from apf_viz.ui.roles import Role
-from apf_viz.ui.scene import NARROW_ASPECT, Bounds, SceneRenderer, camera_aspect, camera_cells, scene_detail
+from apf_viz.ui.scene import (
+    NARROW_ASPECT,
+    Bounds,
+    SceneRenderer,
+    camera_aspect,
+    camera_cells,
+    scene_detail,
+    text_cells,
+)
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.session import Session
 from apf_viz.ui.view_model import SessionView
@@ -77,6 +86,13 @@ class BrowserScreen:
         self.stale = True
         self._request_render()
 
+    def text_height(self) -> float | None:
+        """A label's height in cells on this page, if its camera is framed on the run (a camera moved by
+        hand is the person's own: the shared labels are not laid out for it)."""
+        if self.cells is None or self.state.camera != "framed" or self.own is not None:
+            return None
+        return text_cells(self.cells, canvas_size(self.client)[0])
+
     @property
     def session(self) -> Session:
         """The run this page is attached to."""
@@ -132,6 +148,8 @@ class BrowserScreen:
         cells, self.cells = self.cells, camera_cells(camera)
         if self.cells is not None and (cells is None or scene_detail(cells) != scene_detail(self.cells)):
             self.changed()  # zoomed in or out past where the y-axis diamonds or outlines are drawn
+        elif self.cells is not None and cells is not None and abs(self.cells - cells) > 0.02 * cells:
+            self._request_render()  # the labels are laid out for the zoom the page now shows
         hand = self._acknowledged and not any(_same_pose(position, p) for p in self._sent)
         self._reported = position
         if hand:

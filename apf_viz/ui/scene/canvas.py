@@ -9,6 +9,7 @@ import numpy as np
 from apf_viz.core.portrayal import Frame, Line
 from apf_viz.ui.palette import PointShape
 from apf_viz.ui.scene.camera import cell_of_ray, pose_for
+from apf_viz.ui.scene.labels import text_cells
 from apf_viz.ui.scene.style import LABEL_SCALE, REORIGIN_DISTANCE, VISER_POINT_SCALE, Bounds, Layer
 from apf_viz.ui.view_model import SessionView
 from apf_viz.ui.view_model.legend import canvas_symbol
@@ -54,6 +55,9 @@ class Canvas:
         # How many cells tall the view of the browser zoomed in furthest is (the app sets it from the
         # cameras); None: the framed pose's.
         self.view_cells: float | None = None
+        # A label's height in cells on the page that shows labels largest (cells per pixel: the most of
+        # the framed pages'), set by the app; None: laid out for the framed pose.
+        self.text_height: float | None = None
         self.label_boxes: list[Bounds] = []  # where the last frame's labels are (SceneRenderer.render)
 
     # ------------------------------------------------------------------ batched helpers
@@ -62,6 +66,15 @@ class Canvas:
         to, near enough for laying out labels)."""
         position, look_at, fov = self.framed_pose
         return 2.0 * abs(position[2] - look_at[2]) * float(np.tan(fov / 2))
+
+    def _text_height(self) -> float:
+        """A label's height in cells, for laying labels out where each page framed on the run shows them
+        apart: boxes apart at the largest size stay apart at every smaller one."""
+        if self.base is not None:  # a page's selection, over the shared run's labels
+            return self.base._text_height()
+        if self.text_height is not None:
+            return self.text_height
+        return text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
 
     def _in_place(self, name: str, data: np.ndarray, create: Callable[[], object], field: str) -> None:
         """Send ``data`` to the node ``name`` only if it changed: create the node once, then assign
@@ -129,9 +142,10 @@ class Canvas:
             "points",
         )
 
-    def _labels(self, prefix: str, labels: list[tuple[str, tuple[float, float, float]]]) -> None:
-        """Text on the canvas, one node per slot, updated in place (text and position) and hidden when
-        unused."""
+    def _labels(self, prefix: str, labels: list) -> None:
+        """Text on the canvas, one node per slot, updated in place (text, position, anchor) and hidden
+        when unused. A label is (text, position) or (text, position, anchor): its lower left by default,
+        its lower right or middle for one laid out on the left of a robot or above it (labels.spread)."""
         key = tuple(labels)
         if self._last.get(prefix) == (key, None, None):
             return
@@ -141,7 +155,8 @@ class Canvas:
             name = f"{prefix}/{i}"
             handle = self._handles.get(name)
             if i < len(labels):
-                text, position = labels[i]
+                text, position, *rest = labels[i]
+                anchor = rest[0] if rest else "bottom-left"
                 text = canvas_symbol(text)
                 if handle is None:
                     self._handles[name] = self.scene.add_label(
@@ -149,11 +164,13 @@ class Canvas:
                         text,
                         position=position,
                         font_screen_scale=LABEL_SCALE,
-                        anchor="bottom-left",
+                        anchor=anchor,
                     )
                 else:
                     handle.text = text  # type: ignore[attr-defined]
                     handle.position = position  # type: ignore[attr-defined]
+                    if handle.anchor != anchor:  # type: ignore[attr-defined]
+                        handle.anchor = anchor  # type: ignore[attr-defined]
                     handle.visible = True  # type: ignore[attr-defined]
             elif handle is not None:
                 handle.visible = False  # type: ignore[attr-defined]

@@ -35,6 +35,7 @@ class ComparePair:
         self.second.fixed_origin = (a.origin[0] - gap, a.origin[1])
         # One camera shows both runs: the second's labels are laid out for the first's zoom.
         self.second.view_cells = a.view_cells if a.view_cells is not None else a._visible_height()
+        self.second.text_height = a._text_height()
         self.second.render(other, compare_title("B", other), beside=a.label_boxes)
         b = self.second.bounds
         x0, y0, x1, y1 = a.bounds

@@ -37,69 +37,124 @@ def number_labels(
     return labels
 
 
+Anchor = str  # viser's label anchor: which point of the text sits at the label's position
+
+LabelSpec = tuple  # (text, (x, y, z)) or (text, (x, y, z), anchor): a label as the canvas draws it
+
+
+def robot_spots(x: float, y: float, width: float, height: float) -> list[tuple[float, float, Anchor, float]]:
+    """Where a label may go so that it touches the thing at (x, y) (a robot, a ghost): its upper right
+    first (where a number is looked for), then the other corners, its sides, above, below. Each as (the
+    lower left of the box the label may take, its bottom, viser's anchor, the anchor's x): a label on the
+    left is anchored by its right end and one above or below by its middle, so that its text, never
+    wider than ``width``, ends on the robot whatever its real width."""
+    left, right, mid = x - 0.25 - width, x + 0.25, x - width / 2
+    return [
+        (right, y + 0.3, "bottom-left", right), (right, y - 0.3 - height, "bottom-left", right),
+        (left, y + 0.3, "bottom-right", x - 0.25), (left, y - 0.3 - height, "bottom-right", x - 0.25),
+        (x + 0.45, y - height / 2, "bottom-left", x + 0.45),
+        (x - 0.45 - width, y - height / 2, "bottom-right", x - 0.45),
+        (mid, y + 0.45, "bottom-center", x), (mid, y - 0.45 - height, "bottom-center", x),
+    ]  # fmt: skip
+
+
+def place_near(
+    text: str,
+    at: tuple[float, float],
+    height: float,
+    taken: list[Bounds],
+    discs: Sequence[Bounds] = (),
+    left_edge: float = -float("inf"),
+) -> tuple[tuple[float, float], Anchor, Bounds]:
+    """The place of a label touching the thing at ``at``: the first of :func:`robot_spots` over no label
+    (``taken``) and no other robot (``discs``); else over no label; else the one that covers least. A
+    plain number keeps its upper right over a neighbour (it is looked for there) and moves only off
+    another label. Returns (its position, its anchor, the box it may take)."""
+    width = label_width(text, height)
+    best: tuple[tuple[float, float], Anchor, Bounds] | None = None
+    least = (float("inf"), float("inf"))
+    for sx, sy, anchor, ax in robot_spots(at[0], at[1], width, height):
+        box = (sx, sy, sx + width, sy + height)
+        if box[0] < left_edge:
+            continue
+        covered = 0.0 if text.isdigit() else sum(_overlap_area(box, d) for d in discs)
+        cost = (sum(_overlap_area(box, t) for t in taken), covered)
+        if cost < least:
+            least, best = cost, ((ax, sy), anchor, box)
+        if cost == (0.0, 0.0):
+            break
+    if best is None:  # every place is past the left edge: the first, whatever it covers
+        sx, sy, anchor, ax = robot_spots(at[0], at[1], width, height)[0]
+        best = ((ax, sy), anchor, (sx, sy, sx + width, sy + height))
+    return best
+
+
 def spread(
     labels: list[tuple[str, tuple[float, float, float]]],
     pts: list[list[float]],
     height: float,
     left_edge: float = -float("inf"),
     taken: Sequence[Bounds] = (),
-) -> list[tuple[str, tuple[float, float, float]]]:
-    """Robots' labels (:func:`number_labels`, at each robot's upper right) moved where they cover no
-    other label and no other robot when their own place does (robots a cell apart, zoomed out: Compare's
-    two runs side by side): below right, left, below left, above or further below their robot, in that
-    order; the plain numbers first, and where they always are, so that a long label gives way to them.
-    ``height``: a label's height in cells; ``left_edge``: how far left a framed camera shows (a label
-    moved past it would not be seen: better over a neighbour). Where no place is free, the one that
-    covers least. ``taken``: labels already on the canvas (another run's), kept clear of as well."""
+) -> list[LabelSpec]:
+    """Robots' labels (:func:`number_labels`, at each robot's upper right) moved, where their own place
+    covers another label or robot, to another place touching their robot (:func:`place_near`). The plain
+    numbers first, so that a longer label gives way to them. ``height``: a label's height in cells;
+    ``left_edge``: how far left a framed camera shows (a label moved past it would not be seen);
+    ``taken``: labels already on the canvas (another run's), kept clear of as well. Each label comes back
+    with its anchor; :func:`spread_boxes` gives the boxes they may take."""
     discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
     order = sorted(range(len(labels)), key=lambda i: not labels[i][0].isdigit())  # plain numbers first
-    taken = list(taken)
-    placed: dict[int, tuple[float, float, float]] = {}
+    boxes = list(taken)
+    placed: dict[int, LabelSpec] = {}
     for i in order:
         text, (x0, y0, z) = labels[i]
         x, y = x0 - 0.25, y0 - 0.3  # the robot it belongs to
-        width = 0.55 * height * len(text)
-        spots = [(x + 0.25, y + 0.3), (x + 0.25, y - 0.55 - height), (x - 0.35 - width, y + 0.3),
-                 (x - 0.35 - width, y - 0.55 - height), (x + 0.25, y + 0.3 + height + 0.2),
-                 (x + 0.25, y - 0.75 - 2 * height)]  # fmt: skip
-        chosen = spots[0]
         others = [d for d in discs if not (d[0] < x < d[2] and d[1] < y < d[3])]  # not its own robot
-        least = float("inf")
-        for sx, sy in () if text.isdigit() else spots:  # a plain number keeps its place: it is read there
-            box = label_box(text, (sx, sy, sx), height)
-            if box[0] < left_edge:
-                continue
-            # Another label covered is worse than a robot: two texts over each other read as neither.
-            cost = 4 * sum(_overlap_area(box, t) for t in taken) + sum(_overlap_area(box, d) for d in others)
-            if cost < least:
-                least, chosen = cost, (sx, sy)
-            if cost == 0:
-                break
-        taken.append(label_box(text, (chosen[0], chosen[1], chosen[0]), height))
-        placed[i] = (chosen[0], chosen[1], z)
-    return [(labels[i][0], placed[i]) for i in range(len(labels))]
+        (ax, ay), anchor, box = place_near(text, (x, y), height, boxes, others, left_edge)
+        boxes.append(box)
+        placed[i] = (text, (ax, ay, z), anchor)
+    return [placed[i] for i in range(len(labels))]
 
 
-LABEL_TEXT_PX = 15.0  # a label's height on screen, padding included (viser's labels keep a screen size)
-TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for (1400×900 and 1024×768 windows)
+def spec_box(spec: LabelSpec, height: float) -> Bounds:
+    """The box a label laid out by :func:`spread` (or at its lower left, without an anchor) may take."""
+    text, (x, y, _), *rest = spec
+    anchor = rest[0] if rest else "bottom-left"
+    width = label_width(text, height)
+    left = x - width if anchor.endswith("right") else x - width / 2 if anchor.endswith("center") else x
+    return (left, y, left + width, y + height)
+
+
+# A label's box on screen at LABEL_SCALE (viser's label renderer: the font's line height, 1.15 em for the
+# sans-serif fonts it uses, and a fifth of it as padding): 14.4 px × 1.15 × 1.2.
+LABEL_TEXT_PX = 21.0  # 20.0 measured, and a pixel of air: labels laid out touching would be read as one
+CHAR_WIDTH = 0.5  # a character's advance, of a label's height: generous (digits and most letters are less)
+TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for before a browser reports its own
 TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)
 
 Spot = tuple[float, float, float]  # (x, y, x where the text ends), in scene units
 
 
-def text_cells(visible_height: float) -> float:
-    """A label's height in grid cells when the canvas shows ``visible_height`` cells: a label keeps its
-    size on screen, so zoomed out over a large run it is several cells tall."""
-    return max(TEXT_CELLS_MIN, LABEL_TEXT_PX * visible_height / TYPICAL_CANVAS_PX)
+def text_cells(visible_height: float, canvas_px: float = TYPICAL_CANVAS_PX) -> float:
+    """A label's height in grid cells when a canvas ``canvas_px`` tall shows ``visible_height`` cells: a
+    label keeps its size on screen, so zoomed out over a large run it is several cells tall."""
+    return max(TEXT_CELLS_MIN, LABEL_TEXT_PX * visible_height / canvas_px)
+
+
+def label_width(text: str, height: float) -> float:
+    """A label's width in cells, padding included, for a label ``height`` cells tall."""
+    return CHAR_WIDTH * height * len(text) + 0.2 * height
 
 
 def label_box(text: str, spot: Spot, height: float) -> Bounds:
-    """The rectangle (x0, y0, x1, y1) a label's text covers, drawn from ``spot`` (its lower left)."""
+    """The rectangle (x0, y0, x1, y1) a label covers, drawn from ``spot`` (its lower left, as viser's
+    bottom-left anchor places it)."""
     x, y, x_end = spot
-    return (x, y - 0.25, max(x_end, x + 0.55 * height * len(text)), y - 0.25 + max(0.5, height))
+    return (x, y, max(x_end, x + label_width(text, height)), y + height)
 
 
 def _overlap_area(a: Bounds, b: Bounds) -> float:
+    """The area two boxes share (a sliver of a cell counts: two labels laid out touching read as one)."""
     return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
 
 
@@ -161,7 +216,7 @@ def cells_label_at(
             (left, below, right + 0.5),
             (right + 0.7, top, right + 3.7),
             (left, top + 0.8 + height, right + 0.5),
-            (left - 0.3 - 0.55 * height * len(text), top, left - 0.3),
+            (left - 0.3 - label_width(text, height), top, left - 0.3),
             (left, below - height - 0.2, right + 0.5),
         ],
         robots,
@@ -184,10 +239,26 @@ def frame_label_at(
     is free (the leader's neighbours crowd its row), never over another label (``taken``) where one is
     free of labels, and under the origin when none is."""
     ox, oy = origin
-    away = oy + 0.6 if y_sign < 0 else oy - 0.25 - height
+    away = oy + 0.5 if y_sign < 0 else oy - 0.45 - height
     tip = oy + 2.6 if y_sign > 0 else oy - 2.25 - height
     under, beyond_x = (ox, away, ox + 3.0), (ox + 2.4, oy, ox + 5.4)
     lower = away - height - 0.3 if y_sign > 0 else away + height + 0.3  # past a robot's label under it
-    left = ox - 0.6 - 0.55 * height * len(text)
+    left = ox - 0.6 - label_width(text, height)
     spots = [under, beyond_x, (ox - 0.4, tip, ox + 2.6), (ox, lower, ox + 3.0), (left, oy - 0.25, ox - 0.6)]
+    return free_label_spot(spots, robots, text, height, taken)
+
+
+def line_label_at(
+    end: tuple[float, float],
+    robots: np.ndarray,
+    text: str = "",
+    height: float = TEXT_CELLS_MIN,
+    taken: list[Bounds] | None = None,
+) -> tuple[float, float, float]:
+    """Where a line's label goes: just past its end (a horizontal line's right end, a vertical one's
+    top), else beside the end above or below the line; over no label where one of these is free."""
+    x, y = end
+    width = label_width(text, height)
+    spots = [(x + 0.2, y - height / 2, x + 0.2), (x - width, y + 0.2, x), (x - width, y - 0.2 - height, x),
+             (x + 0.2, y + 0.2, x + 0.2), (x + 0.2, y - 0.2 - height, x + 0.2)]  # fmt: skip
     return free_label_spot(spots, robots, text, height, taken)

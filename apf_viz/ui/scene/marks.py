@@ -7,7 +7,7 @@ import numpy as np
 from apf_viz.core.portrayal import Cells, Frame, Line
 from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.labels import cells_label_at, frame_label_at, label_box, text_cells
+from apf_viz.ui.scene.labels import cells_label_at, frame_label_at, label_box, line_label_at
 from apf_viz.ui.scene.style import Z, xyz
 from apf_viz.ui.view_model import SessionView
 
@@ -31,16 +31,20 @@ class MarksLayer(Canvas):
         lines = [m for m in view.overlays.marks if isinstance(m, Line)]
         frames = [m for m in view.overlays.marks if isinstance(m, Frame)]
         labels: list[tuple[str, tuple[float, float, float]]] = []
+        height = self._text_height()
+        taken = list(taken or [])
         for i in range(max(len(lines), self._slots.get("line", 0))):
             mark = lines[i] if i < len(lines) else None
             segs = self._line(mark) if mark else np.zeros((0, 2, 3), np.float32)
             color = (mark.color if mark else None) or MARK_COLORS["line"]
             self._segments(f"/marks/line{i}", segs, color, 3.0)
             if mark:
-                labels.append((mark.label, tuple(segs[0, 1])))
+                end = (float(segs[0, 1, 0]), float(segs[0, 1, 1]))
+                spot = line_label_at(end, robots, mark.label, height, taken)
+                labels.append((mark.label, spot))
+                taken.append(label_box(mark.label, (spot[0], spot[1], spot[0]), height))
         self._slots["line"] = max(len(lines), self._slots.get("line", 0))
-        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
-        taken = list(taken or [])  # the cells' label first: a frame's label has more places to go
+        # the cells' label next: a frame's label has more places to go
         cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
         if cells is not None and cells.points and view.mode != "edit-pattern":
             local = self._local(cells.points)

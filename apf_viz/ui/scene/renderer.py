@@ -11,7 +11,7 @@ from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
-from apf_viz.ui.scene.labels import label_box, number_labels, spread, text_cells
+from apf_viz.ui.scene.labels import label_box, number_labels, spec_box, spread
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
@@ -72,7 +72,7 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         x0, _, _, y1 = self.bounds
         # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
         self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
-        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        height = self._text_height()
         titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
         self.label_boxes = placed[len(beside) :] + titled
         if self.layer == "all":
@@ -94,17 +94,13 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         # Words beside numbers: room made for them, among a few robots (a pass over every pair of labels;
         # in a crowd the labels overlap whatever their places).
         if len(said) <= SPREAD_UP_TO and not all(text.isdigit() for text, _ in said):
-            visible = self.view_cells if self.view_cells is not None else self._visible_height()
             # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4); the
             # run on the right of Compare has the gap between the runs on its left.
             edge = -float("inf") if self.prefix else self.bounds[0] - 1.5
-            said = spread(said, pts.tolist(), text_cells(visible), left_edge=edge, taken=beside)
+            said = spread(said, pts.tolist(), self._text_height(), left_edge=edge, taken=beside)
         self._labels("/numbers", said)
-        height = text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        height = self._text_height()
         # The marks' labels ("the leader's frame", "targets") go where the robots' labels are not.
-        said_boxes = [*beside] + (
-            [label_box(text, (x, y, x), height) for text, (x, y, _) in said]
-            if len(said) <= SPREAD_UP_TO
-            else []
-        )
+        own = [spec_box(spec, height) for spec in said] if len(said) <= SPREAD_UP_TO else []
+        said_boxes = [*beside, *own]
         return said_boxes

@@ -8,6 +8,7 @@ import numpy as np
 from apf_viz.core.portrayal import Band, HalfPlane, Line
 from apf_viz.ui.palette import MARK_COLORS, region_color
 from apf_viz.ui.scene.canvas import Canvas
+from apf_viz.ui.scene.labels import free_label_spot, label_box, place_near
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET, LAYER, REGION_OPACITY, SIZE, Z, light_colors, xyz
 from apf_viz.ui.view_model import SessionView
 
@@ -19,7 +20,8 @@ class SelectionLayer(Canvas):
         """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested. Drawn
         only when what it is drawn from changed (a class's pages would otherwise redo it in every turn
         of every page, for a robot that has not moved)."""
-        inputs = _selection_inputs(view, self.origin, self.bounds)
+        drawn = _selection_inputs(view, self.origin, self.bounds)
+        inputs = (drawn, tuple(self._taken()), self._text_height())
         if self._last.get("/selection") == (inputs, None, None):
             return
         self._last["/selection"] = (inputs, None, None)
@@ -32,12 +34,12 @@ class SelectionLayer(Canvas):
             SIZE["selected"],
             "circle",
         )
-        self._ghosts(view)
+        taken = self._ghosts(view)
         self._hidden(view)
         self._segments("/rays", self._rays(view), MARK_COLORS["ray"], 2.0)
-        self._why_regions(view)
+        self._why_regions(view, taken)
 
-    def _ghosts(self, view: SessionView) -> None:
+    def _ghosts(self, view: SessionView) -> list:
         """Where the selected robot saw robots that have moved or changed light since: a disc in the light
         it saw, on a grey outline, numbered with the robot's number and a prime ("3′": robot 3, then). A
         robot that only changed light is still where it was seen: its ghost is a small badge at the
@@ -65,11 +67,25 @@ class SelectionLayer(Canvas):
                     0.44 * size,
                     "circle",
                 )
-        numbers = [
-            (f"{g.robot}′", (float(x) + 0.2, float(y) + 0.22, 0.7))
-            for g, (x, y) in zip(view.ghosts, places.tolist(), strict=True)
-        ]
+        # Each ghost's number touching its ghost, clear of the run's labels and of each other.
+        height, taken, robots = self._text_height(), self._taken(), self._robot_points(view)
+        discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in robots.tolist()]
+        numbers = []
+        for g, (x, y) in zip(view.ghosts, places.tolist(), strict=True):
+            text = f"{g.robot}′"
+            (ax, ay), anchor, box = place_near(text, (x, y), height, taken, discs)
+            taken.append(box)
+            numbers.append((text, (ax, ay, 0.7), anchor))
         self._labels("/ghosts/numbers", numbers)
+        return taken  # the run's labels and the ghosts' numbers
+
+    def _taken(self) -> list:
+        """The labels already on this page's canvas: the run's (robots' numbers, marks)."""
+        shared = self.base if self.base is not None else self
+        return list(shared.label_boxes)
+
+    def _robot_points(self, view: SessionView) -> np.ndarray:
+        return self._local([r.position for r in view.robots]).reshape(-1, 2)
 
     def _hidden(self, view: SessionView) -> None:
         """The robots the selected robot cannot see, greyed (a pale disc over their light), and on each
@@ -93,15 +109,16 @@ class SelectionLayer(Canvas):
         return np.concatenate([a, np.full((len(a), 2, 1), Z - 0.01, dtype=np.float32)], axis=2)
 
     # ------------------------------------------------------------------ why: the regions a rule tested
-    def _why_regions(self, view: SessionView) -> None:
+    def _why_regions(self, view: SessionView, taken: list) -> None:
         """The selected robot's regions, translucent so robots stay visible: half planes and bands as
         flat quads, lines as segments, each in its own colour and labelled with the number the Why panel
         gives it. Re-made only when they change (a selection or a decision), so a playing run pays
         nothing for them."""
         regions = view.why.regions if view.why is not None else ()
-        if self._last.get("/why") == (regions, None, None):
+        key = (regions, tuple(taken))
+        if self._last.get("/why") == (key, None, None):
             return
-        self._last["/why"] = (regions, None, None)
+        self._last["/why"] = (key, None, None)
         # Each slot's node is kept and changed in place (a node made anew costs the server its type hints
         # and the browser a new material): what a slot does not show now is hidden.
         shown: set[str] = set()
@@ -113,6 +130,15 @@ class SelectionLayer(Canvas):
             shown.add(f"/why/{'line' if isinstance(mark, Line) else 'area'}{i}")
             if at is not None:
                 labels.append((f"{i + 1} · {mark.label}", at))
+        # Each region's label near where it was put, clear of the run's labels, the ghosts' and each other.
+        height, robots = self._text_height(), self._robot_points(view)
+        taken = list(taken)
+        for k, (text, (x, y, _)) in enumerate(labels):
+            step = height + 0.15
+            spots = [(x, y + dy, x) for dy in (0.0, -step, step, -2 * step, 2 * step, -3 * step, 3 * step)]
+            spot = free_label_spot(spots, robots, text, height, taken)
+            taken.append(label_box(text, (spot[0], spot[1], spot[0]), height))
+            labels[k] = (text, spot)
         for name in [n for n in self._handles if n.startswith(("/why/area", "/why/line")) and n not in shown]:
             empty = np.zeros((0, 2, 3) if name.startswith("/why/line") else (0, 3), dtype=np.float32)
             self._why_node(name, empty, 0)

@@ -74,7 +74,7 @@ REGION_OPACITY = 0.13
 # The canvas a new browser is framed for before it reports its own: 1024×768 with the panel docked
 # (about 640×768). A wider canvas then shows a margin; a narrower guess would cut a 1024 projector's view.
 NARROW_ASPECT = 0.83
-LABEL_SCALE = 1.1
+LABEL_SCALE = 1.2  # viser's em is 12 px at 1: robot numbers at 14.4 px, read from the back of a room
 
 
 def xyz(points, z: float) -> np.ndarray:

@@ -1,0 +1,274 @@
+"""Every stop of every shipped lecture on a projector, measured in a real browser (Debian's chromium).
+
+At 1024×768 in presentation mode: the stop's title and words at their sizes, never shrunk, all of them
+shown (nothing scrolled out of the caption), the caption within its share of the height, robot numbers
+at 14 px or more. At 1024×768 and 1400×900: every label of the scene on its robot (within a cell) and
+over no other label. viser draws scene labels in WebGL, not as DOM, so their boxes are measured the way
+its label renderer lays them out (viser/client/src/label: a bottom-left anchor, the text's advance and
+the font's line height at 12 px × the label's scale, padded by a fifth of the line height), projected
+through the page's own camera. Screenshots of every stop: test-output/projector-*.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from apf_viz.lecture import lectures
+from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
+from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
+from tests.test_ui_browser import ARGS, CHROMIUM, OUT, settled, wait_for
+
+playwright = pytest.importorskip("playwright.sync_api")
+pytestmark = pytest.mark.browser
+
+LABEL_FONT_STACK = (
+    '-apple-system, BlinkMacSystemFont, "Segoe UI", "Roboto", "Helvetica Neue", Arial, sans-serif'
+)
+SCREEN_EM_PX = 12.0  # viser: a screen-sized label's em at font_screen_scale 1
+PADDING = 0.2  # viser: a label's background padding, a share of its line height
+NUMBER_PX = 14.0  # the smallest robot number a room reads
+
+# The caption as the page lays it out: the size of each of its texts, its box and its scrolling.
+CAPTION_JS = """() => {
+  const title = document.querySelector('[data-apf=title]');
+  if (!title) return null;
+  const root = title.parentElement;
+  let scroller = root;
+  const scrolls = e => /(auto|scroll)/.test(getComputedStyle(e).overflowY);
+  while (scroller && !scrolls(scroller)) scroller = scroller.parentElement;
+  let panel = root;
+  const placed = e => ['absolute', 'fixed'].includes(getComputedStyle(e).position);
+  while (panel && !placed(panel)) panel = panel.parentElement;
+  const sizes = [];
+  root.querySelectorAll('*').forEach(e => {
+    // A symbol's sub- and superscripts are set smaller than its letter, as in the paper.
+    if (e.closest('sub,sup') || e.tagName === 'IMG') return;
+    if ([...e.childNodes].some(n => n.nodeType === 3 && n.textContent.trim()))
+      sizes.push([parseFloat(getComputedStyle(e).fontSize), e.textContent.slice(0, 40)]);
+  });
+  const box = panel.getBoundingClientRect();
+  return {title: parseFloat(getComputedStyle(title).fontSize),
+          say: parseFloat(getComputedStyle(root.querySelector('[data-apf=say]')).fontSize),
+          sizes, text: root.innerText,
+          scroll: [scroller.scrollHeight, scroller.clientHeight], panel: [box.top, box.height]};
+}"""
+
+MEASURE_JS = """([texts, font]) => {
+  const ctx = document.createElement('canvas').getContext('2d');
+  ctx.font = font;
+  const probe = ctx.measureText('M');
+  return {widths: texts.map(t => ctx.measureText(t).width),
+          line: probe.fontBoundingBoxAscent + probe.fontBoundingBoxDescent};
+}"""
+
+
+@dataclass(frozen=True)
+class Label:
+    name: str
+    text: str
+    box: tuple[float, float, float, float]  # page px: left, top, right, bottom
+    anchor: tuple[float, float]  # the thing it names, on the page (a robot, a ghost), if known
+    owner: str = ""  # "robot 3", "ghost 1": what it must stay on
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield b
+        b.close()
+
+
+def _project(camera, canvas: dict, points: np.ndarray) -> np.ndarray:
+    """Scene points (n, 3) to page pixels (n, 2) through a browser's camera as it reported it."""
+    p, target = np.array(camera.position, dtype=float), np.array(camera.look_at, dtype=float)
+    f = (target - p) / np.linalg.norm(target - p)
+    r = np.cross(f, [0.0, 0.0, 1.0])
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    t = np.tan(float(camera.fov) / 2)
+    d = points - p
+    depth = d @ f
+    ndc_x = (d @ r) / (depth * t * (canvas["width"] / canvas["height"]))
+    ndc_y = (d @ u) / (depth * t)
+    return np.stack(
+        [canvas["x"] + (1 + ndc_x) * canvas["width"] / 2, canvas["y"] + (1 - ndc_y) * canvas["height"] / 2],
+        axis=1,
+    )
+
+
+def _label_nodes(app: App, screen) -> list[tuple[str, object]]:
+    """Every visible label of what this page shows: the shared scene's (both runs of Compare) and its
+    own selection layer's."""
+    renderers = [app.renderer, *([app.pair.second] if app.pair.second is not None else []), screen.selection]
+    out = []
+    for renderer in renderers:
+        for name, handle in renderer._handles.items():
+            if type(handle).__name__ == "LabelHandle" and handle.visible and handle.text:
+                out.append((renderer.prefix + name, handle))
+    return out
+
+
+def scene_labels(app: App, page, screen) -> tuple[list[Label], float, float]:
+    """The page's labels as boxes in page pixels, what each is on, a cell's size in pixels, and the
+    robot numbers' size in px."""
+    camera = screen.client.camera
+    canvas = page.locator("canvas").first.bounding_box()
+    nodes = _label_nodes(app, screen)
+    scales = {float(h.font_screen_scale) for _, h in nodes} or {1.0}
+    em = SCREEN_EM_PX * min(scales)
+    font = f"{SCREEN_EM_PX * max(scales)}px {LABEL_FONT_STACK}"
+    measured = page.evaluate(MEASURE_JS, [[h.text for _, h in nodes], font])
+    line = measured["line"]
+    pad = PADDING * line
+    anchors = _project(camera, canvas, np.array([h.position for _, h in nodes], dtype=float).reshape(-1, 3))
+    origin = _project(camera, canvas, np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]))
+    cell = float(np.linalg.norm(origin[1] - origin[0]))
+    view = app.session.view()
+    robots = {}
+    for renderer, v in ((app.renderer, view), (app.pair.second, view.compare)):
+        if renderer is None or v is None:
+            continue
+        pts = np.array([[*renderer.to_scene(r.position), 0.0] for r in v.robots], dtype=float).reshape(-1, 3)
+        robots[renderer.prefix] = _project(camera, canvas, pts)
+    ghosts = screen.selection
+    ghost_at = {}
+    if view.ghosts:  # a ghost that only changed light is a badge at its robot's upper left
+        badge = np.array(GHOST_BADGE_OFFSET, dtype=float)
+        pts = np.array(
+            [
+                [*(np.array(ghosts.to_scene(g.at)) + (badge if g.light_only else 0.0)), 0.0]
+                for g in view.ghosts
+            ],
+            dtype=float,
+        )
+        ghost_at = {
+            f"{g.robot}′": xy for g, xy in zip(view.ghosts, _project(camera, canvas, pts), strict=True)
+        }
+    out = []
+    for (name, handle), width, (ax, ay) in zip(nodes, measured["widths"], anchors, strict=True):
+        # viser's anchors: the padded block sits above the point, starting, ending or centred on it
+        w = width + pad
+        left = {"bottom-left": ax, "bottom-right": ax - w, "bottom-center": ax - w / 2}[handle.anchor]
+        box = (left, ay - line - pad, left + w, ay)
+        owner, at = "", (np.nan, np.nan)
+        words = handle.text.split()
+        if "/numbers/" in name and words[0].isdigit():
+            prefix = "/compare" if name.startswith("/compare") else ""
+            owner, at = f"robot {words[0]}", tuple(robots[prefix][int(words[0])])
+        elif "/ghosts/numbers" in name and handle.text in ghost_at:
+            owner, at = f"ghost {handle.text}", tuple(ghost_at[handle.text])
+        out.append(Label(name, handle.text, box, at, owner))
+    return out, cell, em
+
+
+def _overlap(a, b) -> float:
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    return max(0.0, w) * max(0.0, h)
+
+
+def _distance(box, point) -> float:
+    dx = max(box[0] - point[0], 0.0, point[0] - box[2])
+    dy = max(box[1] - point[1], 0.0, point[1] - box[3])
+    return float(np.hypot(dx, dy))
+
+
+def label_problems(labels: list[Label], cell: float) -> list[str]:
+    """Two labels' boxes that overlap (by more than a pixel's sliver), a label farther than a cell from
+    what it names."""
+    out = []
+    for i, a in enumerate(labels):
+        for b in labels[i + 1 :]:
+            if _overlap(a.box, b.box) > 2.0:
+                out.append(f"“{a.text}” over “{b.text}”")
+        if a.owner and _distance(a.box, a.anchor) > cell + 0.5:
+            out.append(
+                f"“{a.text}” {_distance(a.box, a.anchor):.0f} px from its {a.owner} (a cell: {cell:.0f} px)"
+            )
+    return out
+
+
+def walk(browser, title: str, size: tuple[int, int]):
+    """Open ``title`` as `serve --lecture` does (presenting), then PageDown to its last stop; yields
+    (index, stop, page, app, screen) at each stop, the run settled and the camera where it was sent."""
+    lecture = lectures()[title]
+    session = demo_session()
+    session.start_lecture(lecture)
+    app = App(session, port=free_port(), verbose=False, present=True)
+    page = browser.new_page(viewport={"width": size[0], "height": size[1]})
+    page.set_default_timeout(60_000)
+    try:
+        page.goto(app.addresses[0])
+        page.locator("[data-apf=title]").wait_for()
+        software = page.locator(".mantine-Notification-root").filter(has_text="Software WebGL")
+        if software.count():  # a headless browser's own warning, over the canvas: not the lecture's
+            software.first.locator("button").click()
+        wait_for(lambda: len(app.screens) == 1)
+        (screen,) = app.screens.values()
+        for i, stop in enumerate(lecture.stops):
+            if i:
+                page.keyboard.press("PageDown")
+            wait_for(lambda i=i: app.session.lecturer.position == i, timeout=120)
+            settled(app, screen)
+            page.wait_for_function(
+                "t => document.querySelector('[data-apf=title]')?.innerText === t", arg=_plain(stop.title)
+            )
+            time.sleep(0.6)  # the last frame's labels reach the page
+            yield i, stop, page, app, screen
+    finally:
+        page.close()
+        app.stop()
+
+
+def _plain(text: str) -> str:
+    """A stop's title as the page shows it as text (a symbol's sub/superscript joined to its letter)."""
+    import re
+
+    return re.sub(r"_\{?([^}\s^]+)\}?", r"\1", text).replace("^", "")
+
+
+@pytest.mark.parametrize("title", sorted(lectures()))
+def test_every_stop_at_1024x768_reads_from_the_back_row_with_labels_on_their_robots(browser, title):
+    problems = []
+    for i, stop, page, app, screen in walk(browser, title, (1024, 768)):
+        slug = title.split()[0].lower() + "-" + "-".join(title.split()[1:3]).lower()
+        page.screenshot(path=str(OUT / f"projector-{slug}-1024-{i + 1:02d}.png"))
+        caption = page.evaluate(CAPTION_JS)
+        where = f"stop {i + 1} “{stop.title}”"
+        if caption["title"] < TITLE_PX or caption["say"] < WORDS_PX:
+            problems.append(f"{where}: title {caption['title']} px, words {caption['say']} px")
+        small = [(px, text) for px, text in caption["sizes"] if px < WORDS_PX]
+        if small:
+            problems.append(f"{where}: text under {WORDS_PX} px: {small[:3]}")
+        scroll, client = caption["scroll"]
+        if scroll > client + 1:
+            problems.append(f"{where}: the caption's words run {scroll - client} px past its box")
+        if caption["panel"][1] > 0.35 * 768 + 0.5:
+            problems.append(f"{where}: the caption is {caption['panel'][1]:.0f} px tall, over 35 % of 768")
+        if stop.say.split()[0] not in caption["text"]:
+            problems.append(f"{where}: its words are not on the page")
+        labels, cell, em = scene_labels(app, page, screen)
+        if em < NUMBER_PX:
+            problems.append(f"{where}: robot numbers at {em:.1f} px")
+        problems += [f"{where}: {p}" for p in label_problems(labels, cell)]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("title", sorted(lectures()))
+def test_every_stop_at_1400x900_keeps_its_labels_on_their_robots_and_apart(browser, title):
+    problems = []
+    for i, stop, page, app, screen in walk(browser, title, (1400, 900)):
+        labels, cell, _ = scene_labels(app, page, screen)
+        problems += [f"stop {i + 1} “{stop.title}”: {p}" for p in label_problems(labels, cell)]
+    assert not problems, "\n".join(problems)
+
+
+def test_caption_room_is_the_share_the_test_holds():
+    assert CAPTION_ROOM <= 0.35
