@@ -272,3 +272,34 @@ def test_every_stop_at_1400x900_keeps_its_labels_on_their_robots_and_apart(brows
 
 def test_caption_room_is_the_share_the_test_holds():
     assert CAPTION_ROOM <= 0.35
+
+
+def test_play_then_pagedown_lands_where_pagedown_alone_lands(browser):
+    """At stop 3 of the 12-stop lecture, Space plays the run on: the caption says so at once (its words
+    were about stop 3's moment); PageDown, still playing, then shows stop 4 at the very event, robots and
+    caption that PageDown alone shows."""
+    title = "The algorithm in 12 stops"
+    alone = demo_session()
+    alone.start_lecture(lectures()[title])
+    for _ in range(3):
+        alone.next_stop()
+    expected = (alone.engine.state.events, alone.engine.current_points(), alone.view().lecture)
+    for i, stop, page, app, screen in walk(browser, title, (1024, 768)):
+        if i < 2:
+            continue
+        at = app.session.engine.state.events
+        page.keyboard.press("Space")
+        page.wait_for_function("() => /Playing on from stop 3/.test(document.body.innerText)")
+        wait_for(lambda at=at: app.session.engine.state.events > at + 50)  # played well past stop 3
+        page.screenshot(path=str(OUT / "projector-played-on-from-stop-3.png"))
+        page.keyboard.press("PageDown")
+        wait_for(lambda: app.session.lecturer.position == 3 and not app.session.playing)
+        page.wait_for_function(
+            "t => document.querySelector('[data-apf=title]')?.innerText === t", arg=_plain(expected[2][1])
+        )
+        s = app.session
+        assert (s.engine.state.events, s.engine.current_points(), s.view().lecture) == expected
+        text = page.evaluate(CAPTION_JS)["text"]
+        assert "Played on" not in text and "Playing on" not in text and f"event {expected[0]}" in text
+        page.screenshot(path=str(OUT / "projector-stop-4-after-play.png"))
+        break
