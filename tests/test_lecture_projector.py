@@ -284,22 +284,85 @@ def test_play_then_pagedown_lands_where_pagedown_alone_lands(browser):
     for _ in range(3):
         alone.next_stop()
     expected = (alone.engine.state.events, alone.engine.current_points(), alone.view().lecture)
-    for i, stop, page, app, screen in walk(browser, title, (1024, 768)):
-        if i < 2:
-            continue
-        at = app.session.engine.state.events
+    stops = walk(browser, title, (1024, 768))
+    try:
+        for _ in range(3):  # to stop 3
+            _, _, page, app, _ = next(stops)
+        s = app.session
+        at = s.engine.state.events
         page.keyboard.press("Space")
         page.wait_for_function("() => /Playing on from stop 3/.test(document.body.innerText)")
-        wait_for(lambda at=at: app.session.engine.state.events > at + 50)  # played well past stop 3
+        wait_for(lambda: s.engine.state.events > at + 50)  # played well past stop 3
         page.screenshot(path=str(OUT / "projector-played-on-from-stop-3.png"))
         page.keyboard.press("PageDown")
-        wait_for(lambda: app.session.lecturer.position == 3 and not app.session.playing)
+        wait_for(lambda: s.lecturer.position == 3 and not s.playing)
         page.wait_for_function(
             "t => document.querySelector('[data-apf=title]')?.innerText === t", arg=_plain(expected[2][1])
         )
-        s = app.session
         assert (s.engine.state.events, s.engine.current_points(), s.view().lecture) == expected
         text = page.evaluate(CAPTION_JS)["text"]
         assert "Played on" not in text and "Playing on" not in text and f"event {expected[0]}" in text
         page.screenshot(path=str(OUT / "projector-stop-4-after-play.png"))
-        break
+    finally:
+        stops.close()
+
+
+def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_no_network(browser, tmp_path):
+    """`apf-viz export --lecture` opened from file:// with every request off the disk refused: paused at
+    stop 1, PageDown / PageUp and the arrows go stop to stop (the run and an HTML caption at the
+    projector's sizes), and Space still plays, the caption following the stops."""
+    from apf_viz.cli import main
+
+    out = tmp_path / "lecture.html"
+    assert main(["export", "--lecture", "where-the-paper-breaks", "--out", str(out)]) == 0
+    stops = lectures()["Where the paper breaks under ASYNC"].stops
+    context = browser.new_context(viewport={"width": 1024, "height": 768})
+    refused: list[str] = []
+
+    def route(r):
+        if r.request.url.startswith("file:"):
+            r.continue_()
+        else:
+            refused.append(r.request.url)
+            r.abort()
+
+    context.route("**/*", route)
+    page = context.new_page()
+    try:
+        page.goto(out.as_uri())
+        title = page.locator("#apf-caption [data-apf=title]")
+        title.wait_for()
+        time_field = page.locator("input.mantine-NumberInput-input")
+        page.wait_for_function("() => document.title.endsWith('stop 1')")
+        time.sleep(2.0)  # paused: two seconds later it is still at stop 1's moment
+        assert time_field.input_value() == "0.1" and title.inner_text() == stops[0].title
+        sizes = page.evaluate(
+            "() => ['title', 'say'].map(k => parseFloat(getComputedStyle("
+            "document.querySelector('#apf-caption [data-apf=' + k + ']')).fontSize))"
+        )
+        assert sizes[0] >= TITLE_PX and sizes[1] >= WORDS_PX
+        box = page.locator("#apf-caption").bounding_box()
+        assert box["height"] <= 0.35 * 768
+        for key, index in (
+            ("PageDown", 1),
+            ("PageDown", 2),
+            ("ArrowRight", 3),
+            ("PageUp", 2),
+            ("ArrowLeft", 1),
+        ):
+            page.keyboard.press(key)
+            page.wait_for_function(
+                "t => document.querySelector('#apf-caption [data-apf=title]').innerText === t",
+                arg=_plain(stops[index].title),
+            )
+            assert float(time_field.input_value()) == pytest.approx(6.0 * index + 0.1)
+        page.screenshot(path=str(OUT / "projector-exported-page-stop-2.png"))
+        page.keyboard.press("Space")  # plays on: the caption follows the recording into stop 3
+        page.wait_for_function(
+            "t => document.querySelector('#apf-caption [data-apf=title]').innerText === t",
+            arg=_plain(stops[2].title),
+            timeout=20_000,
+        )
+        assert not refused, refused[:3]
+    finally:
+        context.close()

@@ -1,7 +1,9 @@
 """A lecture or a run as one HTML page that plays with no server, no Python and no network: viser's own
 client, with the scene's messages recorded frame by frame (``ViserServer.get_scene_serializer``) and
-embedded (``StateSerializer.as_html``). Panels are not recorded: what a page must say is drawn on the
-canvas as labels above the run (a stop's title and words, the run's state)."""
+embedded (``StateSerializer.as_html``). Panels are not recorded. A lecture's page is paced like the
+lecture (ui/lecture_page.py): it opens paused at stop 1, PageDown and PageUp go stop to stop, and each
+stop's title and words are an HTML caption over the canvas at the projector's sizes. A run's page says
+what it shows as labels above the run."""
 
 from __future__ import annotations
 
@@ -13,14 +15,19 @@ from dataclasses import dataclass
 import viser
 
 from apf_viz.lecture import Lecture
+from apf_viz.ui.lecture_page import PageStop, paced_page
 from apf_viz.ui.network import free_port
+from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.scene import SceneRenderer, text_cells
+from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.session import Session
 from apf_viz.ui.view_model import SessionView
 
 STOP_SECONDS = 6.0  # a lecture's stop stays on screen this long (the page's own controls pause it)
 FRAME_SECONDS = 0.15  # a kept step of a run
 LINE_CHARACTERS = 90  # the words above the run wrap here
+PAGE_ASPECT = 1024 / 730  # a 1024×768 projector's canvas above the player's bar: the page is framed for it
 
 
 @dataclass(frozen=True)
@@ -39,17 +46,44 @@ class _Recorder:
         with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: no page will ever connect
             self.server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
         self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
+        self.pair = ComparePair(self.renderer)  # a stop that compares shows the run beside it too
         self.serializer = self.server.get_scene_serializer()
         self.frames = 0
+        self.clock = 0.0  # seconds of the recording so far: where the next frame starts
+        self.whole: tuple | None = None  # the box the camera frames (a lecture: every stop's)
+        self.seen: list[tuple] = []  # the boxes of the frames drawn
         self._framed: tuple | None = None
 
-    def frame(self, view: SessionView, words: list[str], seconds: float) -> None:
-        """One frame: the run as ``view`` shows it, ``words`` above it, held ``seconds``."""
+    def frame(
+        self, view: SessionView, words: list[str], seconds: float, config: RunConfig | None = None
+    ) -> None:
+        """One frame: the run as ``view`` shows it (and Compare's second run, given the run's ``config``),
+        ``words`` above it (none: the page's caption says what it is), held ``seconds``."""
         with self.server.atomic():
-            self.renderer.render(view)
-            self._words(words)
+            if config is not None:
+                self.pair.render(view, config)
+            else:
+                self.renderer.render(view)
+            if words:
+                self._words(words)
+            else:
+                self._framed_for_caption()
         self.frames += 1
         self.serializer.insert_sleep(seconds)
+        self.clock += seconds
+
+    def _framed_for_caption(self) -> None:
+        """The camera the page opens with: every stop's runs (:attr:`whole`, once known, else the run),
+        above the room the caption takes at the bottom. The page's camera stays where it opened (the
+        player does not move it), so it is framed on the whole lecture."""
+        bounds = self.whole if self.whole is not None else self.renderer.bounds
+        self.seen.append(self.renderer.bounds)
+        if bounds != self._framed:
+            self._framed = bounds
+            position, look_at, fov = self.renderer.camera_pose(PAGE_ASPECT, CAPTION_ROOM, bounds)
+            initial = self.server.initial_camera
+            initial.fov, initial.up = fov, (0.0, 0.0, 1.0)
+            initial.position, initial.look_at = position, look_at
 
     def _words(self, words: list[str]) -> None:
         lines = [line for text in words for line in (textwrap.wrap(text, LINE_CHARACTERS) or [""])]
@@ -72,22 +106,39 @@ class _Recorder:
 
 
 def export_lecture(session: Session, lecture: Lecture) -> Exported:
-    """Every stop as the browser shows it after PageDown, its title and words above the run, held
-    :data:`STOP_SECONDS`: one page, its stops in order."""
-    recorder = _Recorder()
+    """Every stop as the browser shows it after PageDown, held :data:`STOP_SECONDS` when played: one page
+    that opens paused at stop 1 and goes stop to stop with PageDown and PageUp, each stop's title and
+    words in an HTML caption over the canvas. Recorded twice: the first pass finds the box that holds
+    every stop's runs, which the page's one camera frames."""
+    scratch = _Recorder()
     try:
-        session.start_lecture(lecture)
-        for i in range(len(lecture.stops)):
-            if i:
-                session.next_stop()
-            view = session.view()
-            assert view.lecture is not None
-            where, title, say = view.lecture
-            state = f"event {view.event}" + (f" · {view.outcome.upper()}" if view.outcome else "")
-            recorder.frame(view, [f"{where} · {state}", title, say], STOP_SECONDS)
-        return Exported(recorder.html(), recorder.frames, session.engine.state.events)
+        _record_stops(session, lecture, scratch)
+        xs0, ys0, xs1, ys1 = zip(*scratch.seen, strict=True)
+    finally:
+        scratch.close()
+    recorder = _Recorder()
+    recorder.whole = (min(xs0), min(ys0), max(xs1), max(ys1))
+    try:
+        stops = _record_stops(session, lecture, recorder)
+        page = paced_page(recorder.html(), lecture.title, stops, STOP_SECONDS)
+        return Exported(page, recorder.frames, session.engine.state.events)
     finally:
         recorder.close()
+
+
+def _record_stops(session: Session, lecture: Lecture, recorder: _Recorder) -> list[PageStop]:
+    session.start_lecture(lecture)
+    stops: list[PageStop] = []
+    for i in range(len(lecture.stops)):
+        if i:
+            session.next_stop()
+        view = session.view()
+        assert view.lecture is not None
+        where, title, say = view.lecture
+        status = f"{view.stage_line} · event {view.event}"
+        stops.append(PageStop(recorder.clock, where, title, say, status))
+        recorder.frame(view, [], STOP_SECONDS, session.config)
+    return stops
 
 
 def export_run(session: Session, title: str) -> Exported:

@@ -1,0 +1,128 @@
+"""A lecture's exported page paced like the lecture: it opens paused at stop 1, PageDown / PageUp (and
+the arrow keys) go to the next or previous stop, Space still plays, and each stop's title and words are
+an HTML caption over the bottom of the canvas at the projector's sizes (ui/view_model/caption.py).
+
+The recording (ui/page_export.py) holds the stops one after another, each from a known second; a stop is
+shown by seeking viser's player to that second through its time field (the one control of its playback
+bar a page can set). The player is viser's own: if a release drops that field, the page says so in its
+caption and plays as a slideshow (tests/test_export_page.py holds the contract in a browser)."""
+
+from __future__ import annotations
+
+import html
+import json
+from dataclasses import asdict, dataclass
+
+from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
+from apf_viz.ui.view_model.legend import symbol_html
+
+
+@dataclass(frozen=True)
+class PageStop:
+    """A stop on the page: the second it starts at in the recording and its words (plain text)."""
+
+    at: float
+    where: str
+    title: str
+    say: str
+    status: str
+
+
+_STYLE = f"""
+#apf-caption {{ position: fixed; left: 10px; right: 10px; bottom: 52px; max-height: 35vh; overflow: auto;
+  z-index: 5; background: rgba(255,255,255,0.94); border: 1px solid #ddd; border-radius: 4px;
+  padding: 6px 12px; font: {WORDS_PX}px/1.3 -apple-system, "Segoe UI", Roboto, Arial, sans-serif;
+  color: #111; }}
+#apf-caption .where {{ color: #555; }}
+#apf-caption .title {{ font-size: {TITLE_PX}px; font-weight: bold; line-height: 1.2; }}
+#apf-caption .status {{ font-weight: bold; }}
+"""
+
+# Drives viser's player: seek by its time field (React reads a value set through the native setter and
+# an input event), follow the time while playing, and take the lecture's keys before the camera does.
+_SCRIPT = """
+(function () {
+  var data = JSON.parse(document.getElementById('apf-stops').textContent);
+  var stops = data.stops, index = 0, shown = -1, paced = true;
+  var box = document.getElementById('apf-caption');
+  function field() {
+    var all = document.querySelectorAll('input');
+    for (var i = 0; i < all.length; i++) {
+      var e = all[i];
+      if (e.closest('.mantine-Paper-root') && /^[0-9.]*$/.test(e.value) && e.type !== 'hidden') return e;
+    }
+    return null;
+  }
+  function show(i) {
+    if (i === shown) return;
+    shown = i;
+    var s = stops[i];
+    box.innerHTML = '<div class="where">' + s.where + ' · PageDown / PageUp: next / previous stop</div>' +
+      '<div class="title" data-apf="title">' + s.title + '</div>' +
+      '<div data-apf="say">' + s.say + '</div><div class="status">' + s.status + '</div>' +
+      (paced ? '' : '<div class="where">' + data.unpaced + '</div>');
+    box.scrollTop = 0;
+    document.title = data.title + ' · stop ' + (i + 1);
+  }
+  function seek(i) {
+    index = Math.max(0, Math.min(stops.length - 1, i));
+    var f = field();
+    if (!f) { paced = false; shown = -1; show(index); return; }
+    var setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value').set;
+    setter.call(f, (stops[index].at + 0.1).toFixed(2));
+    f.dispatchEvent(new Event('input', { bubbles: true }));
+    setTimeout(function () { f.blur(); }, 0);  // the keys stay the lecture's, not the field's
+    show(index);
+  }
+  function follow() {
+    var f = field();
+    if (!f) return;
+    var t = parseFloat(f.value);
+    if (!isFinite(t)) return;
+    var i = 0;
+    while (i + 1 < stops.length && stops[i + 1].at <= t + 0.05) i++;
+    index = i;
+    show(i);
+  }
+  var NEXT = { PageDown: 1, ArrowRight: 1, ArrowDown: 1, PageUp: -1, ArrowLeft: -1, ArrowUp: -1 };
+  window.addEventListener('keydown', function (e) {
+    if (!(e.key in NEXT)) return;  // the page has no field to type in but the player's time
+    e.preventDefault();
+    e.stopImmediatePropagation();
+    seek(index + NEXT[e.key]);
+  }, true);
+  var tries = 0;
+  var start = setInterval(function () {
+    tries++;
+    if (field() || tries > 100) {
+      clearInterval(start);
+      seek(0);
+      setInterval(follow, 200);
+    }
+  }, 100);
+  show(0);
+})();
+"""
+
+
+def paced_page(page: str, title: str, stops: list[PageStop], stop_seconds: float) -> str:
+    """viser's exported ``page`` with the lecture's caption and keys added."""
+    data = {
+        "title": title,
+        "stopSeconds": stop_seconds,
+        "unpaced": "This page cannot go stop to stop with this viser: it plays each stop for "
+        f"{stop_seconds:g} s (Space pauses).",
+        "stops": [
+            {**asdict(s), **{k: symbol_html(getattr(s, k)) for k in ("where", "title", "say", "status")}}
+            for s in stops
+        ],
+    }
+    payload = json.dumps(data).replace("</", "<\\/")  # no text of a lecture ends the script early
+    added = (
+        f"<style>{_STYLE}</style>"
+        f'<div id="apf-caption" role="region" aria-label="{html.escape(title)}"></div>'
+        f'<script type="application/json" id="apf-stops">{payload}</script>'
+        f"<script>{_SCRIPT}</script>"
+    )
+    end = page.rindex("</body>")
+    return page[:end] + added + page[end:]
