@@ -201,6 +201,17 @@ def lectures() -> dict[str, Lecture]:
     return out
 
 
+class Marked(BaseModel):
+    """A robot the paper's caption names (``r``, ``r₀``), and the lines it names by that robot: ``L_V``
+    and ``L_H`` (the vertical and horizontal lines through it), ``L_I`` and ``R_I`` (the nearest occupied
+    vertical lines to its left and right)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    robot: int = Field(ge=0, le=100_000)
+    name: str = Field(min_length=1, max_length=8)
+    lines: tuple[Literal["L_V", "L_H", "L_I", "R_I"], ...] = ()
+
+
 class Figure(BaseModel):
     """One of the paper's figures as a scenario: the Demo scenario that reproduces it, the event at which
     its picture holds, the robots' lights then (how many show each; what the caption describes) and the
@@ -214,6 +225,7 @@ class Figure(BaseModel):
     lights: dict[str, int]
     # What the caption says of where the robots stand, by name (tests/test_lecture.py checks each).
     positions: tuple[str, ...] = ()
+    marked: Marked | None = None  # the robot its caption names, marked in the exported figure
 
     def as_lecture(self) -> Lecture:
         """A one-stop lecture: its caption on screen as a stop's words."""

@@ -44,6 +44,21 @@ def test_every_figure_of_the_paper_exports_in_both_formats_and_the_tikz_compiles
     )
     assert done.returncode == 0, done.stdout[-2000:]
     assert (document.parent / "all.pdf").stat().st_size > 10_000
+    # and with their captions, as --caption writes them
+    captioned = paper_figures(tmp_path / "captioned", caption=True)
+    document = tmp_path / "captioned" / "all.tex"
+    inputs = "".join(rf"\input{{{p.name}}}\par" + "\n" for p in captioned if p.suffix == ".tex")
+    document.write_text(
+        r"\documentclass{article}\usepackage{tikz}\begin{document}" + "\n" + inputs + r"\end{document}"
+    )
+    done = subprocess.run(
+        [pdflatex, "-interaction=nonstopmode", "-halt-on-error", document.name],
+        cwd=document.parent,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stdout[-2000:]
 
 
 def test_a_figure_draws_each_robot_in_its_lights_colour_and_the_selected_robots_sight():
@@ -118,3 +133,55 @@ def test_a_png_figure_is_the_same_picture_rasterised(tmp_path):
     terminal1 = session.view().legend["terminal1"].color
     pixels = image[:, :, :3].reshape(-1, 3).astype(int)
     assert (abs(pixels - terminal1).max(axis=1) <= 3).sum() > 200  # the terminal1 robots, in their colour
+
+
+def test_a_paper_figure_is_bare_unless_asked_for_its_caption_and_its_file_names_have_no_spaces(
+    tmp_path, capsys
+):
+    """A paper sets its own \\caption: without --caption the TikZ is a bare tikzpicture and the SVG has
+    no caption; with it, the caption is typeset (LaTeX quotes, not “?call1?”). Every file name is free
+    of spaces ("empty left" is figure-empty-left)."""
+    bare = paper_figures(tmp_path / "bare")
+    assert all(" " not in p.name for p in bare) and (tmp_path / "bare" / "figure-empty-left.tex").exists()
+    tikz = (tmp_path / "bare" / "figure-call1.tex").read_text()
+    assert "text width" not in tikz and "Robot r (closest to K)" not in tikz
+    assert tikz.startswith(r"\begin{tikzpicture}") and tikz.rstrip().endswith(r"\end{tikzpicture}")
+    out = tmp_path / "call1.tex"
+    assert main(["figure", "--figure", "call1", "--format", "tikz", "--caption", "--out", str(out)]) == 0
+    captioned = out.read_text()
+    assert "Figure ``call1'': Robot r (closest to K)" in captioned and "?" not in captioned
+    assert main(["figure", "--figure", "call1", "--format", "svg"]) == 0
+    assert "closest to K" not in capsys.readouterr().out
+
+
+def test_the_robot_a_caption_names_is_marked_with_the_lines_it_names_and_numbers_are_legible():
+    """call1: "Robot r (closest to K) sees two decider robots on L_I(r) and R_I(r) is symmetric": r is
+    ringed and named, L_I(r) is the deciders' line and R_I(r) the next occupied line right of r. Robot
+    numbers are set at 8 pt in TikZ (a cell is 0.5 cm) and 14 px in SVG (a cell is 24 px)."""
+    figure = figures()["call1"]
+    session, _ = figure_session("call1")
+    view = session.view()
+    d = drawing_of(view, "", figure.marked)
+    r = view.robots[figure.marked.robot]
+    assert r.light == "call" and d.named == ((r.position, "r"),)
+    deciders = {p.position[0] for p in view.robots if p.light == "decider"}
+    lines = {label: at for axis, at, label, _ in d.lines if axis == "x"}
+    assert lines["L_I(r)"] == deciders.pop() and not deciders
+    right = min(p.position[0] for p in view.robots if p.position[0] > r.position[0])
+    assert lines["R_I(r)"] == right
+    tikz, svg = to_tikz(d), to_svg(d)
+    assert r"\footnotesize" in tikz and r"\tiny" not in tikz and "{$r$}" in tikz
+    numbers = [t for t in ET.fromstring(svg).iter(f"{SVG}text") if (t.text or "").isdigit()]
+    assert numbers and all(float(t.get("font-size")) >= 14 for t in numbers)
+    assert any(t.text == "r" for t in ET.fromstring(svg).iter(f"{SVG}text"))
+
+
+def test_every_marked_robot_of_figures_json_is_the_one_its_caption_describes():
+    """Each figure's named robot is a robot of its scenario at its event, in the light its caption gives."""
+    lights = {"call1": "call", "call2": "call", "Decider2Leader1": "leader1", "leaderConfig": "leader",
+              "LineFormation": "leader", "LineFormed": "leader"}  # fmt: skip
+    marked = {label: f for label, f in figures().items() if f.marked is not None}
+    assert set(marked) == set(lights)
+    for label, figure in marked.items():
+        session, _ = figure_session(label)
+        assert session.view().robots[figure.marked.robot].light == lights[label], label

@@ -29,6 +29,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--select", type=int, help="this robot's rays and the robots it cannot see")
     p.add_argument("--format", choices=FORMATS, default="svg", help="the figure's format")
     p.add_argument("--out", type=Path, help="write here (atomically) instead of standard output")
+    p.add_argument("--caption", action="store_true",
+                   help="write the caption into the figure (without: a bare picture for the paper's own "
+                   "\\caption)")  # fmt: skip
     p.add_argument("--all-figures", type=Path, metavar="DIR",
                    help="write every figure of figures.json into DIR, as SVG and TikZ")  # fmt: skip
     add_run_options(p, AUTOMATIC)
@@ -38,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
     from apf_viz.figure.export import figure_text, paper_figures
 
     if args.all_figures is not None:
-        written = paper_figures(args.all_figures)
+        written = paper_figures(args.all_figures, caption=args.caption)
         print(f"apf-viz figure: {len(written)} files in {args.all_figures}")
         return 0
     if args.out is not None:
@@ -48,13 +51,15 @@ def run(args: argparse.Namespace) -> int:
         if args.out is None:
             raise InputError("--format png: give --out FILE (a picture is not written to the terminal)")
     session, caption = _session(args)
+    caption = caption if args.caption else ""
+    marked = _marked(args)
     if args.select is not None and not 0 <= args.select < len(session.robots):
         raise InputError(f"--select {args.select}: the run has robots 0 to {len(session.robots) - 1}")
     if args.format == "png":
         from apf_viz.core.files import replace_atomically
         from apf_viz.figure.export import figure_png
 
-        data = figure_png(session, args.select, caption)
+        data = figure_png(session, args.select, caption, marked)
 
         def write(tmp: str) -> None:
             Path(tmp).write_bytes(data)
@@ -62,13 +67,22 @@ def run(args: argparse.Namespace) -> int:
         replace_atomically(args.out, write)
         print(f"apf-viz figure: {args.out}")
         return 0
-    text = figure_text(session, args.format, args.select, caption)
+    text = figure_text(session, args.format, args.select, caption, marked)
     if args.out is None:
         print(text, end="")
     else:
         write_atomic(args.out, text)
         print(f"apf-viz figure: {args.out}")
     return 0
+
+
+def _marked(args: argparse.Namespace):
+    """The robot a paper figure's caption names (marked in it), if the figure is one of the paper's."""
+    if args.figure is None:
+        return None
+    from apf_viz.lecture import figures
+
+    return figures()[args.figure].marked
 
 
 def _session(args: argparse.Namespace):

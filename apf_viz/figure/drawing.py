@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from apf_viz.core.portrayal import Cells, Frame, Line
+from apf_viz.lecture import Marked
 from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
 from apf_viz.ui.view_model import SessionView
 
@@ -39,11 +40,13 @@ class Drawing:
     legend: tuple[tuple[str, RGB], ...] = ()  # the lights shown, in the algorithm's order
     marks_legend: tuple[tuple[str, RGB], ...] = field(default=())  # the marks shown: (name, colour)
     caption: str = ""
+    named: tuple[tuple[tuple[int, int], str], ...] = ()  # robots the caption names: (where, "r")
 
 
-def drawing_of(view: SessionView, caption: str = "") -> Drawing:
-    """The figure of ``view``: its robots, the algorithm's targets, lines and frames, and the selected
-    robot's rays (to what it saw) and the robots it cannot see."""
+def drawing_of(view: SessionView, caption: str = "", marked: Marked | None = None) -> Drawing:
+    """The figure of ``view``: its robots, the algorithm's targets, lines and frames, the selected
+    robot's rays (to what it saw) and the robots it cannot see; ``marked``: the robot a paper's caption
+    names, and the lines it names by it (``L_I(r)``), drawn and labelled."""
     robots = tuple(
         Disc(r.position, i, r.light, view.legend[r.light].color if r.light in view.legend else (0, 0, 0))
         for i, r in enumerate(view.robots)
@@ -61,6 +64,10 @@ def drawing_of(view: SessionView, caption: str = "") -> Drawing:
         for m in view.overlays.marks
         if isinstance(m, Frame)
     )
+    named: tuple[tuple[tuple[int, int], str], ...] = ()
+    if marked is not None and marked.robot < len(view.robots):
+        named = ((view.robots[marked.robot].position, marked.name),)
+        lines += named_lines([r.position for r in view.robots], marked)
     sel = view.selected
     selected = view.robots[sel].position if sel is not None and sel < len(view.robots) else None
     hidden = tuple(view.robots[j].position for j in view.hidden if j < len(view.robots))
@@ -88,6 +95,25 @@ def drawing_of(view: SessionView, caption: str = "") -> Drawing:
         legend=legend,
         marks_legend=tuple(marks),
         caption=caption,
+        named=named,
+    )
+
+
+def named_lines(points: list[tuple[int, int]], marked: Marked) -> tuple[tuple[str, float, str, RGB], ...]:
+    """The lines a caption names by a robot, as the paper defines them: ``L_V(r)`` and ``L_H(r)`` through
+    it, ``L_I(r)`` and ``R_I(r)`` the nearest occupied vertical lines to its left and right (none where
+    no robot stands on that side)."""
+    x, y = points[marked.robot]
+    left = [p[0] for p in points if p[0] < x]
+    right = [p[0] for p in points if p[0] > x]
+    at = {"L_V": ("x", x), "L_H": ("y", y), "L_I": ("x", max(left, default=None)),
+          "R_I": ("x", min(right, default=None))}  # fmt: skip
+    color = MARK_COLORS["named"]
+    return tuple(
+        (axis, float(where), f"{name}({marked.name})", color)
+        for name in marked.lines
+        for axis, where in [at[name]]
+        if where is not None
     )
 
 

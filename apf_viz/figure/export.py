@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from apf_viz.core.files import write_atomic
@@ -9,6 +10,7 @@ from apf_viz.core.formats import InputError
 from apf_viz.figure.drawing import drawing_of
 from apf_viz.figure.svg import to_svg
 from apf_viz.figure.tikz import to_tikz
+from apf_viz.lecture import Marked
 from apf_viz.ui.session import Session
 from apf_viz.ui.view_model import SessionView
 
@@ -16,25 +18,30 @@ WRITERS = {"svg": to_svg, "tikz": to_tikz}
 SUFFIXES = {"svg": ".svg", "tikz": ".tex"}
 
 
-def figure_text(session: Session, fmt: str, select: int | None = None, caption: str = "") -> str:
-    """The figure of the session's run as it is now (``select``: whose rays and hidden robots)."""
+def figure_text(
+    session: Session, fmt: str, select: int | None = None, caption: str = "", marked: Marked | None = None
+) -> str:
+    """The figure of the session's run as it is now (``select``: whose rays and hidden robots;
+    ``marked``: the robot a paper's caption names)."""
     session.selected = select
-    return figure_of(session.view(), fmt, caption)
+    return figure_of(session.view(), fmt, caption, marked)
 
 
-def figure_png(session: Session, select: int | None = None, caption: str = "") -> bytes:
+def figure_png(
+    session: Session, select: int | None = None, caption: str = "", marked: Marked | None = None
+) -> bytes:
     """The figure as a PNG (matplotlib: the ``sweep`` extra)."""
     from apf_viz.figure.png import to_png
 
     session.selected = select
-    return to_png(drawing_of(session.view(), caption))
+    return to_png(drawing_of(session.view(), caption, marked))
 
 
-def figure_of(view: SessionView, fmt: str, caption: str = "") -> str:
+def figure_of(view: SessionView, fmt: str, caption: str = "", marked: Marked | None = None) -> str:
     """The figure of what a page shows (its selection's rays and hidden robots included)."""
     if fmt not in WRITERS:
         raise InputError(f"figure format {fmt!r}: choose {' or '.join(WRITERS)}")
-    return WRITERS[fmt](drawing_of(view, caption))
+    return WRITERS[fmt](drawing_of(view, caption, marked))
 
 
 def figure_zip(view: SessionView, caption: str) -> tuple[str, bytes]:
@@ -78,18 +85,25 @@ def figure_session(label: str) -> tuple[Session, str]:
     return session, f"Figure “{label}”: {figure.caption}"
 
 
-def paper_figures(folder: Path) -> list[Path]:
-    """Every figure of figures.json, as SVG and TikZ, into ``folder`` (``figure-LABEL.svg``, ``.tex``)."""
+def figure_file_stem(label: str) -> str:
+    """A figure's file name, without spaces (a shell, a LaTeX \\input and a URL take it as it is)."""
+    return "figure-" + re.sub(r"[^A-Za-z0-9_.-]+", "-", label).strip("-")
+
+
+def paper_figures(folder: Path, caption: bool = False) -> list[Path]:
+    """Every figure of figures.json, as SVG and TikZ, into ``folder`` (``figure-LABEL.svg``, ``.tex``),
+    each robot its caption names marked; the caption itself only if asked (a paper sets its own)."""
     from apf_viz.lecture import figures
 
     if folder.exists() and not folder.is_dir():
         raise InputError(f"--all-figures {folder}: not a folder")
     folder.mkdir(parents=True, exist_ok=True)
     written = []
-    for label in figures():
-        session, caption = figure_session(label)
+    for label, figure in figures().items():
+        session, words = figure_session(label)
         for fmt, suffix in SUFFIXES.items():
-            path = folder / f"figure-{label}{suffix}"
-            write_atomic(path, figure_text(session, fmt, None, caption), through_links=False)
+            path = folder / f"{figure_file_stem(label)}{suffix}"
+            text = figure_text(session, fmt, None, words if caption else "", figure.marked)
+            write_atomic(path, text, through_links=False)
             written.append(path)
     return written

@@ -50,7 +50,13 @@ def to_png(d: Drawing) -> bytes:
                     disc.at, 0.34, facecolor=_c(disc.color), edgecolor=_c(MARK_COLORS["outline"]), zorder=4
                 )
             )
-            ax.annotate(str(disc.number), (disc.at[0] + 0.35, disc.at[1] + 0.35), fontsize=6, zorder=5)
+            ax.annotate(str(disc.number), (disc.at[0] + 0.35, disc.at[1] + 0.35), fontsize=8, zorder=5)
+        named = _c(MARK_COLORS["named"])
+        for (x, y), name in d.named:  # the robot the caption names: ringed, its name at its lower left
+            ax.add_patch(Circle((x, y), 0.5, fill=False, edgecolor=named, lw=1.8, zorder=6))
+            ax.annotate(
+                name, (x - 0.55, y - 0.55), fontsize=10, fontweight="bold", color=named, ha="right", va="top"
+            )
         for x, y in d.hidden:
             ax.add_patch(
                 Circle((x, y), 0.34, facecolor=_c(MARK_COLORS["hidden"]), alpha=0.8, ls="--", zorder=5)

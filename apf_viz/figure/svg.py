@@ -9,10 +9,12 @@ from html import escape
 
 from apf_viz.figure.drawing import RGB, Drawing
 from apf_viz.ui.palette import MARK_COLORS
+from apf_viz.ui.view_model.legend import canvas_symbol
 
 CELL = 24.0
 LEGEND_WIDTH = 190.0
 ROBOT_R = 0.34  # a robot's disc, in cells
+NUMBER_PX = 14  # a robot's number: over half a cell, read at the size a paper prints a figure
 
 
 def _rgb(c: RGB) -> str:
@@ -94,12 +96,12 @@ def _marks(d: Drawing, p: _Page) -> list[str]:
             out.append(
                 _el("line", x1=p.x(at), y1=0.0, x2=p.x(at), y2=p.height, stroke=_rgb(color), stroke_width=2.5)
             )
-            out.append(_text(p.x(at) + 4, 12, label))
+            out.append(_text(p.x(at) + 4, 12, canvas_symbol(label)))
         else:
             out.append(
                 _el("line", x1=0.0, y1=p.y(at), x2=p.width, y2=p.y(at), stroke=_rgb(color), stroke_width=2.5)
             )
-            out.append(_text(p.width - 4, p.y(at) - 4, label, "end"))
+            out.append(_text(p.width - 4, p.y(at) - 4, canvas_symbol(label), "end"))
     for (ox, oy), s, label, color in d.frames:
         corner, arm_x, arm_y = (p.x(ox), p.y(oy)), p.x(ox + 2), p.y(oy + 2 * s)
         path = f"M{arm_x:.2f},{corner[1]:.2f} L{corner[0]:.2f},{corner[1]:.2f} L{corner[0]:.2f},{arm_y:.2f}"
@@ -122,7 +124,15 @@ def _robots(d: Drawing, p: _Page) -> list[str]:
     for disc in d.robots:
         x, y = p.x(disc.at[0]), p.y(disc.at[1])
         out.append(_el("circle", cx=x, cy=y, r=r, fill=_rgb(disc.color), stroke=outline, stroke_width=1.5))
-        out.append(_text(x + r, y - r, str(disc.number), size=10))
+        out.append(_text(x + r, y - r, str(disc.number), size=NUMBER_PX))
+    named = _rgb(MARK_COLORS["named"])
+    for (nx, ny), name in d.named:  # the robot the caption names: ringed, its name at its lower left
+        x, y = p.x(nx), p.y(ny)
+        out.append(_el("circle", cx=x, cy=y, r=r + 5, fill="none", stroke=named, stroke_width=2.5))
+        out.append(
+            f'<text x="{x - r - 6:.2f}" y="{y + r + 15:.2f}" font-size="16" font-weight="bold" '
+            f'font-style="italic" fill="{named}" text-anchor="end">{escape(name)}</text>'
+        )
     veil, edge = _rgb(MARK_COLORS["hidden"]), _rgb(MARK_COLORS["hidden_line"])
     out += [
         _el(

@@ -23,10 +23,16 @@ _SPECIAL = {
 }
 
 
+def tex_math(name: str) -> str:
+    """A robot's name as the paper sets it: ``r``, ``r_0``."""
+    return name.replace("₀", "_0")
+
+
 def tex_text(text: str) -> str:
     """Plain text, safe in LaTeX (a label such as ``L_1`` keeps its underscore); what pdflatex's default
     encoding lacks is spelt in ASCII."""
-    plain = text.replace("′", "'").replace("·", "-").replace("→", "->").replace("◆", "")
+    plain = text.replace("′", "'").replace("·", "-").replace("→", "->").replace("◆", "").replace("−", "-")
+    plain = plain.replace("“", "``").replace("”", "''").replace("’", "'").replace("₀", "_0")
     safe = "".join(_SPECIAL.get(c, c) for c in plain)
     return safe.encode("ascii", "replace").decode("ascii")
 
@@ -97,7 +103,12 @@ def _robots(d: Drawing, colour: _Colours) -> list[str]:
         x, y = disc.at
         style = rf"fill={colour(disc.color)}, draw={outline}, line width=0.6pt"
         out.append(rf"\filldraw[{style}] ({x},{y}) circle (0.34);")
-        out.append(rf"\node[font=\tiny] at ({x + 0.45},{y + 0.45}) {{{disc.number}}};")
+        # \footnotesize (8 pt) at a cell of 0.5 cm: a number a reader reads at the figure's printed size
+        out.append(rf"\node[font=\footnotesize] at ({x + 0.5},{y + 0.5}) {{{disc.number}}};")
+    named = colour(MARK_COLORS["named"])
+    for (x, y), name in d.named:  # the robot the caption names: ringed, its name at its lower left
+        out.append(rf"\draw[{named}, line width=1.2pt] ({x},{y}) circle (0.48);")
+        out.append(rf"\node[font=\small\bfseries, {named}] at ({x - 0.6},{y - 0.6}) {{${tex_math(name)}$}};")
     veil, edge = colour(MARK_COLORS["hidden"]), colour(MARK_COLORS["hidden_line"])
     style = rf"fill={veil}, fill opacity=0.8, draw={edge}, dashed"
     out += [rf"\filldraw[{style}] ({x},{y}) circle (0.34);" for x, y in d.hidden]

@@ -43,6 +43,7 @@ MARK_COLORS: dict[str, Color] = {
     "line": (90, 90, 90),  # an algorithm's line or frame that names no colour of its own
     "frame": (30, 30, 30),
     "anchor": (213, 94, 0),  # Edit: the first click of a two-click tool, waiting for the second
+    "named": (0, 158, 115),  # a figure: the robot its caption names (r, r₀) and the lines named by it
 }
 # The regions a Why explanation tested, each its own colour (in order: the rule's first test first), so
 # that "1" on the canvas and "1" in the panel are the same region at a glance. Okabe & Ito again.
