@@ -409,3 +409,59 @@ def test_pagedown_after_the_run_moved_lands_where_pagedown_alone_lands(moved):
     assert s.engine.state.events == alone.engine.state.events
     assert s.engine.current_points() == alone.engine.current_points()
     assert s.view().lecture == alone.view().lecture
+
+
+def test_lecture_check_refuses_a_46_word_stop_naming_it(tmp_path, capsys):
+    """45 words fit a projector's caption at 20 px; the 46th is refused, in one line naming the stop."""
+    fits = tmp_path / "fits.json"
+    fits.write_text(lecture_json(say=" ".join(["word"] * 45)))
+    assert main(["lecture", "check", str(fits)]) == 0
+    long = tmp_path / "long.json"
+    long.write_text(lecture_json(say=" ".join(["word"] * 46)))
+    with pytest.raises(SystemExit) as ended:
+        main(["lecture", "check", str(long)])
+    err = capsys.readouterr().err
+    assert ended.value.code == 2 and "stops[1].say: 46 words; a stop says at most 45" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    ("stop", "said"),
+    [
+        # The merged-light stop as it once was: "no leader" over a stage line that elects one.
+        (
+            {"until": {"stage": "leader elected"}, "say": "The robots wait, with no leader elected."},
+            "its words say no leader was elected, the stage line says “Phase 2",
+        ),
+        # A stop whose expect claims a stage while the run is stuck: the stage line names the outcome.
+        (
+            {
+                "scenario": "The literal paper deadlocks",
+                "until": {"outcome": "stuck"},
+                "say": "A deadlock.",
+                "expect": {"state": "stuck", "stage": "walking to its corner"},
+            },
+            "expects the stage “walking to its corner”, the stage line says “STUCK: no robot will act again”",
+        ),
+        (
+            {"until": {"stage": "9 of 9 robots lined up"}, "say": "A compact line from (1, −1) to (9, −1)."},
+            "its words give (1, −1) in no named frame",
+        ),
+    ],
+)
+def test_lecture_check_fails_words_the_stage_line_or_frame_contradict(tmp_path, capsys, stop, said):
+    bad = tmp_path / "bad.json"
+    bad.write_text(lecture_json(**stop))
+    assert main(["lecture", "check", str(bad)]) == 1
+    assert said in capsys.readouterr().out
+
+
+def test_words_that_agree_with_the_stage_line_and_name_their_frame_pass(tmp_path):
+    good = tmp_path / "good.json"
+    good.write_text(
+        lecture_json(
+            until={"stage": "9 of 9 robots lined up"},
+            say="A compact line from (1, −1) to (9, −1) in the leader's frame; a leader was elected.",
+        )
+    )
+    assert main(["lecture", "check", str(good)]) == 0
