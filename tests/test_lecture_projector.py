@@ -254,11 +254,37 @@ def test_every_stop_at_1024x768_reads_from_the_back_row_with_labels_on_their_rob
             problems.append(f"{where}: the caption is {caption['panel'][1]:.0f} px tall, over 35 % of 768")
         if stop.say.split()[0] not in caption["text"]:
             problems.append(f"{where}: its words are not on the page")
+        if " I shows " in f" {stop.say} " or " I lists " in f" {stop.say} ":  # the words send the room to I
+            problems += [f"{where}: {p}" for p in _details_shown(page, app, i, slug)]
         labels, cell, em = scene_labels(app, page, screen)
         if em < NUMBER_PX:
             problems.append(f"{where}: robot numbers at {em:.1f} px")
         problems += [f"{where}: {p}" for p in label_problems(labels, cell)]
     assert not problems, "\n".join(problems)
+
+
+def _details_shown(page, app: App, i: int, slug: str) -> list[str]:
+    """I at a stop whose words promise the details: they show, at 20 px, what the words promised (whose
+    stale decision, who waits on what); I again gives the words back."""
+    view = app.session.view()
+    promised = (view.fatal[0] or view.waits).split("\n")[0][:40]
+    page.keyboard.press("i")
+    page.wait_for_function("() => /details · I: back to the words/.test(document.body.innerText)")
+    page.screenshot(path=str(OUT / f"projector-{slug}-1024-{i + 1:02d}-details.png"))
+    out = []
+    text = page.evaluate("() => document.querySelector('[data-apf=details]').innerText")
+    if not promised or promised not in text:
+        out.append(f"I shows no “{promised}”")
+    sizes = page.evaluate(
+        "() => [...document.querySelectorAll('[data-apf=details] *')].filter(e => !e.closest('sub,sup') && "
+        "[...e.childNodes].some(n => n.nodeType === 3 && n.textContent.trim()))"
+        ".map(e => parseFloat(getComputedStyle(e).fontSize))"
+    )
+    if min(sizes) < WORDS_PX:
+        out.append(f"the details at {min(sizes)} px")
+    page.keyboard.press("i")
+    page.locator("[data-apf=title]").wait_for()
+    return out
 
 
 @pytest.mark.parametrize("title", sorted(lectures()))

@@ -54,8 +54,8 @@ def drawing_of(view: SessionView, caption: str = "", marked: Marked | None = Non
     cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
     targets = cells.points if cells is not None else tuple(view.targets)
     style = cells.style if cells is not None else "placed"
-    lines = tuple(
-        (m.axis, float(m.at), m.label, m.color or MARK_COLORS["line"])
+    lines: tuple[tuple[str, float, str, RGB], ...] = tuple(
+        (str(m.axis), float(m.at), m.label, m.color or MARK_COLORS["line"])
         for m in view.overlays.marks
         if isinstance(m, Line)
     )

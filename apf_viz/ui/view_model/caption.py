@@ -44,7 +44,8 @@ def caption_html(view: SessionView, page: str = "presenting", details: bool = Fa
     """The caption: a lecture stop's words (or, without a lecture, the run's state and its lights), else
     with ``details`` everything else the run has to say. ``page``: a key of :data:`KEYS`."""
     body = _details(view, page) if details else _words(view, page)
-    return f'<div style="font-size:{WORDS_PX}px;line-height:1.3">{body}</div>'
+    kind = "details" if details else "words"
+    return f'<div data-apf="{kind}" style="font-size:{WORDS_PX}px;line-height:1.3">{body}</div>'
 
 
 def _words(view: SessionView, page: str) -> str:
