@@ -27,4 +27,4 @@ if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser
   shift
   set -- -m "not browser and not slow" "$@"
 fi
-.venv/bin/python -m pytest "$@"
+.venv/bin/python -m pytest --durations=15 "$@"

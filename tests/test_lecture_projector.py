@@ -22,7 +22,7 @@ from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
 from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
-from tests.test_ui_browser import ARGS, CHROMIUM, OUT, settled, wait_for
+from tests.test_ui_browser import ARGS, CHROMIUM, OUT, _canvas, inside_canvas, settled, wait_for
 
 playwright = pytest.importorskip("playwright.sync_api")
 pytestmark = pytest.mark.browser
@@ -56,7 +56,19 @@ CAPTION_JS = """() => {
   return {title: parseFloat(getComputedStyle(title).fontSize),
           say: parseFloat(getComputedStyle(root.querySelector('[data-apf=say]')).fontSize),
           sizes, text: root.innerText,
-          scroll: [scroller.scrollHeight, scroller.clientHeight], panel: [box.top, box.height]};
+          scroll: [scroller.scrollHeight, scroller.clientHeight], top: scroller.scrollTop,
+          panel: [box.top, box.height]};
+}"""
+
+# Notifications over the caption's box (the room reads the caption, not what covers it).
+COVERED_JS = """() => {
+  const say = document.querySelector('[data-apf=say]');
+  if (!say) return [];
+  const r = say.parentElement.getBoundingClientRect();
+  return [...document.querySelectorAll('.mantine-Notification-root')]
+    .filter(n => { const b = n.getBoundingClientRect();
+                   return b.left < r.right && b.right > r.left && b.top < r.bottom && b.bottom > r.top; })
+    .map(n => n.innerText.slice(0, 60));
 }"""
 
 MEASURE_JS = """([texts, font]) => {
@@ -206,12 +218,14 @@ def walk(browser, title: str, size: tuple[int, int]):
     page.set_default_timeout(60_000)
     try:
         page.goto(app.addresses[0])
-        page.locator("[data-apf=title]").wait_for()
+        page.locator("[data-apf=title]").wait_for()  # as `serve --lecture` opens: presenting, at stop 1
+        wait_for(lambda: len(app.screens) == 1)
+        (screen,) = app.screens.values()
+        run = next(f for f in screen.panels.folders if hasattr(f, "lecture"))
+        wait_for(lambda: screen.panels.presenting and run.lecture.value == title)  # the dropdown names it
         software = page.locator(".mantine-Notification-root").filter(has_text="Software WebGL")
         if software.count():  # a headless browser's own warning, over the canvas: not the lecture's
             software.first.locator("button").click()
-        wait_for(lambda: len(app.screens) == 1)
-        (screen,) = app.screens.values()
         for i, stop in enumerate(lecture.stops):
             if i:
                 page.keyboard.press("PageDown")
@@ -221,6 +235,14 @@ def walk(browser, title: str, size: tuple[int, int]):
                 "t => document.querySelector('[data-apf=title]')?.innerText === t", arg=_plain(stop.title)
             )
             time.sleep(0.6)  # the last frame's labels reach the page
+            view = app.session.view()
+            cells = [r.position for r in view.robots] + list(view.targets)
+            cid = screen.client.client_id
+            assert inside_canvas(app, page, cid, cells, CAPTION_ROOM) == [], (
+                f"{stop.title}: run under the caption"
+            )
+            covered = page.evaluate(COVERED_JS)
+            assert not covered, f"{stop.title}: a notification over the caption: {covered}"
             yield i, stop, page, app, screen
     finally:
         page.close()
@@ -248,6 +270,8 @@ def test_every_stop_at_1024x768_reads_from_the_back_row_with_labels_on_their_rob
         if small:
             problems.append(f"{where}: text under {WORDS_PX} px: {small[:3]}")
         scroll, client = caption["scroll"]
+        if caption["top"] != 0:
+            problems.append(f"{where}: the caption opens scrolled ({caption['top']} px)")
         if scroll > client + 1:
             problems.append(f"{where}: the caption's words run {scroll - client} px past its box")
         if caption["panel"][1] > 0.35 * 768 + 0.5:
@@ -362,6 +386,8 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
         page.wait_for_function("() => document.title.endsWith('stop 1')")
         time.sleep(2.0)  # paused: two seconds later it is still at stop 1's moment
         assert time_field.input_value() == "0.1" and title.inner_text() == stops[0].title
+        first = _canvas(page)
+        assert first.std() > 5  # it draws
         sizes = page.evaluate(
             "() => ['title', 'say'].map(k => parseFloat(getComputedStyle("
             "document.querySelector('#apf-caption [data-apf=' + k + ']')).fontSize))"
@@ -383,6 +409,9 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
             )
             assert float(time_field.input_value()) == pytest.approx(6.0 * index + 0.1)
         page.screenshot(path=str(OUT / "projector-exported-page-stop-2.png"))
+        changed = np.abs(_canvas(page) - first).max(axis=2) > 40
+        changed[:320, :340] = False  # a headless browser's notification in the corner
+        assert changed.sum() > 500  # stop 2's run, not stop 1's
         page.keyboard.press("Space")  # plays on: the caption follows the recording into stop 3
         page.wait_for_function(
             "t => document.querySelector('#apf-caption [data-apf=title]').innerText === t",
