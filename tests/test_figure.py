@@ -28,37 +28,29 @@ def test_every_figure_of_the_paper_exports_in_both_formats_and_the_tikz_compiles
     for path in written:
         if path.suffix == ".svg":
             ET.parse(path)  # well-formed
+    _compile(written)
+    _compile(paper_figures(tmp_path / "captioned", caption=True))  # and with the captions --caption writes
+
+
+def _compile(written: list[Path]) -> None:
+    """Every TikZ of ``written`` \\input into one document, which pdflatex compiles."""
     pdflatex = shutil.which("pdflatex")
     assert pdflatex is not None, "scripts/test.sh installs texlive-latex-base and texlive-pictures"
-    document = tmp_path / "figures" / "all.tex"
+    folder = written[0].parent
+    document = folder / "all.tex"
     inputs = "".join(rf"\input{{{p.name}}}\par" + "\n" for p in written if p.suffix == ".tex")
     document.write_text(
         r"\documentclass{article}\usepackage{tikz}\begin{document}" + "\n" + inputs + r"\end{document}"
     )
     done = subprocess.run(
         [pdflatex, "-interaction=nonstopmode", "-halt-on-error", document.name],
-        cwd=document.parent,
+        cwd=folder,
         capture_output=True,
         text=True,
         timeout=300,
     )
     assert done.returncode == 0, done.stdout[-2000:]
-    assert (document.parent / "all.pdf").stat().st_size > 10_000
-    # and with their captions, as --caption writes them
-    captioned = paper_figures(tmp_path / "captioned", caption=True)
-    document = tmp_path / "captioned" / "all.tex"
-    inputs = "".join(rf"\input{{{p.name}}}\par" + "\n" for p in captioned if p.suffix == ".tex")
-    document.write_text(
-        r"\documentclass{article}\usepackage{tikz}\begin{document}" + "\n" + inputs + r"\end{document}"
-    )
-    done = subprocess.run(
-        [pdflatex, "-interaction=nonstopmode", "-halt-on-error", document.name],
-        cwd=document.parent,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert done.returncode == 0, done.stdout[-2000:]
+    assert (folder / "all.pdf").stat().st_size > 10_000
 
 
 def test_a_figure_draws_each_robot_in_its_lights_colour_and_the_selected_robots_sight():

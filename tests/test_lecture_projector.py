@@ -22,9 +22,11 @@ from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
 from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
-from tests.test_ui_browser import ARGS, CHROMIUM, OUT, _canvas, inside_canvas, settled, wait_for
+from tests import test_ui_browser
+from tests.test_ui_browser import OUT, _canvas, inside_canvas, settled, wait_for
 
 playwright = pytest.importorskip("playwright.sync_api")
+browser = test_ui_browser.browser  # the fixture: one Chromium for the module, launched as the UI tests do
 pytestmark = pytest.mark.browser
 
 LABEL_FONT_STACK = (
@@ -87,14 +89,6 @@ class Label:
     box: tuple[float, float, float, float]  # page px: left, top, right, bottom
     anchor: tuple[float, float]  # the thing it names, on the page (a robot, a ghost), if known
     owner: str = ""  # "robot 3", "ghost 1": what it must stay on
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        yield b
-        b.close()
 
 
 def _project(camera, canvas: dict, points: np.ndarray) -> np.ndarray:
