@@ -75,7 +75,7 @@ class LectureExport:
                     where = f"stop {i + 1} of {len(lecture.stops)}"
                     picture = compose(
                         render_view(self.client, "png"),
-                        slide_words(where, stop.title, stop.say, view.stage),
+                        slide_words(where, stop.title, stop.say, view.stage_line),
                         slide_legend(view),
                     )
                     name = f"stop-{i + 1:02d}.png"
