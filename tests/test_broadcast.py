@@ -120,7 +120,7 @@ def test_a_page_is_sent_the_bytes_viser_sends(scene_messages, max_window: int) -
     """Window by window, the same messages and binary tail as viser's own producer (time stamps
     aside), in windows of every size."""
     broadcast.CACHE.clear()
-    ours = _sent(broadcast._message_producer, scene_messages, max_window=max_window)[0]
+    ours = _sent(broadcast.shared_producer, scene_messages, max_window=max_window)[0]
     theirs = _sent(broadcast.ORIGINAL, scene_messages, max_window=max_window)[0]
     assert len(ours) == len(theirs) == -(-len(scene_messages) // max_window)
     assert [_decoded(x) for x in ours] == [_decoded(x) for x in theirs]
@@ -129,7 +129,7 @@ def test_a_page_is_sent_the_bytes_viser_sends(scene_messages, max_window: int) -
 def test_pages_that_keep_up_share_one_serialisation(scene_messages) -> None:
     """Ten pages, the same windows: each window serialised once, and every page sent it."""
     broadcast.CACHE.clear()
-    sent = _sent(broadcast._message_producer, scene_messages, pages=10, max_window=16)
+    sent = _sent(broadcast.shared_producer, scene_messages, pages=10, max_window=16)
     windows = len(sent[0])
     assert all([_decoded(x) for x in s] == [_decoded(x) for x in sent[0]] for s in sent)
     assert broadcast.CACHE.misses == windows and broadcast.CACHE.hits == 9 * windows
@@ -171,7 +171,7 @@ def test_a_pages_own_messages_are_not_shared() -> None:
     async def run() -> None:
         buffer = AsyncMessageBuffer(asyncio.get_running_loop(), persistent_messages=False)
         buffer.push(message)
-        await asyncio.wait_for(broadcast._message_producer(_Socket(buffer, 1, []), buffer, 0), timeout=5)
+        await asyncio.wait_for(broadcast.shared_producer(_Socket(buffer, 1, []), buffer, 0), timeout=5)
 
     asyncio.run(run())
     assert broadcast.CACHE.hits == broadcast.CACHE.misses == 0
@@ -181,7 +181,7 @@ def test_viser_is_patched_only_where_it_was_copied_from() -> None:
     """The installed viser's producer is the one copied (its source unchanged), so the App runs with
     the cache; a producer of any other source is left alone."""
     assert broadcast.copied_from(broadcast.ORIGINAL)
-    assert _infra._message_producer is broadcast._message_producer  # the App above installed it
+    assert _infra._message_producer is broadcast.shared_producer  # the App above installed it
 
     async def other(*args) -> None:  # a viser whose producer changed
         return None

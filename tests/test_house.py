@@ -147,3 +147,25 @@ def test_rooms_of_one_job_no_module_over_500_lines_no_function_over_60():
             if is_function and node.end_lineno is not None and node.end_lineno - node.lineno + 1 > 60:
                 long_functions.append(f"{name}.{node.name}")
     assert long_modules == [] and long_functions == []
+
+
+def test_viser_is_entered_by_one_door():
+    """Every name viser does not publish (``viser._…``, ``viser.infra``, a handle's ``_impl`` or
+    ``_marks``, the server's ``_websock_server``, the producer) is used in ui/viser_compat.py only, where
+    each has a contract test and a fallback (tests/test_viser_compat.py)."""
+    import re
+
+    inside = re.compile(
+        r"from viser\.(?:_|infra)|import viser\.(?:_|infra)|(?<!self)\._impl\b|(?<!self)\._marks\b"
+        r"|_websock_server|_live_connections|_message_producer\b|_append_aligned_buffers"
+    )
+    package = Path(__file__).resolve().parent.parent / "apf_viz"
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        if path.name == "viser_compat.py":
+            continue
+        code = [line.split("#")[0] for line in path.read_text().splitlines()]
+        text = "\n".join(code)
+        text = re.sub(r'"""[\s\S]*?"""', "", text)  # docstrings may name what they explain
+        found += [f"{path.relative_to(package)}: {m.group(0)}" for m in inside.finditer(text)]
+    assert found == []

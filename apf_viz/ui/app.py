@@ -30,7 +30,7 @@ from apf_viz.core.formats import (
 from apf_viz.core.grid import as_point
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
 from apf_viz.lecture import find_lecture
-from apf_viz.ui import broadcast
+from apf_viz.ui import broadcast, viser_compat
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.network import check_listen, reachable_host
@@ -111,6 +111,7 @@ class App:
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
+        self.missing = viser_compat.missing()  # viser's insides this viser lacks (startup_line says which)
         quiet_page_errors()  # a page's malformed message: one line on the terminal, not a traceback
         # A page that leaves while its frame is drawn (a laptop closed, or asleep past the keepalive) gets
         # that frame's last updates on a closed connection: expected, and nothing is lost (a page that
@@ -155,11 +156,32 @@ class App:
         return self.roles.addresses(reachable_host(self._host), self.port)
 
     def role_of(self, client) -> Role:
-        """A page's role, from the path its websocket was opened at (the presenter address's secret)."""
-        # viser keeps each client's websocket connection; the request it was opened with has the path.
-        connection = getattr(self.server._websock_server, "_live_connections", {}).get(client.client_id)
-        request = getattr(connection, "request", None)
-        return self.roles.role_of(getattr(request, "path", None))
+        """A page's role, from the path its websocket was opened at (the presenter address's secret); a
+        class page where viser does not say (the presenter code stands in: :meth:`claim_presenter`)."""
+        return self.roles.role_of(viser_compat.websocket_path(self.server, client.client_id))
+
+    @property
+    def by_code(self) -> bool:
+        """Roles are claimed by the presenter code: this viser does not say which address a page used."""
+        return any(a.name == "websocket path" for a in self.missing)
+
+    def claim_presenter(self, client_id: int, code: str) -> str:
+        """A class page typed ``code``: if it is the presenter code, the page presents from now on."""
+        ok = self.roles.claims(client_id, code)
+        if ok is None:
+            return "too many wrong codes from this page: open the presenter address instead"
+        if not ok:
+            return "that is not the presenter code (the terminal printed it)"
+        state = self.session.promote(client_id)
+        screen = self._screen_by_id(client_id)
+        if screen is not None:
+            screen.state = state
+            screen.changed()
+        return "this page presents: it drives the shared run"
+
+    def _screen_by_id(self, client_id: int) -> BrowserScreen | None:
+        with self._screens_lock:
+            return self.screens.get(client_id)
 
     @property
     def panels(self) -> Panels | None:
@@ -433,6 +455,11 @@ def serve(args: argparse.Namespace) -> int:
         print(f"apf-viz: serving on {args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
         print(f"presenter: {presenter}", flush=True)
         print(f"class: {follower}", flush=True)
+        said = viser_compat.startup_line(app.missing)
+        if said is not None:
+            print(said, flush=True)
+        if app.by_code:
+            print(f"presenter code: {app.roles.code}  (type it into Presenter code on a page)", flush=True)
         while True:
             time.sleep(3600)
     except KeyboardInterrupt:

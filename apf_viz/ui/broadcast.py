@@ -8,8 +8,10 @@ looks for the window among the last few serialised (by the identity of its messa
 holds from the broadcast buffer), then stamps it with the time and compresses it, as viser does.
 
 viser's producer (``viser.infra._infra._message_producer`` of viser 1.1.1) is replaced by a copy that
-differs only in that cache, and only where its source is the source copied (:data:`COPIED_SHA256`);
-with any other viser, viser is left as it is. A page is sent what viser would have sent it: the same
+differs only in that cache, and only where its source is the source copied (ui/viser_compat.py, the one
+door to viser's insides, checks it and does the swap); with any other viser, viser is left as it is and
+the server says so at start. tests/test_broadcast.py holds the copy to viser's own producer byte for
+byte, the helpers it calls included. A page is sent what viser would have sent it: the same
 messages, binary buffers and fresh time stamp (the page paces messages by those stamps), the stamp last
 in the map instead of second.
 
@@ -23,22 +25,21 @@ the update, and ends where it would have.
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import inspect
 import struct
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Sequence
+from typing import Any
 
 import msgspec.msgpack
 import zstandard
-from viser.infra import _infra
 
-# sha256 of the source of viser 1.1.1's ``_message_producer``, the function copied below.
-COPIED_SHA256 = "8283328d06cfa014576888930c49a857a2d79892dc89f9694444895945018ea3"
-ORIGINAL = _infra._message_producer
+from apf_viz.ui import viser_compat
+
+ORIGINAL = viser_compat.producer()  # viser's own, as it was before any swap
 KEPT = 8  # serialised windows kept
+Message = Any  # viser's message (infra's Message): what a window holds
 
 
 @dataclasses.dataclass(frozen=True)
@@ -59,11 +60,11 @@ class Serialized:
             len(compressed).to_bytes(8, "little"),
             compressed,
         ]
-        _infra._append_aligned_buffers(parts, list(self.binary), 16 + len(compressed))
+        viser_compat.append_aligned_buffers(parts, list(self.binary), 16 + len(compressed))
         return b"".join(parts)
 
 
-def serialize(window: Sequence[_infra.Message]) -> Serialized:
+def serialize(window: Sequence[Message]) -> Serialized:
     """What ``_infra._message_producer`` encodes of a window, the time stamp put last and left 0."""
     binary_buffers: list[memoryview] = []
     serialized = tuple(message.as_serializable_dict(binary_buffers) for message in window)
@@ -88,7 +89,7 @@ class WindowCache:
         self.hits = 0
         self.misses = 0
 
-    def serialized(self, window: Sequence[_infra.Message]) -> Serialized:
+    def serialized(self, window: Sequence[Message]) -> Serialized:
         key = tuple(map(id, window))
         with self._lock:
             entry = self._entries.get(key)
@@ -113,11 +114,11 @@ class WindowCache:
 CACHE = WindowCache()
 
 
-async def _message_producer(
-    websocket: _infra.ServerConnection,
-    buffer: _infra.AsyncMessageBuffer,
+async def shared_producer(
+    websocket: Any,
+    buffer: Any,
     client_id: int,
-    backlog_done_message: _infra.Message | None = None,
+    backlog_done_message: Message | None = None,
 ) -> None:
     """viser's producer, but a window of the broadcast buffer is serialised once for all pages."""
     window_generator = buffer.window_generator(client_id, backlog_done_message=backlog_done_message)
@@ -136,20 +137,12 @@ async def _message_producer(
 
 
 def copied_from(producer: object) -> bool:
-    """Whether ``producer``'s source is the source :func:`_message_producer` was copied from."""
-    try:
-        source = inspect.getsource(producer)  # type: ignore[arg-type]
-    except (OSError, TypeError):  # no source to compare: not known to be the same
-        return False
-    return hashlib.sha256(source.encode()).hexdigest() == COPIED_SHA256
+    """Whether ``producer``'s source is the source :func:`shared_producer` was copied from."""
+    return viser_compat.producer_is_the_copied_one(producer)
 
 
 def install() -> bool:
-    """Replace viser's producer by :func:`_message_producer` where viser's is the one copied; whether
+    """Replace viser's producer by :func:`shared_producer` where viser's is the one copied; whether
     it is (again and again: the App installs it each time it starts)."""
-    if _infra._message_producer is _message_producer:
-        return True
-    if not copied_from(_infra._message_producer):
-        return False
-    _infra._message_producer = _message_producer
-    return True
+    viser_compat.remember_replacement(shared_producer)
+    return viser_compat.swap_producer(shared_producer, ORIGINAL)

@@ -11,6 +11,7 @@ from typing import Literal
 Role = Literal["presenter", "class"]
 
 PRESENT_PATH = "/present/"
+CODE_TRIES = 5
 
 
 class Roles:
@@ -19,6 +20,24 @@ class Roles:
     def __init__(self, secret: str | None = None) -> None:
         # 128 bits: the presenter address cannot be guessed from the class address, nor tried for.
         self.secret = secret or secrets.token_urlsafe(16)
+        # Where the address cannot be read (ui/viser_compat.py), a code a person types: 40 bits, and a
+        # page has CODE_TRIES tries.
+        self.code = secrets.token_hex(5)
+        self._tries: dict[object, int] = {}
+
+    def claims(self, page: object, code: str) -> bool | None:
+        """Whether ``code`` is the presenter code (None: this page has used up its tries). A field reports
+        each key typed: only a code of the code's length counts as a try."""
+        code = code.strip().lower()
+        if len(code) != len(self.code):
+            return False
+        tried = self._tries.get(page, 0)
+        if tried >= CODE_TRIES:
+            return None
+        if secrets.compare_digest(code.encode(), self.code.encode()):
+            return True
+        self._tries[page] = tried + 1
+        return False
 
     def role_of(self, path: str | None) -> Role:
         """The role of a page whose websocket was opened at ``path`` (None: unknown, a class page)."""

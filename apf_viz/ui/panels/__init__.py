@@ -23,6 +23,7 @@ from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
 from apf_viz.ui.panels.paper import PaperFolder
 from apf_viz.ui.panels.presentation import Presentation
+from apf_viz.ui.panels.presenter_code import Claim, PresenterCode
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
@@ -81,6 +82,7 @@ class Panels:
         verifier: SharedVerifier | None = None,
         frame_all: Callable[[], None] = lambda: None,
         cell_at: Callable | None = None,
+        claim_presenter: Claim | None = None,
     ) -> None:
         self.session = session
         self.ctx = PanelContext(
@@ -92,6 +94,7 @@ class Panels:
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
+        self.folders.append(PresenterCode(owner.gui, self.ctx, claim_presenter))
         self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
         self._driving_shown = (True, True)  # the driving controls (and the shared run's alone) shown
 

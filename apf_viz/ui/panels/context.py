@@ -8,6 +8,7 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
+from apf_viz.ui import viser_compat
 from apf_viz.ui.session import Session
 from apf_viz.ui.verifier import Status, Verifier
 
@@ -37,7 +38,7 @@ def tell(client, title: str, body: str, error: bool = False) -> None:
         return
     mine = _shown.setdefault(client, {})
     previous = mine.pop(title, None)
-    if previous is not None and not previous._impl.removed:
+    if previous is not None and not viser_compat.notification_removed(previous):
         previous.remove()
     mine[title] = client.add_notification(
         title, body, auto_close_seconds=8.0, color="red" if error else "blue"

@@ -5,10 +5,9 @@ from __future__ import annotations
 
 import time
 
-from viser._messages import GuiSliderMark
-
 from apf_viz.demos import scenarios
 from apf_viz.lecture import lectures
+from apf_viz.ui import viser_compat
 from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
 from apf_viz.ui.run_controller import MAX_SPEED
@@ -325,6 +324,4 @@ class HistoryFolder:
             self.numbers.value = view.numbers
         if self.trails.value != view.trail_setting:
             self.trails.value = view.trail_setting
-        marks = tuple(GuiSliderMark(float(v), label) for v, label in view.timeline_marks)
-        if self.timeline._marks != (marks or None):  # viser has no public setter for marks yet
-            self.timeline._marks = marks or None
+        viser_compat.set_slider_marks(self.timeline, view.timeline_marks)  # viser has no public setter

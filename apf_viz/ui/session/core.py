@@ -124,6 +124,18 @@ class SessionCore:
             self._browsers[browser] = state
             return state
 
+    def promote(self, browser: Hashable) -> BrowserState:
+        """A class page becomes a presenter page (it gave the presenter code): it holds the presenter's
+        state if no page does, else it drives with a state of its own."""
+        with self.lock:
+            if self._presenter_of is None or self._presenter_of == browser:
+                self._presenter_of = browser
+                state = self.presenter
+            else:
+                state = BrowserState(role="presenter")
+            self._browsers[browser] = state
+            return state
+
     def leave(self, browser: Hashable) -> None:
         with self.lock:
             self._browsers.pop(browser, None)

@@ -1,0 +1,188 @@
+"""The one door to viser's insides: every name apf-viz uses that viser does not publish is read here, and
+nowhere else (tests/test_house.py holds it). Each access has a contract test (tests/test_viser_compat.py)
+that fails when a viser release changes it, and a fallback that works with public API only. At start
+the server checks them all (:func:`missing`) and says in one terminal line what it could not use and what
+that costs, so a lecturer finds out before the class does.
+
+The accesses, and what each costs when it is missing:
+
+- ``websocket path``: the path a page opened its websocket at (``server._websock_server._live_connections
+  [id].request.path``), which tells a presenter page from a class page. Without it every page opens as a
+  class page; a presenter takes control by typing the presenter code (printed in the terminal) into the
+  page's ``Presenter code`` field.
+- ``shared producer``: viser's per-page message producer (``viser.infra._infra._message_producer``, and
+  ``_append_aligned_buffers``), replaced by a copy that serialises a broadcast window once for all pages
+  (ui/broadcast.py). Without it each page's windows are serialised for that page: slower with many pages.
+- ``timeline marks``: a slider's marks (``handle._marks``; viser has no public setter). Without them the
+  timeline shows no stage marks; the Run folder lists the stages anyway.
+- ``notification state``: whether a notification was closed (``handle._impl.removed``). Without it a
+  page's notification is removed again when replaced (harmless: viser ignores it).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import viser
+
+try:  # the module viser's producer lives in; a release may move it
+    from viser.infra import _infra
+except ImportError:  # pragma: no cover - exercised by hiding it in tests/test_viser_compat.py
+    _infra = None  # type: ignore[assignment]
+
+try:
+    from viser._messages import GuiSliderMark
+except ImportError:  # pragma: no cover
+    GuiSliderMark = None  # type: ignore[assignment,misc]
+
+# sha256 of the source of viser 1.1.1's ``_message_producer``, the function ui/broadcast.py copies.
+COPIED_SHA256 = "8283328d06cfa014576888930c49a857a2d79892dc89f9694444895945018ea3"
+
+
+@dataclass(frozen=True)
+class Access:
+    """One of viser's insides: its name, whether this viser has it, and what its absence costs."""
+
+    name: str
+    present: Callable[[], bool]
+    cost: str
+
+
+# ---------------------------------------------------------------- the websocket path (roles)
+def websocket_path(server: viser.ViserServer, client_id: int) -> str | None:
+    """The path a page opened its websocket at, or None when viser does not say (see the module's
+    docstring: the presenter code then stands in)."""
+    connections = getattr(getattr(server, "_websock_server", None), "_live_connections", None)
+    if not isinstance(connections, dict):
+        return None
+    request = getattr(connections.get(client_id), "request", None)
+    path = getattr(request, "path", None)
+    return path if isinstance(path, str) else None
+
+
+def _has_websocket_paths() -> bool:
+    server_class = getattr(getattr(viser, "infra", None), "WebsockServer", None)
+    if server_class is None:
+        return False
+    source = _source(server_class)
+    return "_live_connections" in source and "request" in _source(getattr(_infra, "ServerConnection", None))
+
+
+# ---------------------------------------------------------------- the message producer (broadcast)
+def producer() -> object | None:
+    """viser's per-page message producer, as it is now (None: this viser has none where it was)."""
+    return getattr(_infra, "_message_producer", None)
+
+
+def producer_is_the_copied_one(candidate: object | None = None) -> bool:
+    """Whether viser's producer is the one ui/broadcast.py copied (its source, hashed)."""
+    found = producer() if candidate is None else candidate
+    source = _source(found)
+    return bool(source) and hashlib.sha256(source.encode()).hexdigest() == COPIED_SHA256
+
+
+def swap_producer(replacement: Callable[..., Any], original: object) -> bool:
+    """Put ``replacement`` in the place of viser's producer when viser's is the one copied (or is already
+    the replacement); whether it is there now."""
+    if _infra is None:
+        return False
+    if producer() is replacement:
+        return True
+    if not producer_is_the_copied_one(original) or producer() is not original:
+        return False
+    if not hasattr(_infra, "_append_aligned_buffers"):
+        return False
+    _infra._message_producer = replacement
+    return True
+
+
+def append_aligned_buffers(parts: list, buffers: list, offset: int) -> None:
+    """viser's own framing of a window's binary buffers (each 8-byte aligned after ``offset`` bytes)."""
+    _infra._append_aligned_buffers(parts, buffers, offset)
+
+
+# ---------------------------------------------------------------- a slider's marks
+def set_slider_marks(slider: object, marks: Sequence[tuple[float, str | None]]) -> None:
+    """The marks under a slider (the timeline's stages); nothing where this viser cannot."""
+    if GuiSliderMark is None or not hasattr(slider, "_marks"):
+        return
+    wanted = tuple(GuiSliderMark(float(v), label) for v, label in marks) or None
+    if slider._marks != wanted:
+        slider._marks = wanted
+
+
+def _has_slider_marks() -> bool:
+    from viser import _messages
+
+    props = getattr(_messages, "GuiSliderProps", None)
+    return GuiSliderMark is not None and "_marks" in getattr(props, "__annotations__", {})
+
+
+# ---------------------------------------------------------------- a notification's state
+def notification_removed(handle: object) -> bool:
+    """Whether a page's notification was already removed (unknown: not removed, so it is removed again,
+    which viser ignores)."""
+    impl = getattr(handle, "_impl", None)
+    return bool(getattr(impl, "removed", False))
+
+
+def _has_notification_state() -> bool:
+    return "removed" in _source(getattr(viser, "NotificationHandle", None)) or "removed" in _source(
+        getattr(getattr(viser, "_notification_handle", None), "_NotificationHandleState", None)
+    )
+
+
+# ---------------------------------------------------------------- the check at start
+ACCESSES = (
+    Access("websocket path", _has_websocket_paths,
+           "every page opens as a class page; a presenter types the presenter code into Presenter code"),
+    Access("shared producer", lambda: producer_is_the_copied_one() or _installed(),
+           "class pages are serialised once each: slower with many pages"),
+    Access("timeline marks", _has_slider_marks, "the timeline shows no stage marks"),
+    Access("notification state", _has_notification_state, "none (a closed message is closed again)"),
+)  # fmt: skip
+
+_replacements: list[object] = []  # the producer put in viser's place, once it is (ui/broadcast.py)
+
+
+def _installed() -> bool:
+    return bool(_replacements) and producer() is _replacements[0]
+
+
+def remember_replacement(replacement: object) -> None:
+    _replacements[:] = [replacement]
+
+
+def missing() -> list[Access]:
+    """The accesses this viser does not offer as apf-viz uses them."""
+    out = []
+    for access in ACCESSES:
+        try:
+            ok = access.present()
+        except Exception:  # an inside that changed shape is missing, whatever it raised
+            ok = False
+        if not ok:
+            out.append(access)
+    return out
+
+
+def startup_line(absent: Sequence[Access]) -> str | None:
+    """One terminal line naming what could not be used and its cost (None: everything is there)."""
+    if not absent:
+        return None
+    version = getattr(viser, "__version__", "?")
+    said = "; ".join(f"{a.name} ({a.cost})" for a in absent)
+    return f"apf-viz: viser {version} lacks what apf-viz uses of its insides: {said}"
+
+
+def _source(thing: object) -> str:
+    if thing is None:
+        return ""
+    try:
+        return inspect.getsource(thing)  # type: ignore[arg-type]
+    except (OSError, TypeError):
+        return ""
