@@ -15,7 +15,7 @@ from apf_viz.core.grid import as_point
 
 def trace_session(trace: Path):
     """A session following the trace ``trace`` (a file, or a shipped name), at its start; its file name."""
-    from apf_viz.ui.app import demo_session
+    from apf_viz.ui.session.demo import demo_session
 
     path = shipped(trace, "trace", "--trace")
     assert path is not None

@@ -74,7 +74,7 @@ def run_to_event(session: Session, event: int | None) -> None:
 def figure_session(label: str) -> tuple[Session, str]:
     """The paper's figure ``label`` reached as its one-stop lecture reaches it, and its caption."""
     from apf_viz.lecture import figures
-    from apf_viz.ui.app import demo_session
+    from apf_viz.ui.session.demo import demo_session
 
     figure = figures().get(label)
     if figure is None:

@@ -42,6 +42,7 @@ from apf_viz.ui.roles import Role, Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.session import Session
+from apf_viz.ui.session.demo import demo_session as demo_session  # where tests and scripts find it
 
 FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
@@ -393,19 +394,6 @@ class App:
         self.renderer.frame_initial_camera(self.server.initial_camera, bounds)
         self._initial_bounds = self.renderer.bounds if bounds is None else bounds
         self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more
-
-
-def demo_session(**options) -> Session:
-    """The built-in demo: a heart from 10 robots. ``options`` go to :class:`Session`."""
-    robots = load_robots(DEMO_START)
-    pattern = load_pattern(DEMO_PATTERN)
-    options.setdefault("seed", 1)
-    return Session(
-        [as_point(p) for p in robots.robots],
-        [as_point(p) for p in pattern.points],
-        y_up=robots.flips(options["seed"]),
-        **options,
-    )
 
 
 def session_from_args(args: argparse.Namespace) -> Session:

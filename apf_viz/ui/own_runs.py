@@ -18,12 +18,12 @@ from collections.abc import Callable, Iterable
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.browser_screen import BrowserScreen
-from apf_viz.ui.compare import Twin
 from apf_viz.ui.session import Session
+from apf_viz.ui.session.branch import EXTRA_EVENTS as EXTRA_EVENTS
+from apf_viz.ui.session.branch import branch as branch
 
 MAX_OWN_RUNS = 24
 """Runs of their own at once; the next page to ask is told to wait for one to end."""
-EXTRA_EVENTS = 100_000
 """How far an own run may go past where it branched (a few MB of history); it then ends ("budget")."""
 OWN_SHARE = 0.15
 """The share of each frame that every own run's Play together may take; the shared run keeps the rest."""
@@ -34,27 +34,6 @@ OWN_DRAWS = 6.0
 class of them costs the server a fifth of the messages that drawing every frame (30 a second) would."""
 OWN_DRAW_SHARE = 0.1
 """The share of each frame that drawing the own runs may take; the pages not drawn are drawn next."""
-
-
-def branch(shared: Session) -> Session:
-    """A run of one's own: the shared run's configuration, played to the shared run's step by the same
-    step records (the same events, lights and positions), then free to go its own way."""
-    with shared.lock:
-        config = shared.config
-        engine = shared.engine
-        records = [engine.history.steps.record(i) for i in range(engine.step_index)]
-        events = engine.state.events
-        plugins = shared.run.plugins
-        numbers = shared.numbers
-        compared = shared.screen.twin.algorithm if shared.screen.twin is not None else None
-    own = Session.from_config(config.but(event_cap=events + EXTRA_EVENTS), plugins)
-    if compared is not None:  # the lecture's Compare too: the copy's second run follows the copy
-        own.screen.twin = Twin(compared, plugins)
-    for record in records:
-        own.engine.apply(record)
-    own.private = True
-    own.numbers = numbers
-    return own
 
 
 class OwnPlay:

@@ -120,8 +120,8 @@ class FilesFolder:
     def _export_page(self, event) -> str:
         """The run this page shows, from its start to where it is, recorded on a copy (the run itself,
         shared or not, does not move)."""
-        from apf_viz.ui.own_runs import branch
         from apf_viz.ui.page_export import export_run
+        from apf_viz.ui.session.branch import branch
 
         if event.client is None:
             return ""
