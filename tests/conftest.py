@@ -16,3 +16,16 @@ def write_json(tmp_path: Path):
         return p
 
     return _write
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """Debian's Chromium driven by Playwright, one for a test module (tests/test_ui_browser.py says how it
+    is launched); playwright is imported only by the tests that ask for it."""
+    sync = pytest.importorskip("playwright.sync_api")
+    from tests.test_ui_browser import ARGS, CHROMIUM
+
+    with sync.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield b
+        b.close()

@@ -22,11 +22,9 @@ from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
 from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
-from tests import test_ui_browser
 from tests.test_ui_browser import OUT, _canvas, inside_canvas, settled, wait_for
 
 playwright = pytest.importorskip("playwright.sync_api")
-browser = test_ui_browser.browser  # the fixture: one Chromium for the module, launched as the UI tests do
 pytestmark = pytest.mark.browser
 
 LABEL_FONT_STACK = (

@@ -47,14 +47,6 @@ if not Path(CHROMIUM).exists():  # the README's test command installs it; say so
     )
 
 
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        yield b
-        b.close()
-
-
 @pytest.fixture
 def app() -> Iterator[App]:
     a = App(demo_session(), port=free_port(), verbose=False)

@@ -15,9 +15,6 @@ import viser
 
 from apf_viz.ui import viser_compat
 from apf_viz.ui.network import free_port
-from tests import test_ui_browser
-
-browser = test_ui_browser.browser  # the fixture: one Chromium for the module
 
 ROOT = Path(__file__).resolve().parent.parent
 

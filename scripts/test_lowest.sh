@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The lowest versions pyproject.toml allows (scripts/lowest.txt), in a fresh virtual environment that
+# sees no system packages: apf-viz installed on them, the quick suite run, and `apf-viz serve` answering
+# a page. Arguments go to pytest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rm -rf .venv-lowest
+python3 -m venv .venv-lowest
+.venv-lowest/bin/python -m pip install -q -r scripts/lowest.txt
+.venv-lowest/bin/python -m pip install -q --no-deps -e .
+.venv-lowest/bin/python - <<'PY'
+import importlib.metadata as m
+import re
+from pathlib import Path
+for line in Path("scripts/lowest.txt").read_text().splitlines():
+    if line and not line.startswith("#"):
+        name, version = re.split(r"==", re.sub(r"\[.*\]", "", line))
+        assert m.version(name) == version, (name, m.version(name), version)
+print("apf-viz on the lowest versions:", ", ".join(l.split("==")[0] + " " + l.split("==")[1]
+      for l in Path("scripts/lowest.txt").read_text().splitlines() if l and not l.startswith("#")))
+PY
+port=$(.venv-lowest/bin/python -c "from apf_viz.ui.network import free_port; print(free_port())")
+.venv-lowest/bin/apf-viz serve --port "$port" > /tmp/apf-viz-lowest-serve.log 2>&1 &
+server=$!
+trap 'kill -INT $server 2>/dev/null || true' EXIT
+for _ in $(seq 1 120); do
+  if .venv-lowest/bin/python -c "import urllib.request,sys; urllib.request.urlopen('http://127.0.0.1:$port/', timeout=1)" 2>/dev/null; then
+    echo "apf-viz serve answered a page on the lowest versions"; break
+  fi
+  sleep 0.5
+done
+.venv-lowest/bin/python -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/', timeout=5)"
+if grep -q "lacks" /tmp/apf-viz-lowest-serve.log; then cat /tmp/apf-viz-lowest-serve.log; exit 1; fi
+.venv-lowest/bin/python -m pytest -p no:cacheprovider -m "not browser and not slow" "$@"
