@@ -377,7 +377,7 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
         time_field = page.locator("input.mantine-NumberInput-input")
         page.wait_for_function("() => document.title.endsWith('stop 1')")
         time.sleep(2.0)  # paused: two seconds later it is still at stop 1's moment
-        assert time_field.input_value() == "0.1" and title.inner_text() == stops[0].title
+        assert float(time_field.input_value()) == pytest.approx(0.1) and title.inner_text() == stops[0].title
         first = _canvas(page)
         assert first.std() > 5  # it draws
         sizes = page.evaluate(
