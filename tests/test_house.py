@@ -163,13 +163,14 @@ def test_rooms_of_one_job_no_module_over_500_lines_no_function_over_60():
 
 def test_viser_is_entered_by_one_door():
     """Every name viser does not publish (``viser._…``, ``viser.infra``, a handle's ``_impl`` or
-    ``_marks``, the server's ``_websock_server``, the producer) is used in ui/viser_compat.py only, where
-    each has a contract test and a fallback (tests/test_viser_compat.py)."""
+    ``_marks``, the server's ``_websock_server``, the producer, its client's Mantine class names) is used
+    in ui/viser_compat.py only, where each has a contract test and a fallback
+    (tests/test_viser_compat.py; the player's time field: tests/test_lecture_projector.py)."""
     import re
 
     inside = re.compile(
         r"from viser\.(?:_|infra)|import viser\.(?:_|infra)|(?<!self)\._impl\b|(?<!self)\._marks\b"
-        r"|_websock_server|_live_connections|_message_producer\b|_append_aligned_buffers"
+        r"|_websock_server|_live_connections|_message_producer\b|_append_aligned_buffers|\.mantine-"
     )
     package = Path(__file__).resolve().parent.parent / "apf_viz"
     found = []

@@ -4,8 +4,9 @@ an HTML caption over the bottom of the canvas at the projector's sizes (ui/view_
 
 The recording (ui/page_export.py) holds the stops one after another, each from a known second; a stop is
 shown by seeking viser's player to that second through its time field (the one control of its playback
-bar a page can set). The player is viser's own: if a release drops that field, the page says so in its
-caption and plays as a slideshow (tests/test_export_page.py holds the contract in a browser)."""
+bar a page can set; how it is found is one of viser's insides, kept in ui/viser_compat.py). If a release
+drops that field, the page says so in its caption and plays as a slideshow (the exported page's browser
+test in tests/test_lecture_projector.py holds the contract)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from dataclasses import asdict, dataclass
 
 from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
 from apf_viz.ui.view_model.legend import symbol_html
+from apf_viz.ui.viser_compat import PLAYER_TIME_FIELD_JS
 
 
 @dataclass(frozen=True)
@@ -45,14 +47,7 @@ _SCRIPT = """
   var data = JSON.parse(document.getElementById('apf-stops').textContent);
   var stops = data.stops, index = 0, shown = -1, paced = true;
   var box = document.getElementById('apf-caption');
-  function field() {
-    var all = document.querySelectorAll('input');
-    for (var i = 0; i < all.length; i++) {
-      var e = all[i];
-      if (e.closest('.mantine-Paper-root') && /^[0-9.]*$/.test(e.value) && e.type !== 'hidden') return e;
-    }
-    return null;
-  }
+  var field = %(field)s;
   function show(i) {
     if (i === shown) return;
     shown = i;
@@ -118,11 +113,12 @@ def paced_page(page: str, title: str, stops: list[PageStop], stop_seconds: float
         ],
     }
     payload = json.dumps(data).replace("</", "<\\/")  # no text of a lecture ends the script early
+    script = _SCRIPT % {"field": PLAYER_TIME_FIELD_JS}
     added = (
         f"<style>{_STYLE}</style>"
         f'<div id="apf-caption" role="region" aria-label="{html.escape(title)}"></div>'
         f'<script type="application/json" id="apf-stops">{payload}</script>'
-        f"<script>{_SCRIPT}</script>"
+        f"<script>{script}</script>"
     )
     end = page.rindex("</body>")
     return page[:end] + added + page[end:]

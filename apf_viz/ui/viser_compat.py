@@ -17,6 +17,10 @@ The accesses, and what each costs when it is missing:
   timeline shows no stage marks; the Run folder lists the stages anyway.
 - ``notification state``: whether a notification was closed (``handle._impl.removed``). Without it a
   page's notification is removed again when replaced (harmless: viser ignores it).
+- ``player time field`` (in the page, not the server): the time field of the player an exported page
+  embeds (:data:`PLAYER_TIME_FIELD_JS`), through which ui/lecture_page.py seeks stop to stop. Without it
+  the exported lecture says so in its caption and plays as a slideshow. Its contract test is a browser's
+  (tests/test_lecture_projector.py, the exported page).
 """
 
 from __future__ import annotations
@@ -134,6 +138,19 @@ def _has_notification_state() -> bool:
     return "removed" in _source(getattr(viser, "NotificationHandle", None)) or "removed" in _source(
         getattr(getattr(viser, "_notification_handle", None), "_NotificationHandleState", None)
     )
+
+
+# ---------------------------------------------------------------- the exported player's time field
+# A JavaScript function: the number field of the playback bar (a Mantine Paper) of viser's embedded
+# player, or null. Setting it (the native setter, then an input event) seeks the recording and pauses it.
+PLAYER_TIME_FIELD_JS = """function () {
+    var all = document.querySelectorAll('input');
+    for (var i = 0; i < all.length; i++) {
+      var e = all[i];
+      if (e.closest('.mantine-Paper-root') && /^[0-9.]*$/.test(e.value) && e.type !== 'hidden') return e;
+    }
+    return null;
+  }"""
 
 
 # ---------------------------------------------------------------- the check at start
