@@ -6,7 +6,6 @@ are reproducible: the same scenario, seed and adversary give the same events). P
 from __future__ import annotations
 
 import re
-import weakref
 from collections import Counter
 from dataclasses import dataclass
 from typing import Protocol
@@ -22,7 +21,7 @@ from apf_viz.lecture import (
     frameless_coordinates,
     panel_words,
 )
-from apf_viz.ui.screen_state import SharedScreen
+from apf_viz.ui.screen_state import RunMark, SharedScreen
 from apf_viz.ui.view_model import SessionView, stage_of
 from apf_viz.ui.view_model.run_source import RunSource
 
@@ -78,7 +77,7 @@ class Lecturer:
         self.reached: Reached | None = None
         # Where the current stop left the run: its engine, history generation and step. A stop's words
         # hold there only, so the next stop starts from there, not from wherever Play went meanwhile.
-        self._mark: tuple[weakref.ref[Engine], int, int] | None = None
+        self.mark: RunMark | None = None
 
     @property
     def stop(self) -> Stop | None:
@@ -93,21 +92,13 @@ class Lecturer:
     def previous(self) -> Reached | None:
         """The stop before (None before the first), replayed from its scenario; off the current stop
         (played or stepped away from it), back to the current stop itself."""
-        if self.position >= 0 and not self._at_mark():
+        if self.position >= 0 and not (self.mark is not None and self.mark.holds(self.session.engine)):
             if self._back_at_stop() and self.reached is not None:
                 return self.reached
             return self.go(self.position)
         if self.position <= 0:
             return None
         return self.go(self.position - 1)
-
-    def _at_mark(self) -> bool:
-        """The run stands exactly where the current stop left it."""
-        if self._mark is None:
-            return False
-        engine, generation, step = self._mark
-        e = self.session.engine
-        return engine() is e and generation == e.history.generation and e.step_index == step
 
     def go(self, index: int) -> Reached:
         """Stand at stop ``index``: from the stop itself when it follows the current one, else replayed
@@ -119,8 +110,7 @@ class Lecturer:
         for i in range(first, index + 1):
             reached = self._apply(i, stops[i])
         self.position, self.reached = index, reached
-        e = self.session.engine
-        self._mark = (weakref.ref(e), e.history.generation, e.step_index)
+        self.mark = RunMark.of(self.session.engine)
         return reached
 
     def _back_at_stop(self) -> bool:
@@ -130,13 +120,10 @@ class Lecturer:
         if self.position < 0:
             return True  # the first stop loads its scenario
         e = self.session.engine
-        if self._mark is None:
+        if self.mark is None or not self.mark.on_history(e):
             return False
-        engine, generation, step = self._mark  # a weak reference: a new engine may reuse the old one's id()
-        if engine() is not e or generation != e.history.generation or e.history.length < step:
-            return False
-        if e.step_index != step:
-            self.session.seek(step)
+        if e.step_index != self.mark.step:
+            self.session.seek(self.mark.step)
         return True
 
     def check(self) -> list[Reached]:

@@ -9,6 +9,7 @@ import weakref
 from dataclasses import dataclass, field
 from typing import Literal
 
+from apf_viz.core.engine import Engine
 from apf_viz.ui.compare import Twin
 from apf_viz.ui.editor import Editor
 from apf_viz.ui.roles import Role
@@ -34,10 +35,35 @@ class SharedScreen:
 
 
 @dataclass(frozen=True)
+class RunMark:
+    """Where a run stood: its engine (held weakly: a new engine may reuse a dropped one's id()), its
+    history's generation (a branch that drops steps bumps it) and the step it was at."""
+
+    run: weakref.ref = field(compare=False, repr=False)
+    generation: int
+    step: int
+
+    @classmethod
+    def of(cls, engine: Engine) -> RunMark:
+        return cls(weakref.ref(engine), engine.history.generation, engine.step_index)
+
+    def on_history(self, engine: Engine) -> bool:
+        """The same engine, along the same history, which still holds the step marked."""
+        return (
+            self.run() is engine
+            and engine.history.generation == self.generation
+            and (engine.history.length >= self.step)
+        )
+
+    def holds(self, engine: Engine) -> bool:
+        """The run stands exactly where it was marked."""
+        return self.on_history(engine) and engine.step_index == self.step
+
+
+@dataclass(frozen=True)
 class LectureStop:
-    """A guided lecture's stop as it was reached: its words hold at that state only (the run, its history
-    and the step reached); once the run is played or stepped off it, the screen says where the run is
-    instead."""
+    """A guided lecture's stop as it was reached: its words hold at that state only (:attr:`mark`); once
+    the run is played or stepped off it, the screen says where the run is instead."""
 
     lecture: str  # the lecture's title
     index: int  # 0-based
@@ -46,14 +72,7 @@ class LectureStop:
     say: str
     event: int  # the event at which the stop was reached
     next_title: str | None = None  # the next stop's title (None: the last stop)
-    step: int = 0  # the history step reached
-    generation: int = 0  # the history's generation then (a branch that drops steps bumps it)
-    run: weakref.ref | None = field(default=None, compare=False, repr=False)  # the engine, held weakly
-
-    def holds(self, engine: object, step: int, generation: int) -> bool:
-        """The run stands where this stop left it (the same engine, history and step)."""
-        same = self.run is None or self.run() is engine
-        return same and step == self.step and generation == self.generation
+    mark: RunMark | None = None  # where the stop left the run
 
 
 @dataclass

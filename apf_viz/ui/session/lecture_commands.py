@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import weakref
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
@@ -59,10 +58,9 @@ class LectureCommands(SessionCore):
         stops = lecturer.lecture.stops
         stop = stops[reached.index]
         following = stops[reached.index + 1].title if reached.index + 1 < len(stops) else None
-        e = self.engine
         self.screen.lecture = LectureStop(
             lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event,
-            following, e.step_index, e.history.generation, weakref.ref(e),
+            following, lecturer.mark,
         )  # fmt: skip
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"

@@ -143,10 +143,11 @@ def lecture_words(stop: LectureStop | None, engine: Engine, playing: bool) -> tu
     if stop is None:
         return None
     where = f"stop {stop.index + 1} of {stop.count} · {stop.lecture}"
-    if stop.holds(engine, engine.step_index, engine.history.generation) and not playing:
+    if stop.mark is not None and stop.mark.holds(engine) and not playing:
         return where, stop.title, stop.say
     event = engine.state.events
-    how = "playing on" if playing else ("stepped back" if engine.step_index < stop.step else "played on")
+    back = stop.mark is not None and engine.step_index < stop.mark.step
+    how = "playing on" if playing else ("stepped back" if back else "played on")
     ahead = (
         f"PageDown: stop {stop.index + 2}, “{stop.next_title}”."
         if stop.next_title
