@@ -73,8 +73,9 @@ def place_near(
     width = label_width(text, height)
     best: tuple[tuple[float, float], Anchor, Bounds] | None = None
     least = (float("inf"), float("inf"))
-    for sx, sy, anchor, ax in robot_spots(at[0], at[1], width, height):
-        box = (sx, sy, sx + width, sy + height)
+    spots = robot_spots(at[0], at[1], width, height)
+    for sx, sy, anchor, ax in spots:
+        box = label_box(text, (sx, sy, sx), height)
         if box[0] < left_edge:
             continue
         covered = 0.0 if text.isdigit() else sum(_overlap_area(box, d) for d in discs)
@@ -84,9 +85,14 @@ def place_near(
         if cost == (0.0, 0.0):
             break
     if best is None:  # every place is past the left edge: the first, whatever it covers
-        sx, sy, anchor, ax = robot_spots(at[0], at[1], width, height)[0]
-        best = ((ax, sy), anchor, (sx, sy, sx + width, sy + height))
+        sx, sy, anchor, ax = spots[0]
+        best = ((ax, sy), anchor, label_box(text, (sx, sy, sx), height))
     return best
+
+
+def robot_discs(pts) -> list[Bounds]:
+    """Each robot's disc as a box, for a label to keep clear of."""
+    return [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
 
 
 def spread(
@@ -101,8 +107,8 @@ def spread(
     numbers first, so that a longer label gives way to them. ``height``: a label's height in cells;
     ``left_edge``: how far left a framed camera shows (a label moved past it would not be seen);
     ``taken``: labels already on the canvas (another run's), kept clear of as well. Each label comes back
-    with its anchor; :func:`spread_boxes` gives the boxes they may take."""
-    discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in pts]
+    with its anchor; :func:`spec_box` gives the box each may take."""
+    discs = robot_discs(pts)
     order = sorted(range(len(labels)), key=lambda i: not labels[i][0].isdigit())  # plain numbers first
     boxes = list(taken)
     placed: dict[int, LabelSpec] = {}

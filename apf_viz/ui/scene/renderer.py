@@ -91,15 +91,15 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         # caption says which it is and when. A selected robot still shows its ghosts.
         stale = () if title else view.stale_holders
         said = number_labels(pts.tolist(), view.numbers, stale, None if title else view.diverged, next_phase)
+        height = self._text_height()
         # Words beside numbers: room made for them, among a few robots (a pass over every pair of labels;
         # in a crowd the labels overlap whatever their places).
         if len(said) <= SPREAD_UP_TO and not all(text.isdigit() for text, _ in said):
             # A framed camera shows 2 cells beyond the run's box (scene.camera.pose_for's extent + 4); the
             # run on the right of Compare has the gap between the runs on its left.
             edge = -float("inf") if self.prefix else self.bounds[0] - 1.5
-            said = spread(said, pts.tolist(), self._text_height(), left_edge=edge, taken=beside)
+            said = spread(said, pts.tolist(), height, left_edge=edge, taken=beside)
         self._labels("/numbers", said)
-        height = self._text_height()
         # The marks' labels ("the leader's frame", "targets") go where the robots' labels are not.
         own = [spec_box(spec, height) for spec in said] if len(said) <= SPREAD_UP_TO else []
         said_boxes = [*beside, *own]

@@ -8,7 +8,7 @@ import numpy as np
 from apf_viz.core.portrayal import Band, HalfPlane, Line
 from apf_viz.ui.palette import MARK_COLORS, region_color
 from apf_viz.ui.scene.canvas import Canvas
-from apf_viz.ui.scene.labels import free_label_spot, label_box, place_near
+from apf_viz.ui.scene.labels import free_label_spot, label_box, place_near, robot_discs
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET, LAYER, REGION_OPACITY, SIZE, Z, light_colors, xyz
 from apf_viz.ui.view_model import SessionView
 
@@ -69,7 +69,7 @@ class SelectionLayer(Canvas):
                 )
         # Each ghost's number touching its ghost, clear of the run's labels and of each other.
         height, taken, robots = self._text_height(), self._taken(), self._robot_points(view)
-        discs = [(x - 0.4, y - 0.4, x + 0.4, y + 0.4) for x, y in robots.tolist()]
+        discs = robot_discs(robots.tolist())
         numbers = []
         for g, (x, y) in zip(view.ghosts, places.tolist(), strict=True):
             text = f"{g.robot}′"
