@@ -80,10 +80,7 @@ class _Recorder:
         self.seen.append(self.renderer.bounds)
         if bounds != self._framed:
             self._framed = bounds
-            position, look_at, fov = self.renderer.camera_pose(PAGE_ASPECT, CAPTION_ROOM, bounds)
-            initial = self.server.initial_camera
-            initial.fov, initial.up = fov, (0.0, 0.0, 1.0)
-            initial.position, initial.look_at = position, look_at
+            self.renderer.frame_initial_camera(self.server.initial_camera, bounds, PAGE_ASPECT, CAPTION_ROOM)
 
     def _words(self, words: list[str]) -> None:
         lines = [line for text in words for line in (textwrap.wrap(text, LINE_CHARACTERS) or [""])]

@@ -19,9 +19,16 @@ class Framing(Canvas):
         """:func:`pose_for` the run's box, or ``bounds`` (one with room to grow, :func:`grown_box`)."""
         return pose_for(self.bounds if bounds is None else bounds, aspect, caption_room)
 
-    def frame_initial_camera(self, initial, bounds: Bounds | None = None) -> None:
-        """The pose new browsers start from (and "Reset View" returns to): the run, or ``bounds``."""
-        position, look_at, fov = self.framed_pose = self.camera_pose(bounds=bounds)
+    def frame_initial_camera(
+        self,
+        initial,
+        bounds: Bounds | None = None,
+        aspect: float = NARROW_ASPECT,
+        caption_room: float = 0.0,
+    ) -> None:
+        """The pose new browsers start from (and "Reset View" returns to): the run, or ``bounds``, on a
+        canvas of ``aspect`` with ``caption_room`` left free at the bottom (:meth:`camera_pose`)."""
+        position, look_at, fov = self.framed_pose = self.camera_pose(aspect, caption_room, bounds)
         initial.fov = fov
         initial.up = (0.0, 0.0, 1.0)
         initial.position = position
