@@ -59,14 +59,17 @@ class Twin:
             twin.apply(run.history.steps.record(twin.step_index))
         return twin
 
+    def goes_on_alone(self, run: Engine, config: RunConfig) -> bool:
+        """Whether the twin can step on past the run's end: the run has ended, the twin has not, and a
+        scheduler (not Manual) chooses its steps."""
+        return run.finished and config.scheduler not in BY_HAND and not self.follow(run, config).finished
+
     def step_alone(self, run: Engine, config: RunConfig) -> bool:
         """One step of the twin past the run's end (the run's scheduler and seed choose it). False if
-        the run has not ended, the twin has, or the scheduler is Manual."""
-        if not run.finished or config.scheduler in BY_HAND:
+        it cannot go on alone (:meth:`goes_on_alone`)."""
+        if not self.goes_on_alone(run, config):
             return False
         twin = self.follow(run, config)
-        if twin.finished:
-            return False
         scheduler = make_scheduler(config.scheduler)
         twin.apply(scheduler.choose(twin, step_rng(config.seed, twin.step_index)))
         self._alone_after = (id(run), run.history.generation, run.step_index)

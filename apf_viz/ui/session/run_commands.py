@@ -176,9 +176,8 @@ class RunCommands(SessionCore):
         with self.lock:
             if self.mode != "run":
                 return self._why_editing("Play")
-            twin = self.screen.twin.engine if self.screen.twin is not None else None
-            beside = self.engine.finished and twin is not None and not twin.finished
-            self.run.toggle_play(beside and self.scheduler_name not in BY_HAND)
+            twin = self.screen.twin  # Compare: a run beside an ended one may play on alone
+            self.run.toggle_play(twin is not None and twin.goes_on_alone(self.engine, self.run.config))
             return None
 
     def _why_editing(self, control: str) -> str:
