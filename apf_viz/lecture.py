@@ -1,8 +1,8 @@
 """A guided lecture: an ordered list of stops, each naming a Demo scenario (or going on with the run),
 a condition to run to, what to select and compare, and the words to say. A pydantic model read from JSON
 (shipped examples in ``demo_patterns/lectures/``, user files uploadable); a stop names scenarios and
-algorithms only through the built-in lists, never a path or code. :class:`~apf_viz.ui.lecturer.Lecturer`
-walks a session through it."""
+algorithms only through the built-in lists, never a path or code.
+:class:`~apf_viz.workbench.lecturer.Lecturer` walks a session through it."""
 
 from __future__ import annotations
 

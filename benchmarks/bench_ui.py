@@ -50,10 +50,10 @@ import time
 
 from playwright.sync_api import sync_playwright
 
-import apf_viz.ui.run_controller as run_controller
+import apf_viz.workbench.run_controller as run_controller
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.ui.app import App, free_port
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 ARGS = [
     "--no-sandbox",

@@ -14,7 +14,7 @@ from pathlib import Path
 from playwright.sync_api import sync_playwright
 
 from apf_viz.ui.app import App, demo_session, free_port
-from apf_viz.ui.view_model.staleness import seen_robots
+from apf_viz.workbench.view_model.staleness import seen_robots
 
 
 def main() -> None:

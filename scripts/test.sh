@@ -27,4 +27,6 @@ if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser
   shift
   set -- -m "not browser and not slow" "$@"
 fi
-.venv/bin/python -m pytest --durations=15 "$@"
+# Four workers on two cores: a browser test mostly waits (on Chromium, on the server's frames), so two
+# more workers fill the waits (docs/PERFORMANCE.md, "The suite"). APF_VIZ_TEST_WORKERS=0: one process.
+.venv/bin/python -m pytest -n "${APF_VIZ_TEST_WORKERS:-4}" --dist load --durations=15 "$@"

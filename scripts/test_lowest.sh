@@ -31,4 +31,4 @@ for _ in $(seq 1 120); do
 done
 .venv-lowest/bin/python -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/', timeout=5)"
 if grep -q "lacks" /tmp/apf-viz-lowest-serve.log; then cat /tmp/apf-viz-lowest-serve.log; exit 1; fi
-.venv-lowest/bin/python -m pytest -p no:cacheprovider -m "not browser and not slow" "$@"
+.venv-lowest/bin/python -m pytest -p no:cacheprovider -n "${APF_VIZ_TEST_WORKERS:-4}" --dist load -m "not browser and not slow" "$@"

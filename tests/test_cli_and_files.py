@@ -408,9 +408,10 @@ def test_every_option_of_every_command_has_help_and_shows_its_default(monkeypatc
 
 
 def test_a_robots_file_without_y_up_gets_the_same_flips_everywhere(write_json, tmp_path):
+    from apf_viz.cli.serve import session_config
     from apf_viz.core.frames import random_y_up
-    from apf_viz.ui.app import session_from_args
-    from apf_viz.ui.session import Session
+    from apf_viz.workbench.config import session_from_config
+    from apf_viz.workbench.session import Session
 
     start = [[0, 0], [3, 0], [5, 1], [2, 2], [6, 2], [1, 4], [4, 5]]
     robots = write_json("r.json", {"robots": start})
@@ -425,7 +426,7 @@ def test_a_robots_file_without_y_up_gets_the_same_flips_everywhere(write_json, t
     check = run_cli("check", *run[1:], "--json", "--max-states", "10")
     assert json.loads(check.stdout)["y_up"] == expected, check.stderr
     args = build_serve_args(robots, pattern, seed)
-    assert session_from_args(args).y_up == expected
+    assert session_from_config(session_config(args)).y_up == expected
     session = Session([(0, y) for y in range(7)], [(x, 0) for x in range(7)], seed=seed)
     session.load_robots("r.json", robots.read_bytes())  # an upload (a demo start loads the same way)
     assert session.mode == "run" and session.y_up == expected

@@ -82,7 +82,8 @@ def test_every_extending_example_works_as_the_page_shows(tmp_path):
     # What the page claims beyond its outputs: the new scheduler reaches the visualiser's dropdown and
     # the light lab, the new command the help, the new algorithm the registry.
     probe = (
-        "from apf_viz.ui.session import SCHEDULER_LABELS; from apf_viz.lights import RANDOM_SCHEDULERS; "
+        "from apf_viz.workbench.session import SCHEDULER_LABELS; "
+        "from apf_viz.lights import RANDOM_SCHEDULERS; "
         "from apf_viz.algorithms import ALGORITHMS; "
         "print(SCHEDULER_LABELS['lowest-first'], 'lowest-first' in RANDOM_SCHEDULERS, 'lamp' in ALGORITHMS)"
     )

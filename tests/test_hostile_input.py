@@ -387,7 +387,7 @@ def test_ascii_art_of_millions_of_cells_is_refused_before_they_are_made(tmp_path
 
 
 def test_serve_library_naming_a_file_is_refused(tmp_path):
-    from apf_viz.ui.library import PatternLibrary
+    from apf_viz.workbench.library import PatternLibrary
 
     afile = tmp_path / "patterns.json"
     afile.write_text("{}")

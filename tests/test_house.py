@@ -124,23 +124,23 @@ def test_no_two_modules_import_each_other():
 
 
 def test_the_view_model_reads_the_run_through_a_protocol_and_imports_nothing_stateful():
-    """ui/view_model turns state into what is drawn: it imports the core and plain data, never a
+    """workbench/view_model turns state into what is drawn: it imports the core and plain data, never a
     controller, the session, the lecturer, the scene, a panel or viser."""
     modules = _modules()
     rooms = (
-        "session",
-        "run_controller",
-        "app",
-        "panels",
-        "scene",
-        "lecturer",
-        "recorder",
-        "verifier",
+        "workbench.session",
+        "workbench.run_controller",
+        "ui.app",
+        "ui.panels",
+        "ui.scene",
+        "workbench.lecturer",
+        "ui.recorder",
+        "workbench.verifier",
     )
-    stateful = tuple(f"apf_viz.ui.{m}" for m in rooms)
+    stateful = tuple(f"apf_viz.{m}" for m in rooms)
     assert all(any(name.startswith(m) for name in modules) for m in stateful)  # each still exists
     for name, path in modules.items():
-        if name.startswith("apf_viz.ui.view_model"):
+        if name.startswith("apf_viz.workbench.view_model"):
             bad = [m for m in _imports(path, modules) if m.startswith(stateful)]
             assert bad == [], (name, bad)
             assert "import viser" not in path.read_text() and "from viser" not in path.read_text()
@@ -192,16 +192,20 @@ class Block:
             raise ImportError("viser is not importable here")
 sys.meta_path.insert(0, Block())
 from apf_viz.cli import main
-import apf_viz.ui.session, apf_viz.ui.session.demo, apf_viz.ui.view_model, apf_viz.ui.lecturer
+import importlib, pkgutil, apf_viz.workbench, apf_viz.figure
+for package in (apf_viz.workbench, apf_viz.figure):
+    for module in pkgutil.walk_packages(package.__path__, package.__name__ + "."):
+        importlib.import_module(module.name)
 assert main(["lecture", "check", "what-a-robot-cannot-see"]) == 0
 assert main(["figure", "--figure", "call1", "--format", "tikz", "--out", sys.argv[1]]) == 0
 assert "viser" not in sys.modules
 """
 
 
-def test_the_session_view_model_lecture_check_and_figures_run_with_viser_unimportable(tmp_path):
-    """The workbench (sessions, the view model, the lecturer) and the commands built on it (lecture
-    check, figure) know no viser: they run where it cannot be imported."""
+def test_the_workbench_lecture_check_and_figures_run_with_viser_unimportable(tmp_path):
+    """The workbench (every module of apf_viz/workbench: sessions, the view model, the lecturer, the
+    studio...) and what is built on it (every module of figure/, lecture check) know no viser: they
+    import and run where it cannot be imported."""
     import subprocess
     import sys
 
@@ -214,3 +218,25 @@ def test_the_session_view_model_lecture_check_and_figures_run_with_viser_unimpor
     )
     assert done.returncode == 0, done.stderr[-2000:]
     assert (tmp_path / "f.tex").read_text().startswith(r"\begin{tikzpicture}")
+
+
+LAYERS = {
+    # a package: the packages it must never import (at any depth: in functions and for annotations too)
+    "apf_viz.core": ("apf_viz.workbench", "apf_viz.ui", "apf_viz.figure", "apf_viz.cli"),
+    "apf_viz.workbench": ("apf_viz.ui", "apf_viz.cli"),
+    "apf_viz.figure": ("apf_viz.ui", "apf_viz.cli"),
+    "apf_viz.ui": ("apf_viz.cli",),
+}
+
+
+def test_the_layers_import_downwards_only():
+    """The core knows no workbench, the workbench and the figures know no viser adapter (``ui/``), and
+    nothing below the command line imports it: ``ui/`` is handed a session, not an argparse Namespace."""
+    modules = _modules()
+    assert all(any(m.startswith(layer) for m in modules) for layer in LAYERS)
+    wrong = []
+    for name, path in modules.items():
+        for layer, below in LAYERS.items():
+            if name == layer or name.startswith(layer + "."):
+                wrong += [f"{name} -> {d}" for d in _imports(path, modules) if d.startswith(below)]
+    assert wrong == []

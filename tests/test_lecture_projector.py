@@ -21,7 +21,7 @@ from apf_viz.lecture import lectures
 from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
-from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
+from apf_viz.workbench.view_model.caption import TITLE_PX, WORDS_PX
 from tests.test_ui_browser import OUT, _canvas, inside_canvas, settled, wait_for
 
 playwright = pytest.importorskip("playwright.sync_api")

@@ -3,8 +3,8 @@ branching, and thinned to a bounded number of points."""
 
 from __future__ import annotations
 
-from apf_viz.ui.move_series import MoveSeries
-from apf_viz.ui.session import Session
+from apf_viz.workbench.move_series import MoveSeries
+from apf_viz.workbench.session import Session
 
 START = [(0, 0), (0, 2), (1, 0), (1, 3), (3, 1)]
 PATTERN = [(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)]

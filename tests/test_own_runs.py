@@ -138,7 +138,7 @@ def test_own_runs_are_for_class_pages_bounded_in_number_and_dropped_on_the_way_b
 
 
 def test_an_own_run_ends_a_bounded_number_of_events_past_where_it_branched(monkeypatch):
-    from apf_viz.ui.session import branch as branching
+    from apf_viz.workbench.session import branch as branching
 
     monkeypatch.setattr(branching, "EXTRA_EVENTS", 60)
     shared = demo_session()

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from apf_viz.algorithms.apf_opaque_grid.portrayal import K_COLOR, LEGEND
-from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
+from apf_viz.workbench.palette import MARK_COLORS, MARK_SHAPES
 
 VISION = {
     "normal": np.eye(3),

@@ -96,7 +96,7 @@ def test_each_rule_text_cites_the_lines_the_panel_highlights():
 
 
 def test_the_paper_panel_marks_the_decisions_line_and_its_conditions():
-    from apf_viz.ui.view_model.paper import paper_html
+    from apf_viz.workbench.view_model.paper import paper_html
 
     text = paper_html(FULL, (4, "A1.terminal1.dominant"), "apf-opaque-grid")
     assert "Algorithm 1" in text and "Robot 4" in text

@@ -15,7 +15,7 @@ from apf_viz.core.portrayal import PALETTE, Cells, HalfPlane, LightStyle, Line, 
 from apf_viz.core.view import Seen, Snapshot
 from apf_viz.ui.app import demo_session, free_port
 from apf_viz.ui.scene import SceneRenderer
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 UI = Path(__file__).resolve().parent.parent / "apf_viz" / "ui"
 

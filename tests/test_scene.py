@@ -22,7 +22,7 @@ from apf_viz.ui.scene import (
     grid_steps,
     scene_detail,
 )
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 
 @pytest.fixture
@@ -339,7 +339,7 @@ def test_every_region_label_the_heart_shows_is_typeset_on_the_canvas():
     """The canvas writes the paper's symbols in Unicode; a label it could not set whole stayed raw
     (``H_B^C`` beside ``Hᵤᶜ``). Every region a decision of the heart's run tested, for every robot."""
     from apf_viz.ui.app import demo_session
-    from apf_viz.ui.view_model.legend import canvas_symbol
+    from apf_viz.workbench.view_model.legend import canvas_symbol
 
     s = demo_session()
     labels: set[str] = set()

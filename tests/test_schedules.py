@@ -292,7 +292,7 @@ def test_a_schedule_given_as_a_trace_and_a_trace_given_as_a_schedule_say_which_c
 
 
 def test_the_visualiser_takes_an_uploaded_schedule_with_its_flips():
-    from apf_viz.ui.session import Session
+    from apf_viz.workbench.session import Session
 
     e = demo_engine()
     flipped = tuple(not u for u in e.y_up)

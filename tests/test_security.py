@@ -19,8 +19,8 @@ from apf_viz.core.formats import InputError, trace_text
 from apf_viz.core.run import advance, trace_header
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.ui.panels import Panels
-from apf_viz.ui.run_controller import MAX_SPEED
-from apf_viz.ui.session import Session
+from apf_viz.workbench.run_controller import MAX_SPEED
+from apf_viz.workbench.session import Session
 
 START = [(0, 0), (3, 0), (5, 0), (2, 2), (6, 2)]
 PATTERN = [(0, 0), (1, 0), (2, 0), (0, 2), (1, 2)]

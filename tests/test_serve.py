@@ -9,7 +9,7 @@ import urllib.request
 
 import pytest
 
-import apf_viz.ui.run_controller as run_controller
+import apf_viz.workbench.run_controller as run_controller
 from apf_viz.ui.app import free_port
 
 
@@ -234,12 +234,12 @@ def test_ctrl_c_while_the_server_starts_stops_it_without_a_traceback(after):
 
 def test_serve_demo_opens_a_scenario_named_by_a_word():
     from apf_viz.cli import build_parser
-    from apf_viz.demos import find_scenario, scenarios
-    from apf_viz.ui.app import session_from_args
+    from apf_viz.cli.serve import session_config
+    from apf_viz.demos import scenarios
+    from apf_viz.workbench.config import session_from_config
 
     args = build_parser().parse_args(["serve", "--demo", "lockstep"])
-    args.demo = find_scenario(args.demo)  # as apf-viz serve does, before the UI starts
-    session = session_from_args(args)
+    session = session_from_config(session_config(args))
     assert session.screen.scenario_note == scenarios()["The L2 lockstep counterexample"].shows
     assert session.run.following  # a trace scenario: Step follows it
 

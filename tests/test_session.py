@@ -10,7 +10,7 @@ import pytest
 from apf_viz.core.formats import InputError
 from apf_viz.core.portrayal import Cells, Frame, Line
 from apf_viz.ui.app import demo_session
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 START = [(0, 0), (0, 2), (1, 0), (1, 3)]
 PATTERN = [(0, 0), (1, 0), (2, 0), (3, 0)]
@@ -328,7 +328,7 @@ def test_a_compute_says_the_light_it_left_and_a_flipped_robots_move_in_both_fram
     s.click((0, 0))  # robot 0: nothing to its left or below: done, a light change
     assert s.view().last_events[0] == "robot 0 · Compute: off → done, stay — compact-left.done"
     from apf_viz.core.grid import Direction
-    from apf_viz.ui.view_model.story import move_words
+    from apf_viz.workbench.view_model.story import move_words
 
     assert move_words(Direction.UP, y_up=False) == "move down (its own frame; up on screen)"
     assert move_words(Direction.LEFT, y_up=False) == "move left"
@@ -529,7 +529,7 @@ def test_a_deadlock_rings_every_robot_that_will_never_act():
         pass
     v = s.view()
     assert v.outcome == "stuck" and v.never_act == tuple(range(s.engine.k))
-    from apf_viz.ui.view_model.why import why_markdown
+    from apf_viz.workbench.view_model.why import why_markdown
 
     s.selected = 0
     assert "If it looked now:" in why_markdown(s.view().why) and "would change nothing" in why_markdown(
@@ -538,7 +538,7 @@ def test_a_deadlock_rings_every_robot_that_will_never_act():
 
 
 def test_a_livelock_from_check_marks_its_loop_on_the_timeline():
-    from apf_viz.ui.view_model.story import loop_marks
+    from apf_viz.workbench.view_model.story import loop_marks
 
     # The explorer's schedule: 5 steps of stem, then a loop of 4 steps written twice: 13 steps.
     assert loop_marks({"loop_starts_at_step": 5}, 13, "async") == (

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from apf_viz.algorithms.apf_opaque_grid.portrayal import stage
 from apf_viz.ui.app import demo_session
-from apf_viz.ui.stage_log import MOVES_READ_UP_TO_K, StageLog, headline
+from apf_viz.workbench.stage_log import MOVES_READ_UP_TO_K, StageLog, headline
 
 FOREVER = float("inf")  # no time budget: these tests assert what happens, not how fast
 

@@ -8,9 +8,9 @@ from hypothesis import strategies as st
 
 from apf_viz.core import shapes
 from apf_viz.core.formats import InputError
-from apf_viz.ui.editor import Editor
-from apf_viz.ui.session import Session
-from apf_viz.ui.studio import TOOLS, TRANSFORMS, Studio
+from apf_viz.workbench.editor import Editor
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.studio import TOOLS, TRANSFORMS, Studio
 
 START = [(0, 0), (3, 0), (5, 1), (2, 2)]
 PATTERN = [(0, 0), (1, 0), (2, 0), (0, 1)]
@@ -168,7 +168,7 @@ def test_undo_after_any_sequence_restores_each_earlier_draft_and_redo_replays_th
 
 
 def test_the_library_saves_by_name_lists_and_loads_never_a_path(tmp_path):
-    from apf_viz.ui.library import PatternLibrary
+    from apf_viz.workbench.library import PatternLibrary
 
     s = session()
     s.use_library(PatternLibrary(tmp_path / "lib"))

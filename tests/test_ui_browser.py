@@ -24,7 +24,7 @@ from apf_viz.core import shapes
 from apf_viz.core.formats import load_trace
 from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.browser_screen import inside as _inside
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 playwright = pytest.importorskip("playwright.sync_api")
 CHROMIUM = "/usr/bin/chromium"
@@ -518,7 +518,7 @@ def test_verify_breaks_a_merged_variant_and_the_labs_counterexample_plays_as_a_d
 
 
 def test_the_example_algorithms_legend_shows_its_lights(browser):
-    from apf_viz.ui.session import Session
+    from apf_viz.workbench.session import Session
 
     session = Session(
         [(0, 0), (3, 0), (5, 1), (2, 2), (6, 3)], [(x, 0) for x in range(5)], algorithm="compact-left"
@@ -593,8 +593,9 @@ def _serve_args(*argv: str):
 def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_collision(browser, tmp_path):
     """The issue's recipe: `apf-viz check … --counterexample cex.jsonl`, then `apf-viz serve --trace`."""
     from apf_viz.cli import main
+    from apf_viz.cli.serve import session_config
     from apf_viz.demos import demo_dir
-    from apf_viz.ui.app import session_from_args
+    from apf_viz.workbench.config import session_from_config
 
     cex = tmp_path / "cex.jsonl"
     demos = demo_dir()
@@ -612,7 +613,9 @@ def test_serve_trace_of_a_check_counterexample_steps_41_times_to_a_located_colli
         ]
     )
     assert code == 1 and cex.is_file()
-    served = App(session_from_args(_serve_args("--trace", str(cex))), port=free_port(), verbose=False)
+    served = App(
+        session_from_config(session_config(_serve_args("--trace", str(cex)))), port=free_port(), verbose=False
+    )
     try:
         page = open_page(browser, served)
         page.get_by_text("Following the trace: event").wait_for()
@@ -933,7 +936,7 @@ def test_the_heart_lecture_stop_by_stop_at_1024x768_in_presentation_mode(browser
     """The issue's walk-through: PageDown from the start to FORMED, each stop one of the paper's stages,
     named in the caption, with the whole run in view below it (screenshots: test-output/lecture-*)."""
     from apf_viz.ui.panels.presentation import CAPTION_ROOM
-    from apf_viz.ui.view_model.legend import symbol_html
+    from apf_viz.workbench.view_model.legend import symbol_html
 
     played = demo_session()
     while played.step():

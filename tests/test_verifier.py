@@ -1,4 +1,4 @@
-"""Verify in the browser: the explorer on the current run, in the background (ui/verifier.py)."""
+"""Verify in the browser: the explorer on the current run, in the background (workbench/verifier.py)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import threading
 from apf_viz.core.formats import load_pattern, load_robots
 from apf_viz.demos import demo_dir
 from apf_viz.ui.app import demo_session
-from apf_viz.ui.run_config import RunConfig
-from apf_viz.ui.verifier import Verifier
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.verifier import Verifier
 
 
 def config_of(start: str, pattern: str, algorithm: str = "apf-opaque-grid") -> RunConfig:

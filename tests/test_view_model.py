@@ -1,5 +1,5 @@
-"""The view model (ui/view_model): what each browser's screen says, tested without a browser, by the facts
-its sentences carry (robot numbers, cells, rule ids), never by whole sentences."""
+"""The view model (workbench/view_model): what each browser's screen says, tested without a browser,
+by the facts its sentences carry (robot numbers, cells, rule ids), never by whole sentences."""
 
 from __future__ import annotations
 
@@ -11,11 +11,11 @@ import pytest
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.app import demo_session
-from apf_viz.ui.screen_state import BrowserState
-from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import for_browser, present, present_run
-from apf_viz.ui.view_model.staleness import changes
-from apf_viz.ui.view_model.story import OUTCOME_ICONS
+from apf_viz.workbench.screen_state import BrowserState
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import for_browser, present, present_run
+from apf_viz.workbench.view_model.staleness import changes
+from apf_viz.workbench.view_model.story import OUTCOME_ICONS
 
 LITERAL_COLLISION = Path(__file__).parent / "literal_traces" / "collision.jsonl"
 
@@ -161,8 +161,8 @@ def test_the_demo_texts_match_their_runs():
 
 
 def test_the_drafted_patterns_swatch_is_its_canvas_colour_and_formed_drops_phase_rings():
-    from apf_viz.ui.palette import TARGET_COLORS
-    from apf_viz.ui.view_model.legend import legend_html
+    from apf_viz.workbench.palette import TARGET_COLORS
+    from apf_viz.workbench.view_model.legend import legend_html
 
     s = demo_session()
     s.set_mode("edit-pattern")
@@ -275,7 +275,7 @@ def _every_predicate_of_every_demo():
 
 
 def test_why_reads_every_test_of_every_demo_positively():
-    from apf_viz.ui.view_model.why import found_row
+    from apf_viz.workbench.view_model.why import found_row
 
     predicates = _every_predicate_of_every_demo()
     assert sum(isinstance(v, bool) and not v for v in predicates.values()) > 10  # false tests are read
@@ -289,7 +289,7 @@ def test_why_reads_every_test_of_every_demo_positively():
 
 
 def test_a_trail_is_each_robots_last_moves_ending_where_it_stands():
-    from apf_viz.ui.view_model.story import trails
+    from apf_viz.workbench.view_model.story import trails
 
     s = demo_session()
     e = s.engine
@@ -335,7 +335,7 @@ def test_the_lockstep_escape_ends_with_a_banner_and_its_walk_drawn():
     ],
 )
 def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, said):
-    from apf_viz.ui.view_model.caption import caption_html
+    from apf_viz.workbench.view_model.caption import caption_html
 
     s = demo_session()
     s.load_scenario(scenario)
@@ -347,7 +347,7 @@ def test_presentation_modes_caption_explains_each_failure_at_its_end(scenario, s
 def test_the_caption_names_every_light_in_use_and_keeps_their_meanings_for_the_details():
     """The words show the lights as one row of names; the details (I) give each its meaning, and the
     stage line names a stuck run's outcome, not the phase it was in."""
-    from apf_viz.ui.view_model.caption import caption_html
+    from apf_viz.workbench.view_model.caption import caption_html
 
     s = demo_session()
     s.load_scenario("The literal paper deadlocks")

@@ -28,7 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from apf_viz.ui.page_export import export_lecture, export_run
-    from apf_viz.ui.session.demo import demo_session
+    from apf_viz.workbench.session.demo import demo_session
 
     check_writable(args.out)
     if args.lecture is not None:

@@ -22,8 +22,8 @@ def run(args: argparse.Namespace) -> int:
     """Every stop of the lecture in order, headless: its condition met or not, at which event; exit 1 if
     any was not (a lecturer checks the evening before)."""
     from apf_viz.lecture import find_lecture
-    from apf_viz.ui.lecturer import Lecturer
-    from apf_viz.ui.session import Session
+    from apf_viz.workbench.lecturer import Lecturer
+    from apf_viz.workbench.session import Session
 
     lecture = find_lecture(args.file)
     print(f"{args.file}: {lecture.title} — {len(lecture.stops)} stops", flush=True)

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from apf_viz.cli.common import add_run_options, port, shipped
 from apf_viz.core.schedulers import SCHEDULERS
 from apf_viz.demos import find_scenario
+
+if TYPE_CHECKING:
+    from apf_viz.workbench.config import SessionConfig
 
 NAME = "serve"
 HELP = "serve the visualiser (the default command)"
@@ -46,12 +50,27 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_run_options(p, list(SCHEDULERS))
 
 
+def session_config(args: argparse.Namespace) -> SessionConfig:
+    """The session the command line asks for: shipped names made files, a Demo word made its title (a
+    bad name is one line, before the UI starts)."""
+    from apf_viz.workbench.config import SessionConfig  # the workbench is loaded when a session is wanted
+
+    return SessionConfig(
+        robots=shipped(args.robots, "robots", "--robots"),
+        pattern=shipped(args.pattern, "pattern", "--pattern"),
+        trace=shipped(args.trace, "trace", "--trace"),
+        demo=None if args.demo is None else find_scenario(args.demo),
+        lecture=args.lecture,
+        library=args.library,
+        algorithm=args.algorithm,
+        scheduler=args.scheduler,
+        seed=args.seed,
+        light_semantics=args.light_semantics,
+    )
+
+
 def run(args: argparse.Namespace) -> int:
-    args.robots = shipped(args.robots, "robots", "--robots")
-    args.pattern = shipped(args.pattern, "pattern", "--pattern")
-    args.trace = shipped(args.trace, "trace", "--trace")
-    if args.demo is not None:
-        args.demo = find_scenario(args.demo)  # before the UI starts: a bad name is one line
+    config = session_config(args)
     from apf_viz.ui.app import serve  # viser is imported only when the UI is wanted
 
-    return serve(args)
+    return serve(config, host=args.host, port=args.port)

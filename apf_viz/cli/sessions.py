@@ -15,7 +15,7 @@ from apf_viz.core.grid import as_point
 
 def trace_session(trace: Path):
     """A session following the trace ``trace`` (a file, or a shipped name), at its start; its file name."""
-    from apf_viz.ui.session.demo import demo_session
+    from apf_viz.workbench.session.demo import demo_session
 
     path = shipped(trace, "trace", "--trace")
     assert path is not None
@@ -28,7 +28,7 @@ def trace_session(trace: Path):
 def start_session(args: argparse.Namespace):
     """A session from ``--robots`` and ``--pattern`` (files, or shipped names) under ``--algorithm``,
     ``--scheduler``, ``--seed`` and ``--light-semantics``, at its start; the two files' names."""
-    from apf_viz.ui.session import Session
+    from apf_viz.workbench.session import Session
 
     robots_path = shipped(args.robots, "robots", "--robots")
     pattern_path = shipped(args.pattern, "pattern", "--pattern")

@@ -1,6 +1,6 @@
 """The pattern studio's tools as pure functions: cells in, cells out (no viser, no state). A drawing is a
 list of distinct cells in the order they were drawn (Fit to k removes the last drawn first); every tool
-returns a new list. Used by the Edit folder (ui/editor.py) and by ``apf-viz pattern``."""
+returns a new list. Used by the Edit folder (workbench/editor.py) and by ``apf-viz pattern``."""
 
 from __future__ import annotations
 

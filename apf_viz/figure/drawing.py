@@ -6,8 +6,8 @@ from dataclasses import dataclass, field
 
 from apf_viz.core.portrayal import Cells, Frame, Line
 from apf_viz.lecture import Marked
-from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.palette import MARK_COLORS, TARGET_COLORS
+from apf_viz.workbench.view_model import SessionView
 
 RGB = tuple[int, int, int]
 MARGIN = 2.0  # cells of grid beyond the outermost robot, target or frame arm (room for its number)

@@ -11,8 +11,8 @@ from apf_viz.figure.drawing import drawing_of
 from apf_viz.figure.svg import to_svg
 from apf_viz.figure.tikz import to_tikz
 from apf_viz.lecture import Marked
-from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import SessionView
 
 WRITERS = {"svg": to_svg, "tikz": to_tikz}
 SUFFIXES = {"svg": ".svg", "tikz": ".tex"}
@@ -74,7 +74,7 @@ def run_to_event(session: Session, event: int | None) -> None:
 def figure_session(label: str) -> tuple[Session, str]:
     """The paper's figure ``label`` reached as its one-stop lecture reaches it, and its caption."""
     from apf_viz.lecture import figures
-    from apf_viz.ui.session.demo import demo_session
+    from apf_viz.workbench.session.demo import demo_session
 
     figure = figures().get(label)
     if figure is None:

@@ -6,7 +6,7 @@ import io
 import math
 
 from apf_viz.figure.drawing import RGB, Drawing
-from apf_viz.ui.palette import MARK_COLORS
+from apf_viz.workbench.palette import MARK_COLORS
 
 DPI = 150
 CELL_INCHES = 0.25

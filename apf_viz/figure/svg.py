@@ -8,8 +8,8 @@ import textwrap
 from html import escape
 
 from apf_viz.figure.drawing import RGB, Drawing
-from apf_viz.ui.palette import MARK_COLORS
-from apf_viz.ui.view_model.legend import canvas_symbol
+from apf_viz.workbench.palette import MARK_COLORS
+from apf_viz.workbench.view_model.legend import canvas_symbol
 
 CELL = 24.0
 LEGEND_WIDTH = 190.0

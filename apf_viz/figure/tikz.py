@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from apf_viz.figure.drawing import RGB, Drawing
-from apf_viz.ui.palette import MARK_COLORS
+from apf_viz.workbench.palette import MARK_COLORS
 
 UNIT = "0.5cm"
 _SPECIAL = {

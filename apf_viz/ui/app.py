@@ -7,42 +7,28 @@ second, each frame one atomic update, so clicks stay responsive while the engine
 
 from __future__ import annotations
 
-import argparse
 import gc
 import threading
 import time
 import warnings
-from pathlib import Path
 
 import viser
 
-from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
 from apf_viz.core.engine import Engine
-from apf_viz.core.files import read_bytes
-from apf_viz.core.formats import (
-    MAX_TRACE_BYTES,
-    InputError,
-    check_sizes,
-    load_pattern,
-    load_robots,
-    load_trace,
-)
-from apf_viz.core.grid import as_point
-from apf_viz.demos import DEMO_PATTERN, DEMO_START
-from apf_viz.lecture import find_lecture
 from apf_viz.ui import broadcast, viser_compat
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
-from apf_viz.ui.library import PatternLibrary
 from apf_viz.ui.network import check_listen, reachable_host
 from apf_viz.ui.network import free_port as free_port  # where tests and benchmarks find it
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.roles import Role, Roles
+from apf_viz.ui.roles import Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
-from apf_viz.ui.session import Session
-from apf_viz.ui.session.demo import demo_session as demo_session  # where tests and scripts find it
+from apf_viz.workbench.config import SessionConfig, session_from_config
+from apf_viz.workbench.screen_state import Role
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.session.demo import demo_session as demo_session  # where tests and scripts find it
 
 FPS = 30
 STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
@@ -396,51 +382,16 @@ class App:
         self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more
 
 
-def session_from_args(args: argparse.Namespace) -> Session:
-    """The session ``apf-viz serve`` starts with. ``--algorithm`` may load a plug-in (the command line is
-    the one place allowed to); a trace then names only built-ins or that plug-in."""
-    algorithm, plugins = algorithm_from_command_line(args.algorithm or DEFAULT_ALGORITHM)
-    options = {"algorithm": algorithm.name, "scheduler": args.scheduler, "seed": args.seed}
-    if args.trace:
-        session = demo_session(**options, plugins=plugins)
-        path = Path(args.trace)
-        load_trace(path)  # validates the file with a one-line error before the UI starts
-        session.load_trace(path.name, read_bytes(path, MAX_TRACE_BYTES), MAX_TRACE_BYTES)  # the CLI's file
-        return session
-    robots = load_robots(args.robots) if args.robots else load_robots(DEMO_START)
-    pattern = load_pattern(args.pattern) if args.pattern else load_pattern(DEMO_PATTERN)
-    if args.pattern is None and len(pattern.points) != len(robots.robots):
-        raise InputError(
-            f"{args.robots}: {len(robots.robots)} robots, but the default pattern (the demo's heart) has "
-            f"{len(pattern.points)} points: pass --pattern"
-        )
-    check_sizes(robots, pattern, str(args.pattern or DEMO_PATTERN))
-    session = Session(
-        [as_point(p) for p in robots.robots],
-        [as_point(p) for p in pattern.points],
-        y_up=robots.flips(args.seed),
-        light_semantics=args.light_semantics,
-        plugins=plugins,
-        **options,
-    )
-    if getattr(args, "demo", None):
-        session.load_scenario(args.demo)  # a Demo scenario by its title (serve --demo)
-    return session
-
-
-def serve(args: argparse.Namespace) -> int:
-    check_listen(args.host, args.port)
-    session = session_from_args(args)
-    if getattr(args, "library", None):
-        session.use_library(PatternLibrary(args.library))
-    if getattr(args, "lecture", None):
-        session.start_lecture(find_lecture(args.lecture))  # a bad file: one line, before the UI starts
-    present = bool(getattr(args, "lecture", None))  # serve --lecture: pages open presenting it
+def serve(config: SessionConfig, *, host: str, port: int) -> int:
+    """``apf-viz serve``: the session ``config`` describes, served until Ctrl+C. A bad address, file or
+    lecture is one line before the server starts; a lecture's pages open presenting it."""
+    check_listen(host, port)
+    session = session_from_config(config)
     app = None
     try:  # Ctrl+C stops it quietly, however early: while the server starts, or at any time after
-        app = App(session, host=args.host, port=args.port, verbose=False, present=present)
+        app = App(session, host=host, port=port, verbose=False, present=config.lecture is not None)
         presenter, follower = app.addresses
-        print(f"apf-viz: serving on {args.host}:{app.port}  (Ctrl+C to stop)", flush=True)
+        print(f"apf-viz: serving on {host}:{app.port}  (Ctrl+C to stop)", flush=True)
         print(f"presenter: {presenter}", flush=True)
         print(f"class: {follower}", flush=True)
         said = viser_compat.startup_line(app.missing)

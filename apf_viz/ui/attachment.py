@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 
 class Attachment:

@@ -11,7 +11,6 @@ from apf_viz.ui.attachment import Attachment
 from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.recorder import canvas_size
-from apf_viz.ui.roles import Role
 from apf_viz.ui.scene import (
     NARROW_ASPECT,
     Bounds,
@@ -22,8 +21,9 @@ from apf_viz.ui.scene import (
     text_cells,
 )
 from apf_viz.ui.scene.compare_pair import ComparePair
-from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.screen_state import Role
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import SessionView
 
 CLASS_HZ = 12.0
 """How often a class page's panel and selection are brought up to date while the run plays (the canvas

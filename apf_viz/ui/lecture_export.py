@@ -13,9 +13,9 @@ from collections.abc import Callable
 
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import render_view
-from apf_viz.ui.session import Session
 from apf_viz.ui.slide import compose
-from apf_viz.ui.view_model.legend import plain, slide_legend
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model.legend import plain, slide_legend
 
 SETTLE_SECONDS = 0.8  # after a stop is reached, for the frame (and a framed camera) to reach the browser
 

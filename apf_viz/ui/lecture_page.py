@@ -1,6 +1,6 @@
 """A lecture's exported page paced like the lecture: it opens paused at stop 1, PageDown / PageUp (and
 the arrow keys) go to the next or previous stop, Space still plays, and each stop's title and words are
-an HTML caption over the bottom of the canvas at the projector's sizes (ui/view_model/caption.py).
+an HTML caption over the bottom of the canvas at the projector's sizes (workbench/view_model/caption.py).
 
 The recording (ui/page_export.py) holds the stops one after another, each from a known second; a stop is
 shown by seeking viser's player to that second through its time field (the one control of its playback
@@ -14,9 +14,9 @@ import html
 import json
 from dataclasses import asdict, dataclass
 
-from apf_viz.ui.view_model.caption import TITLE_PX, WORDS_PX
-from apf_viz.ui.view_model.legend import symbol_html
 from apf_viz.ui.viser_compat import PLAYER_TIME_FIELD_JS
+from apf_viz.workbench.view_model.caption import TITLE_PX, WORDS_PX
+from apf_viz.workbench.view_model.legend import symbol_html
 
 
 @dataclass(frozen=True)

@@ -18,9 +18,9 @@ from collections.abc import Callable, Iterable
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.browser_screen import BrowserScreen
-from apf_viz.ui.session import Session
-from apf_viz.ui.session.branch import EXTRA_EVENTS as EXTRA_EVENTS
-from apf_viz.ui.session.branch import branch as branch
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.session.branch import EXTRA_EVENTS as EXTRA_EVENTS
+from apf_viz.workbench.session.branch import branch as branch
 
 MAX_OWN_RUNS = 24
 """Runs of their own at once; the next page to ask is told to wait for one to end."""

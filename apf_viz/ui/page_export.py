@@ -18,11 +18,11 @@ from apf_viz.lecture import Lecture
 from apf_viz.ui.lecture_page import PageStop, paced_page
 from apf_viz.ui.network import free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
-from apf_viz.ui.run_config import RunConfig
 from apf_viz.ui.scene import SceneRenderer, text_cells
 from apf_viz.ui.scene.compare_pair import ComparePair
-from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import SessionView
 
 STOP_SECONDS = 6.0  # a lecture's stop stays on screen this long (the page's own controls pause it)
 FRAME_SECONDS = 0.15  # a kept step of a run

@@ -6,9 +6,8 @@ parameter of the page's address, path included, and the server reads that path).
 from __future__ import annotations
 
 import secrets
-from typing import Literal
 
-Role = Literal["presenter", "class"]
+from apf_viz.workbench.screen_state import Role
 
 PRESENT_PATH = "/present/"
 CODE_TRIES = 5

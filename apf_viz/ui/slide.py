@@ -5,13 +5,13 @@ brings), so the picture explains itself when pasted into a talk."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from apf_viz.ui.image import on_white
+from apf_viz.workbench.view_model.legend import Entry
 
 # A font with the paper's symbols (sub- and superscripts, arrows) where the system has one; Pillow's
 # own scalable font otherwise (Latin only: a missing symbol shows as a box, the words stay readable).
@@ -23,17 +23,6 @@ _FONTS = (
 )
 INK = (30, 30, 30)
 SOFT = (90, 90, 90)
-
-
-@dataclass(frozen=True)
-class Entry:
-    """One legend line: a swatch (its colour and shape: "disc", "ring", "square", "burst", or "none" for
-    a mark the canvas writes as a word) and words."""
-
-    color: tuple[int, int, int]
-    shape: str
-    label: str
-    meaning: str = ""
 
 
 def font(size: int) -> ImageFont.FreeTypeFont | ImageFont.ImageFont:

@@ -1,5 +1,5 @@
 """The GUI of one browser: a folder a module, each building its controls and refreshing itself from that
-browser's :class:`~apf_viz.ui.view_model.SessionView`.
+browser's :class:`~apf_viz.workbench.view_model.SessionView`.
 
 Labels are part of the interface (people and the browser tests find controls by them): Step, Back,
 Play/Pause, Speed, Reset, Timeline, Scheduler, Seed, Event, Mode, Follow presenter, and the file buttons.
@@ -28,8 +28,8 @@ from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
 from apf_viz.ui.panels.why import WhyFolder
-from apf_viz.ui.session import Session
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import SessionView
 
 __all__ = ["MODES", "MODE_LABELS", "Panels", "SharedVerifier", "tell"]
 

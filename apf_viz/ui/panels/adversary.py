@@ -6,9 +6,9 @@ from __future__ import annotations
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.panels.context import PanelContext, put, tell
-from apf_viz.ui.session import SCHEDULER_LABELS
-from apf_viz.ui.verifier import MAX_K
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.session import SCHEDULER_LABELS
+from apf_viz.workbench.verifier import MAX_K
+from apf_viz.workbench.view_model import SessionView
 
 
 def scheduler_label(name: str) -> str:

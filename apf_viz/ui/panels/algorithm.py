@@ -6,7 +6,7 @@ from __future__ import annotations
 from apf_viz.algorithms import ALGORITHMS
 from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 
 class AlgorithmFolder:

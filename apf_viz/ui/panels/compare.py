@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put, tell
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 
 class CompareFolder:

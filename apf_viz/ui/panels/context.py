@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.ui import viser_compat
-from apf_viz.ui.session import Session
-from apf_viz.ui.verifier import Status, Verifier
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.verifier import Status, Verifier
 
 FOLLOWING = (
     "this page follows the lecture: the presenter drives the shared run (select a robot to see what it "

@@ -1,12 +1,12 @@
-"""Edit: draw the pattern or place the robots with the studio's tools (ui/studio.py); switching back to
+"""Edit: draw the pattern or place the robots with the studio's tools (workbench/studio.py); switching back to
 Run checks the drafts and restarts. A box is dragged on the canvas (viser's rectangle select, this
 browser's own; Shift erases) while the Box tool is chosen in an edit mode."""
 
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put, tell
-from apf_viz.ui.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
+from apf_viz.workbench.view_model import SessionView
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}

@@ -15,8 +15,8 @@ from apf_viz.ui.lecture_export import LectureExport
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.slide import compose
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.legend import slide_caption, slide_legend
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.legend import slide_caption, slide_legend
 
 
 def load_demo(folder: str, name: str, load: Callable[[str, bytes], str | None]) -> str | None:
@@ -121,7 +121,7 @@ class FilesFolder:
         """The run this page shows, from its start to where it is, recorded on a copy (the run itself,
         shared or not, does not move)."""
         from apf_viz.ui.page_export import export_run
-        from apf_viz.ui.session.branch import branch
+        from apf_viz.workbench.session.branch import branch
 
         if event.client is None:
             return ""

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.legend import legend_html
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.legend import legend_html
 
 
 class LegendFolder:

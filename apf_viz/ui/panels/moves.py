@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 
 class MovesFolder:

@@ -1,12 +1,12 @@
 """Paper: the algorithm's pseudocode as its paper writes it, the line of the selected robot's last
 decision (or the run's last Compute) highlighted and the conditions it sits in marked; a resolution's
-line in its own colour, named, with its reason (ui/view_model/paper.py)."""
+line in its own colour, named, with its reason (workbench/view_model/paper.py)."""
 
 from __future__ import annotations
 
 from apf_viz.lecture import figures
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 
 class PaperFolder:

@@ -3,7 +3,8 @@ floats over the bottom of the canvas — a lecture stop's words, the stage, the 
 outcome, the lights in use — while the keyboard drives the run (ui/panels/shortcuts.py). Another
 browser's screen is not touched.
 
-The caption is set for the back of a room (ui/view_model/caption.py): its sizes are never shrunk to fit.
+The caption is set for the back of a room (workbench/view_model/caption.py): its sizes are never
+shrunk to fit.
 It spans the canvas's width, at most CAPTION_ROOM of its height, and the camera leaves that share free;
 I swaps a stop's words for the details (who waits on what, the last event, the lights, the keys) on the
 same strip, in this browser only. Each new caption starts at its top (a scroll never carries over to the
@@ -17,8 +18,8 @@ import viser
 
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.recorder import canvas_size
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.caption import DETAILS_KEY, caption_html
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.caption import DETAILS_KEY, caption_html
 
 # The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
 # that room free (ui/app.py), so the caption never covers the run.

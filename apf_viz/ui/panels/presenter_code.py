@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 CODE_LENGTH = 10  # ui/roles.py's presenter code: 10 hex digits
 Claim = Callable[[str], str]  # a code typed → what to tell the page (the App checks it)

@@ -10,10 +10,10 @@ from apf_viz.lecture import lectures
 from apf_viz.ui import viser_compat
 from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
-from apf_viz.ui.run_controller import MAX_SPEED
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.legend import symbol_html
-from apf_viz.ui.view_model.story import MAX_TRAIL
+from apf_viz.workbench.run_controller import MAX_SPEED
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.story import MAX_TRAIL
 
 # Escape gives the keyboard back to the run from any field of the panel (viser ignores its hotkeys while
 # a field has focus): one listener a page, installed by an image that fails to load.

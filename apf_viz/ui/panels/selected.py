@@ -4,7 +4,7 @@ presenter's when this browser follows it."""
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 
 class SelectedFolder:

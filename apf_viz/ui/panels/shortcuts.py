@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 # (label, key, what it does). A presenter's clicker sends PageDown / PageUp. The arrows (and W A S D Q E)
 # are the camera's own in viser, held to orbit: a step on → would also turn the view.

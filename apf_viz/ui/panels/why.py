@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.why import why_markdown
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.why import why_markdown
 
 
 class WhyFolder:

@@ -7,12 +7,12 @@ from collections.abc import Callable
 import numpy as np
 
 from apf_viz.core.portrayal import Frame, Line
-from apf_viz.ui.palette import PointShape
 from apf_viz.ui.scene.camera import cell_of_ray, pose_for
 from apf_viz.ui.scene.labels import text_cells
 from apf_viz.ui.scene.style import LABEL_SCALE, REORIGIN_DISTANCE, VISER_POINT_SCALE, Bounds, Layer
-from apf_viz.ui.view_model import SessionView
-from apf_viz.ui.view_model.legend import canvas_symbol
+from apf_viz.workbench.palette import PointShape
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.legend import canvas_symbol
 
 
 class Canvas:

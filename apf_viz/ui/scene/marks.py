@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 
 from apf_viz.core.portrayal import Cells, Frame, Line
-from apf_viz.ui.palette import MARK_COLORS, TARGET_COLORS
 from apf_viz.ui.scene.canvas import Canvas
 from apf_viz.ui.scene.labels import cells_label_at, frame_label_at, label_box, line_label_at
 from apf_viz.ui.scene.style import Z, xyz
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.palette import MARK_COLORS, TARGET_COLORS
+from apf_viz.workbench.view_model import SessionView
 
 
 class MarksLayer(Canvas):

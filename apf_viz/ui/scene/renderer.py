@@ -8,7 +8,6 @@ import numpy as np
 
 from apf_viz.core.portrayal import Line
 from apf_viz.core.schedulers import BY_HAND
-from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
 from apf_viz.ui.scene.labels import label_box, number_labels, spec_box, spread
@@ -16,7 +15,8 @@ from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionLayer
 from apf_viz.ui.scene.style import DENSE, LAYER, Bounds, xyz
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.palette import MARK_COLORS, MARK_SHAPES
+from apf_viz.workbench.view_model import SessionView
 
 NEXT_PHASE = {"idle": "look", "looked": "compute", "computed": "move"}  # Manual: what a click runs
 SPREAD_UP_TO = 60  # labels: beyond, each keeps its robot's upper right (see labels.spread)

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from apf_viz.ui.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS
 from apf_viz.ui.scene.camera import scene_detail
 from apf_viz.ui.scene.canvas import Canvas
 from apf_viz.ui.scene.style import LAYER, NOSE_CELLS, RIM_CROWD, SIZE, Z, light_colors, xyz
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.palette import MARK_COLORS, MARK_SHAPES, PHASE_COLORS
+from apf_viz.workbench.view_model import SessionView
 
 
 class RobotsLayer(Canvas):

@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from apf_viz.core.portrayal import Band, HalfPlane, Line
-from apf_viz.ui.palette import MARK_COLORS, region_color
 from apf_viz.ui.scene.canvas import Canvas
 from apf_viz.ui.scene.labels import free_label_spot, label_box, place_near, robot_discs
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET, LAYER, REGION_OPACITY, SIZE, Z, light_colors, xyz
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.palette import MARK_COLORS, region_color
+from apf_viz.workbench.view_model import SessionView
 
 
 class SelectionLayer(Canvas):

@@ -7,7 +7,7 @@ from typing import Literal
 
 import numpy as np
 
-from apf_viz.ui.view_model import SessionView
+from apf_viz.workbench.view_model import SessionView
 
 ROBOT_RADIUS = 0.3
 # Grid density, for a run framed about VIEW_PX pixels wide: a line per cell while a cell is at least

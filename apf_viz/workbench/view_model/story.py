@@ -10,8 +10,8 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.engine_state import Phase
 from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import SYNCHRONOUS
-from apf_viz.ui.view_model.legend import symbol_html
-from apf_viz.ui.view_model.staleness import SeenRobot, changes
+from apf_viz.workbench.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.staleness import SeenRobot, changes
 
 MAX_DIFFS = 8  # snapshot differences listed in the caption (the rest are counted)
 # Symbols, not emoji: a fresh machine's browser may have no colour-emoji font (Debian's Chromium with

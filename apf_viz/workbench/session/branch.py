@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from apf_viz.ui.compare import Twin
-from apf_viz.ui.session import Session
+from apf_viz.workbench.compare import Twin
+from apf_viz.workbench.session import Session
 
 EXTRA_EVENTS = 100_000  # a run of one's own goes at most this many events past where it branched
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from apf_viz.core.formats import load_pattern, load_robots
 from apf_viz.core.grid import as_point
 from apf_viz.demos import DEMO_PATTERN, DEMO_START
-from apf_viz.ui.session import Session
+from apf_viz.workbench.session import Session
 
 
 def demo_session(**options) -> Session:

@@ -30,13 +30,13 @@ from apf_viz.core.portrayal import (
 )
 from apf_viz.core.portrayal import stage_of as algorithm_stage
 from apf_viz.core.schedulers import BY_HAND
-from apf_viz.ui.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
-from apf_viz.ui.view_model import story
-from apf_viz.ui.view_model.paper import paper_html_for
-from apf_viz.ui.view_model.run_source import RunSource
-from apf_viz.ui.view_model.staleness import hidden_from, seen_robots, stale_holders
-from apf_viz.ui.view_model.views import Ghost, RobotView, SessionView, WhyView
-from apf_viz.ui.view_model.why import why_markdown, why_view
+from apf_viz.workbench.screen_state import NUMBERS_UP_TO, BrowserState, LectureStop, SharedScreen
+from apf_viz.workbench.view_model import story
+from apf_viz.workbench.view_model.paper import paper_html_for
+from apf_viz.workbench.view_model.run_source import RunSource
+from apf_viz.workbench.view_model.staleness import hidden_from, seen_robots, stale_holders
+from apf_viz.workbench.view_model.views import Ghost, RobotView, SessionView, WhyView
+from apf_viz.workbench.view_model.why import why_markdown, why_view
 
 __all__ = ["RobotView", "SessionView", "WhyView", "for_browser", "present", "present_run"]
 

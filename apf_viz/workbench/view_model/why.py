@@ -1,7 +1,8 @@
 """Why: the selected robot's last decision, explained from the snapshot it was computed on (the
 evidence is the evidence), its regions placed in the global frame where the robot stood at that Look,
-what has changed since (the one notion of staleness, :mod:`~apf_viz.ui.view_model.staleness`) and what it
-would decide now; and the same in words for the panel."""
+what has changed since (the one notion of staleness,
+:mod:`~apf_viz.workbench.view_model.staleness`) and what it would decide now; and the same in words for
+the panel."""
 
 from __future__ import annotations
 
@@ -12,10 +13,10 @@ from apf_viz.core.engine_state import Phase
 from apf_viz.core.frames import move_to_global
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Band, Cells, Frame, HalfPlane, Line, Mark, explain, in_frame
-from apf_viz.ui.palette import region_color
-from apf_viz.ui.view_model.legend import symbol_html
-from apf_viz.ui.view_model.staleness import changes
-from apf_viz.ui.view_model.views import WhyView
+from apf_viz.workbench.palette import region_color
+from apf_viz.workbench.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.staleness import changes
+from apf_viz.workbench.view_model.views import WhyView
 
 
 def why_view(e: Engine, r: int, pts: list[Point]) -> WhyView:

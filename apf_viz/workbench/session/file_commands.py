@@ -15,9 +15,9 @@ from apf_viz.core.grid import as_point
 from apf_viz.core.run import trace_header
 from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_steps, schedule_text
 from apf_viz.demos import pattern_of_size, scenarios
-from apf_viz.ui import loader
-from apf_viz.ui.run_config import RunConfig
-from apf_viz.ui.session.core import SCHEDULER_LABELS, SessionCore, shared_only
+from apf_viz.workbench import loader
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.session.core import SCHEDULER_LABELS, SessionCore, shared_only
 
 
 def _with_schedule_adversary(

@@ -6,17 +6,28 @@ from __future__ import annotations
 
 import html
 import re
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from apf_viz.core.portrayal import Cells, Frame
-from apf_viz.ui.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
-from apf_viz.ui.slide import Entry
+from apf_viz.workbench.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
 
 if TYPE_CHECKING:
-    from apf_viz.ui.view_model.views import SessionView
+    from apf_viz.workbench.view_model.views import SessionView
 
 # H_L^O → H<sub>L</sub><sup>O</sup>; L_I → L<sub>I</sub>; the paper's symbols as a reader knows them.
 SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One legend line: a swatch (its colour and shape: "disc", "ring", "square", "burst", or "none" for
+    a mark the canvas writes as a word) and words."""
+
+    color: tuple[int, int, int]
+    shape: str
+    label: str
+    meaning: str = ""
 
 
 def symbol_html(text: str) -> str:

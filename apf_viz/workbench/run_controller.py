@@ -2,7 +2,7 @@
 
 Every change goes through a method, under one lock: viser runs callbacks on its own threads, and the
 render thread plays. A change of algorithm, light semantics, start or pattern rebuilds the run from a
-new :class:`~apf_viz.ui.run_config.RunConfig`; nothing is reset field by field.
+new :class:`~apf_viz.workbench.run_config.RunConfig`; nothing is reset field by field.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ from apf_viz.core.formats import InputError
 from apf_viz.core.history import StepRecord
 from apf_viz.core.portrayal import Configuration, stage_of
 from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
-from apf_viz.ui.move_series import MoveSeries
-from apf_viz.ui.run_config import RunConfig
-from apf_viz.ui.stage_log import StageLog
+from apf_viz.workbench.move_series import MoveSeries
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.stage_log import StageLog
 
 # Steps per second: the Speed slider's top. Play never spends more than a share of each frame stepping
 # (ui/app.py STEP_SHARE), so a speed the engine cannot reach plays as fast as it can at full frame rate.

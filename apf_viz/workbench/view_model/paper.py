@@ -8,7 +8,7 @@ from __future__ import annotations
 import html
 
 from apf_viz.core.portrayal import CodeBlock, CodeLine, Pseudocode, pseudocode_of
-from apf_viz.ui.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.legend import symbol_html
 
 HIT = "#ffe680"  # the decision's line
 WITHIN = "#fff6cc"  # the conditions it sits in

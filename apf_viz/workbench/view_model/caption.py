@@ -10,10 +10,10 @@ from __future__ import annotations
 import html
 from typing import TYPE_CHECKING
 
-from apf_viz.ui.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.legend import symbol_html
 
 if TYPE_CHECKING:
-    from apf_viz.ui.view_model.views import SessionView
+    from apf_viz.workbench.view_model.views import SessionView
 
 TITLE_PX = 28
 WORDS_PX = 20

@@ -1,5 +1,5 @@
 """What the screen shows, as plain data: the scene draws a :class:`SessionView` and the panels put its
-sentences in place. Built by :func:`apf_viz.ui.view_model.present`."""
+sentences in place. Built by :func:`apf_viz.workbench.view_model.present`."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Explanation, LightStyle, Mark, Overlays
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
-from apf_viz.ui.compare import Divergence
-from apf_viz.ui.screen_state import Mode
+from apf_viz.workbench.compare import Divergence
+from apf_viz.workbench.screen_state import Mode
 
 
 class RobotView(NamedTuple):

@@ -21,13 +21,13 @@ from apf_viz.lecture import (
     frameless_coordinates,
     panel_words,
 )
-from apf_viz.ui.screen_state import RunMark, SharedScreen
-from apf_viz.ui.view_model import SessionView, stage_of
-from apf_viz.ui.view_model.run_source import RunSource
+from apf_viz.workbench.screen_state import RunMark, SharedScreen
+from apf_viz.workbench.view_model import SessionView, stage_of
+from apf_viz.workbench.view_model.run_source import RunSource
 
 
 class Lectern(Protocol):
-    """What a lecture drives: a session (ui/session/), which holds its lecturer."""
+    """What a lecture drives: a session (workbench/session/), which holds its lecturer."""
 
     selected: int | None
 

@@ -7,8 +7,8 @@ from collections.abc import Hashable
 from typing import Literal
 
 from apf_viz.core.schedulers import BY_HAND
-from apf_viz.ui.session.core import SCHEDULER_LABELS, SessionCore
-from apf_viz.ui.view_model import stage_of
+from apf_viz.workbench.session.core import SCHEDULER_LABELS, SessionCore
+from apf_viz.workbench.view_model import stage_of
 
 
 class RunCommands(SessionCore):

@@ -7,17 +7,17 @@ from typing import TYPE_CHECKING
 
 from apf_viz.core.formats import InputError
 from apf_viz.lecture import Lecture
-from apf_viz.ui import loader
-from apf_viz.ui.lecturer import Lecturer, Reached
-from apf_viz.ui.screen_state import LectureStop
-from apf_viz.ui.session.core import SessionCore, shared_only
-from apf_viz.ui.view_model.story import MAX_TRAIL
+from apf_viz.workbench import loader
+from apf_viz.workbench.lecturer import Lecturer, Reached
+from apf_viz.workbench.screen_state import LectureStop
+from apf_viz.workbench.session.core import SessionCore, shared_only
+from apf_viz.workbench.view_model.story import MAX_TRAIL
 
 
 class LectureCommands(SessionCore):
     """Commands on a guided lecture: its stops, PageDown and PageUp."""
 
-    if TYPE_CHECKING:  # the other commands a lecture drives (a Lectern: ui/lecturer.py)
+    if TYPE_CHECKING:  # the other commands a lecture drives (a Lectern: workbench/lecturer.py)
 
         def load_scenario(self, name: str) -> str: ...
         def step(self, browser: Hashable | None = None) -> bool: ...

@@ -1,7 +1,7 @@
 """Where each stage of the run began: the timeline's marks, kept incrementally as the run grows.
 
 The algorithm names the stage of a configuration (core/portrayal.py, ``Overlays.stage``: "headline —
-detail"). A frame asks for the marks up to the current step; like :class:`~apf_viz.ui.move_series.
+detail"). A frame asks for the marks up to the current step; like :class:`~apf_viz.workbench.move_series.
 MoveSeries`, the log replays only newly recorded steps, keeping positions and lights as it goes, and asks
 the algorithm for the stage only after a step that moved a robot or changed a light.
 """

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.explore.check import counterexample_text, explore
-from apf_viz.ui.run_config import RunConfig
+from apf_viz.workbench.run_config import RunConfig
 
 MAX_K = 5  # beyond this the state space is out of reach of a browser's patience (docs/VERIFICATION.md)
 MAX_STATES = 2_000_000

@@ -20,7 +20,7 @@ from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.history import Event
 from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
-from apf_viz.ui.run_config import RunConfig
+from apf_viz.workbench.run_config import RunConfig
 
 
 class Divergence(NamedTuple):

@@ -1,5 +1,5 @@
 """Drafts of a start and a pattern, every change undoable, and what makes them a run (sizes, Theorem 1).
-The shapes themselves are pure functions (core/shapes.py); ui/studio.py turns gestures into them."""
+The shapes themselves are pure functions (core/shapes.py); workbench/studio.py turns gestures into them."""
 
 from __future__ import annotations
 

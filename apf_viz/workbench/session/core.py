@@ -1,6 +1,6 @@
 """The session's core: the browsers and their own state, the shared screen's fields, the run read-only,
 building a new run from a configuration, and what each browser is shown (the view model's view, made
-under the run's lock). The commands build on it (ui/session/*_commands.py)."""
+under the run's lock). The commands build on it (workbench/session/*_commands.py)."""
 
 from __future__ import annotations
 
@@ -14,15 +14,14 @@ from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Point, as_point
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 from apf_viz.core.schedulers import REGISTRY as SCHEDULER_REGISTRY
-from apf_viz.ui.compare import Twin
-from apf_viz.ui.editor import Editor, draft_of
-from apf_viz.ui.lecturer import Lecturer
-from apf_viz.ui.library import PatternLibrary
-from apf_viz.ui.roles import Role
-from apf_viz.ui.run_config import RunConfig
-from apf_viz.ui.run_controller import RunController
-from apf_viz.ui.screen_state import BrowserState, SharedScreen
-from apf_viz.ui.view_model import SessionView, browser_key, for_browser, present, present_run
+from apf_viz.workbench.compare import Twin
+from apf_viz.workbench.editor import Editor, draft_of
+from apf_viz.workbench.lecturer import Lecturer
+from apf_viz.workbench.library import PatternLibrary
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.run_controller import RunController
+from apf_viz.workbench.screen_state import BrowserState, Role, SharedScreen
+from apf_viz.workbench.view_model import SessionView, browser_key, for_browser, present, present_run
 
 F = TypeVar("F", bound=Callable)
 
@@ -56,7 +55,7 @@ def _screen_field(name: str) -> property:
 
 class SessionCore:
     """What every browser sees and drives: the run, the drafts, the mode and the selection; the
-    commands are grouped by what they act on (:class:`~apf_viz.ui.session.Session`)."""
+    commands are grouped by what they act on (:class:`~apf_viz.workbench.session.Session`)."""
 
     def __init__(
         self,

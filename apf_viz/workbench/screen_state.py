@@ -1,7 +1,7 @@
 """The state of the screen apart from the run: what every browser shares (the mode, the drafts, the
 numbers, a Demo note, Compare) and what each browser has of its own (its selection, whether it follows
-the presenter's, its camera). :class:`~apf_viz.ui.session.Session` changes them; the view model
-(ui/view_model) reads them."""
+the presenter's, its camera). :class:`~apf_viz.workbench.session.Session` changes them; the view model
+(workbench/view_model) reads them."""
 
 from __future__ import annotations
 
@@ -10,12 +10,13 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from apf_viz.core.engine import Engine
-from apf_viz.ui.compare import Twin
-from apf_viz.ui.editor import Editor
-from apf_viz.ui.roles import Role
-from apf_viz.ui.studio import Studio
+from apf_viz.workbench.compare import Twin
+from apf_viz.workbench.editor import Editor
+from apf_viz.workbench.studio import Studio
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
+# A page's role (ui/roles.py tells which a page is): a presenter drives the shared run; a class page follows.
+Role = Literal["presenter", "class"]
 NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
 
 

@@ -10,9 +10,9 @@ from apf_viz.core import shapes
 from apf_viz.core.formats import InputError
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.schedulers import BY_HAND
-from apf_viz.ui.library import PatternLibrary
-from apf_viz.ui.screen_state import Mode
-from apf_viz.ui.session.core import SessionCore, shared_only
+from apf_viz.workbench.library import PatternLibrary
+from apf_viz.workbench.screen_state import Mode
+from apf_viz.workbench.session.core import SessionCore, shared_only
 
 
 class EditCommands(SessionCore):

@@ -1,5 +1,6 @@
 """What the view model reads of a run: a protocol, so that it depends on no controller (the
-shared run's :class:`~apf_viz.ui.run_controller.RunController` provides it; so may a browser's own run)."""
+shared run's :class:`~apf_viz.workbench.run_controller.RunController` provides it; so
+may a browser's own run)."""
 
 from __future__ import annotations
 
@@ -8,9 +9,9 @@ from typing import Protocol
 
 from apf_viz.core.engine import Engine
 from apf_viz.core.history import StepRecord
-from apf_viz.ui.move_series import MoveSeries
-from apf_viz.ui.run_config import RunConfig
-from apf_viz.ui.stage_log import StageLog
+from apf_viz.workbench.move_series import MoveSeries
+from apf_viz.workbench.run_config import RunConfig
+from apf_viz.workbench.stage_log import StageLog
 
 
 class RunSource(Protocol):

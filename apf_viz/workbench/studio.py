@@ -1,5 +1,5 @@
 """The pattern studio's tool and a gesture in progress: what a click, a second click or a dragged box
-does to the drafts (ui/editor.py) in Edit pattern or Edit robots, through the pure shapes of
+does to the drafts (workbench/editor.py) in Edit pattern or Edit robots, through the pure shapes of
 core/shapes.py. The same tools draw targets and starts."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from typing import Literal
 from apf_viz.core import shapes
 from apf_viz.core.grid import Point
 from apf_viz.core.symmetry import unsolvable_axis
-from apf_viz.ui.editor import Editor
+from apf_viz.workbench.editor import Editor
 
 # (tool, what it does), in the Tool dropdown's order.
 TOOLS: dict[str, str] = {
