@@ -240,3 +240,17 @@ def test_the_layers_import_downwards_only():
             if name == layer or name.startswith(layer + "."):
                 wrong += [f"{name} -> {d}" for d in _imports(path, modules) if d.startswith(below)]
     assert wrong == []
+
+
+def test_no_module_outside_the_scene_reads_a_renderers_insides():
+    """A renderer's nodes and helpers are the scene's own: others ask its public methods (``nodes``,
+    ``words``, ``visible_height``), so that a layer can change how it keeps them."""
+    import re
+
+    private = re.compile(r"\b(?:renderer|selection|canvas|base)\._[a-z]\w*")
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "scene" in path.relative_to(PACKAGE).parts:
+            continue
+        found += [f"{path.relative_to(PACKAGE)}: {m.group(0)}" for m in private.finditer(path.read_text())]
+    assert found == []

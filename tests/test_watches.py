@@ -17,7 +17,7 @@ from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solv
 from apf_viz.algorithms.apf_opaque_grid.watches import LATER_LIGHTS, PHASE1_LIGHTS
 from apf_viz.core.algorithm import Watch
 from apf_viz.core.engine import Engine
-from apf_viz.core.quiet_steps import WalkPath
+from apf_viz.core.quiet_steps import QuietSteps, WalkPath
 from apf_viz.core.run import advance
 from apf_viz.core.schedulers import make_scheduler
 from apf_viz.core.view import Snapshot
@@ -440,7 +440,7 @@ def _old_quiet_occupied(w: Watches, path: WalkPath, n: int) -> int:
 
 @pytest.mark.parametrize("seed", range(6))
 def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(seed):
-    """Watches.quiet_steps against the moves themselves: random robots, random watches (boxes, segments
+    """QuietSteps.quiet_steps against the moves themselves: random robots, random watches (boxes, segments
     to other robots, occupied boxes, a watched light), a walker; moved one lattice step at a time, it
     concerns no watcher within the bound (the walk fast-forward and forced cycles rely on)."""
     rng = random.Random(seed)
@@ -468,8 +468,8 @@ def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(se
         delta = rng.choice([(1, 0), (-1, 0), (0, 1), (0, -1)])
         n = rng.randint(1, 12)
         path = WalkPath(start, delta)
-        assert w._quiet_occupied(path, n) == _old_quiet_occupied(w, path, n)
-        quiet = w.quiet_steps(walker, start, delta, n)
+        assert QuietSteps(w)._quiet_occupied(path, n) == _old_quiet_occupied(w, path, n)
+        quiet = QuietSteps(w).quiet_steps(walker, start, delta, n)
         robot_at = {p: i for i, p in enumerate(points)}
         here = start
         for t in range(1, quiet + 1):

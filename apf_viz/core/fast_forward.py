@@ -11,7 +11,7 @@ nothing else changes), the engine may apply those n cycles at once, provided tha
    and every robot it does not see stands on the line of its walk, hidden behind the nearest one there),
    and no point of the walk is occupied;
 2. no other robot is concerned: no watch is touched at any step of the walk
-   (:meth:`~apf_viz.core.watches.Watches.quiet_steps`), so every other robot stays ineligible and the
+   (:meth:`~apf_viz.core.quiet_steps.QuietSteps.quiet_steps`), so every other robot stays ineligible and the
    scheduler's choice stays forced;
 3. no budget, step limit or outcome can fall inside the walk.
 

@@ -1,64 +1,53 @@
 """What fast-forward asks the watches: how many of a lone walker's next moves concern no watcher
-(:meth:`QuietSteps.quiet_steps`), read along the walk's line (:class:`WalkPath`). A mixin of
-:class:`~apf_viz.core.watches.Watches`, which it needs these of (declared for the type checker only)."""
+(:meth:`QuietSteps.quiet_steps`), read along the walk's line (:class:`WalkPath`) off the other robots'
+:class:`~apf_viz.core.watches.Watches`."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from apf_viz.core.grid import Point
 from apf_viz.core.watch_geometry import VECTOR_SPAN
+from apf_viz.core.watches import Watches
 
 
 class QuietSteps:
-    """The walker's quiet moves."""
+    """The walker's quiet moves, read off the watches of the other robots (``watches``)."""
 
-    if TYPE_CHECKING:  # the watches', read here
-        count: int
-        bits: np.ndarray
-        active: np.ndarray
-        _P: np.ndarray
-        _mask: np.ndarray
-        _watched: int
-        _followed: dict[int, set[tuple[int, int]]]
-        _any_at: dict[Point, set[tuple[int, int]]]
-        _watchers_at: dict[Point, set[int]]
-        _boxed: dict[int, tuple[list[tuple[int, int, int, int]], list[tuple[int, int, int]]]]
-        _occupied: dict[int, tuple[list[tuple[int, int, int, int]], list[int]]]
-        _intact: list[set[int]]
-        _within: list[tuple[int, int, int, int] | None]
+    def __init__(self, watches: Watches) -> None:
+        self.watches = watches
 
     def quiet_steps(self, r: int, start: Point, delta: Point, n: int) -> int:
         """How many of robot r's next moves, from ``start`` by ``delta`` (one lattice step along an axis),
         concern no watcher, up to n. A lower bound (0 when unsure): moving r straight to
         ``start + n′·delta`` at once then concerns nobody, as none of the n′ single moves would
         (:mod:`apf_viz.core.fast_forward`)."""
-        if not self.count:
+        ws = self.watches
+        if not ws.count:
             return n
-        if int(self.bits[r]) & self._watched:
+        if int(ws.bits[r]) & ws._watched:
             return 0  # a watched light is news wherever it comes into sight
         path = WalkPath(start, delta)
-        mine = self._followed.get(r, set())  # segments that follow the walker: taken along, not touched
-        any_at = self._any_at
+        mine = ws._followed.get(r, set())  # segments that follow the walker: taken along, not touched
+        any_at = ws._any_at
         first = min(
-            path.first_of(self._watchers_at, n + 1),
+            path.first_of(ws._watchers_at, n + 1),
             path.first_of((p for p in path.on_line(any_at) if not any_at[p] <= mine), n + 1),
         )  # the first point of the walk (0 … n) that some watched region contains
-        for w, (boxes, longs) in self._boxed.items():
+        for w, (boxes, longs) in ws._boxed.items():
             for box in boxes:
                 first = min(first, path.first_in(path.box(box), n))
-            wx, wy = int(self._P[w, 0]), int(self._P[w, 1])
+            wx, wy = int(ws._P[w, 0]), int(ws._P[w, 1])
             for ux, uy, g in longs:
                 first = min(first, path.first_in(path.segment(wx, wy, ux, uy, g), n))
         quiet = first - 1  # the move onto that point, or off it (the start), touches it
         if mine:
             quiet = min(quiet, self._quiet_witness(r, mine, path, quiet))
-        if self._occupied:
+        if ws._occupied:
             quiet = min(quiet, self._quiet_occupied(path, n))
-        if self._watched:
+        if ws._watched:
             quiet = min(quiet, self._quiet_reveals(r, path, n))
         return max(0, quiet)
 
@@ -67,15 +56,16 @@ class QuietSteps:
         witness (whose segment the walk does not touch, see :meth:`quiet_steps`), or the walker itself,
         in sight and inside the watch's ``within``. (Within those moves the engine may drop and re-pick
         the walker's segment; the watcher's answer stays "same light, stay" either way.)"""
+        ws = self.watches
         quiet = n
-        P = self._P
+        P = ws._P
         touched: dict[int, set[int]] = {}  # watcher → its witnesses the walk touches
         for w, i in mine:
             touched.setdefault(w, set()).add(i)
         for w, used in touched.items():
-            if self._intact[w] - used:
+            if ws._intact[w] - used:
                 continue
-            within = self._within[w]
+            within = ws._within[w]
             if within is not None:
                 lo, hi = path.box(within)
                 if not lo <= 1 <= hi:
@@ -86,9 +76,10 @@ class QuietSteps:
 
     def _quiet_occupied(self, path: WalkPath, n: int) -> int:
         """Moves before the walker is the last robot to leave some watch's occupied boxes."""
+        ws = self.watches
         quiet = n
         x, y = path.x, path.y  # where the walker stands
-        for boxes, counts in self._occupied.values():
+        for boxes, counts in ws._occupied.values():
             # Another robot keeps a box occupied whatever the walker does: a box counting two robots, or one
             # that is not the walker. (Tested before the spans: most watches are skipped here.)
             if any(
@@ -105,10 +96,11 @@ class QuietSteps:
     def _quiet_reveals(self, r: int, path: WalkPath, n: int) -> int:
         """Moves before the walker leaves a point between a robot of a watched light and a watcher of
         that light (it may be revealed to the watcher then)."""
+        ws = self.watches
         quiet = n
-        P = self._P
-        for q in (self.bits & self._watched).nonzero()[0].tolist():
-            watchers = self.active & ((self._mask & self.bits[q]) != 0)
+        P = ws._P
+        for q in (ws.bits & ws._watched).nonzero()[0].tolist():
+            watchers = ws.active & ((ws._mask & ws.bits[q]) != 0)
             watchers[q] = False
             if watchers.any():
                 quiet = min(quiet, path.first_between(P[q], P[watchers], n - 1))

@@ -28,7 +28,6 @@ import numpy as np
 
 from apf_viz.core.algorithm import Box, Watch
 from apf_viz.core.grid import PACKED_SPAN_LIMIT, Point, visible_from
-from apf_viz.core.quiet_steps import QuietSteps
 from apf_viz.core.watch_geometry import (
     BIG,
     global_box,
@@ -48,7 +47,7 @@ FEW_SHOWN = 8  # up to this many robots of watched lights, a reveal is looked fo
 SHORT = 64  # a segment of at most this many lattice steps is kept as its points
 
 
-class Watches(QuietSteps):
+class Watches:
     """The registered watches of idle robots, and the robots an event concerns.
 
     Args:

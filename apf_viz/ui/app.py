@@ -217,9 +217,9 @@ class App:
     def drawn(self) -> dict[str, object]:
         """Every node drawn, by name: the shared run's, then each browser's selection layer."""
         screens = self._screens()
-        nodes = dict(self.renderer._handles)
+        nodes = self.renderer.nodes()
         for screen in screens:
-            nodes.update(screen.selection._handles)
+            nodes.update(screen.selection.nodes())
         return nodes
 
     def stop(self) -> None:

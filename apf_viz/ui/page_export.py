@@ -85,10 +85,10 @@ class _Recorder:
     def _words(self, words: list[str]) -> None:
         lines = [line for text in words for line in (textwrap.wrap(text, LINE_CHARACTERS) or [""])]
         x0, y0, x1, y1 = self.renderer.bounds
-        h = text_cells(self.renderer._visible_height()) * 1.45  # a line and the space under it
+        h = text_cells(self.renderer.visible_height()) * 1.45  # a line and the space under it
         top = y1 + 1.5 + h * len(lines)
         placed = [(line, (x0 - 0.5, top - h * i, 0.1)) for i, line in enumerate(lines)]
-        self.renderer._labels("/words", placed)
+        self.renderer.words("/words", placed)
         bounds = (x0, y0, max(x1, x0 + 0.55 * h / 1.45 * LINE_CHARACTERS), top + h)
         if bounds != self._framed:  # the camera the page opens with: the run and its words
             self._framed = bounds

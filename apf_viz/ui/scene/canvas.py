@@ -60,6 +60,20 @@ class Canvas:
         self.text_height: float | None = None
         self.label_boxes: list[Bounds] = []  # where the last frame's labels are (SceneRenderer.render)
 
+    # ------------------------------------------------------------------ what others may ask
+    def nodes(self) -> dict[str, object]:
+        """Every node this canvas has drawn, by name (hidden ones included: a handle's ``visible``)."""
+        return dict(self._handles)
+
+    def words(self, prefix: str, placed: list) -> None:
+        """Lines of text at scene positions (``(text, (x, y, z))``), under ``prefix``: an exported page's
+        words beside its run (ui/page_export.py)."""
+        self._labels(prefix, placed)
+
+    def visible_height(self) -> float:
+        """How many cells tall the framed view is."""
+        return self._visible_height()
+
     # ------------------------------------------------------------------ batched helpers
     def _visible_height(self) -> float:
         """How many cells tall the framed view is (the initial camera's pose: what browsers are framed
