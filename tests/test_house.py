@@ -254,3 +254,19 @@ def test_no_module_outside_the_scene_reads_a_renderers_insides():
             continue
         found += [f"{path.relative_to(PACKAGE)}: {m.group(0)}" for m in private.finditer(path.read_text())]
     assert found == []
+
+
+def test_no_class_declares_its_hosts_members_again():
+    """A class that needs another's members holds it (a part: the engine's Events and Walker, the
+    watches' QuietSteps) or subclasses where they are declared (SessionCore, EngineCore, Canvas); none
+    re-declares them for the type checker (an ``if TYPE_CHECKING:`` inside a class body)."""
+    found = []
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ClassDef):
+                found += [
+                    f"{name}.{node.name}"
+                    for stmt in node.body
+                    if isinstance(stmt, ast.If) and "TYPE_CHECKING" in ast.unparse(stmt.test)
+                ]
+    assert found == []

@@ -2,27 +2,20 @@
 
 from __future__ import annotations
 
-from collections.abc import Hashable
-from typing import TYPE_CHECKING
-
 from apf_viz.core.formats import InputError
 from apf_viz.lecture import Lecture
 from apf_viz.workbench import loader
 from apf_viz.workbench.lecturer import Lecturer, Reached
 from apf_viz.workbench.screen_state import LectureStop
-from apf_viz.workbench.session.core import SessionCore, shared_only
+from apf_viz.workbench.session.core import shared_only
+from apf_viz.workbench.session.file_commands import FileCommands
+from apf_viz.workbench.session.run_commands import RunCommands
 from apf_viz.workbench.view_model.story import MAX_TRAIL
 
 
-class LectureCommands(SessionCore):
-    """Commands on a guided lecture: its stops, PageDown and PageUp."""
-
-    if TYPE_CHECKING:  # the other commands a lecture drives (a Lectern: workbench/lecturer.py)
-
-        def load_scenario(self, name: str) -> str: ...
-        def step(self, browser: Hashable | None = None) -> bool: ...
-        def seek(self, step: float) -> None: ...
-        def pause(self) -> None: ...
+class LectureCommands(RunCommands, FileCommands):
+    """Commands on a guided lecture: its stops, PageDown and PageUp. Built on the run's and the files'
+    commands, which a lecture drives (a Lectern: workbench/lecturer.py)."""
 
     # ------------------------------------------------------------------ a guided lecture
     @shared_only
