@@ -113,7 +113,7 @@ def _label_nodes(app: App, screen) -> list[tuple[str, object]]:
     renderers = [app.renderer, *([app.pair.second] if app.pair.second is not None else []), screen.selection]
     out = []
     for renderer in renderers:
-        for name, handle in renderer._handles.items():
+        for name, handle in renderer.nodes().items():
             if type(handle).__name__ == "LabelHandle" and handle.visible and handle.text:
                 out.append((renderer.prefix + name, handle))
     return out

@@ -58,13 +58,13 @@ def test_a_second_algorithm_renders_with_its_own_colours_and_overlay_and_no_K(re
     renderer.render(v)
     drawn = {}  # each drawn robot's place and colour, from the point cloud of its light
     for light in {r.light for r in v.robots}:
-        handle = renderer._handles[f"/robots/{light}"]
+        handle = renderer.nodes()[f"/robots/{light}"]
         colour = np.asarray(handle.colors).reshape(-1, 3)[0].tolist()
         drawn |= {tuple(map(int, p[:2])): colour for p in np.asarray(handle.points)}
     assert drawn == {r.position: list(own[r.light].color) for r in v.robots}
-    wall = np.asarray(renderer._handles["/marks/line0"].points)
+    wall = np.asarray(renderer.nodes()["/marks/line0"].points)
     assert np.allclose(wall[0, :, 0], 0.0)  # a vertical line at x = 0, the leftmost column
-    labels = [h.text for n, h in renderer._handles.items() if n.startswith("/marks/labels/") and h.visible]
+    labels = [h.text for n, h in renderer.nodes().items() if n.startswith("/marks/labels/") and h.visible]
     assert labels == ["the wall: the leftmost column"] and "K" not in labels
 
 
@@ -74,7 +74,7 @@ def test_the_papers_overlays_label_K_on_the_canvas(renderer):
     while not any(isinstance(m, Line) and m.label == "K" for m in s.view().overlays.marks):
         assert s.step()
     renderer.render(s.view())
-    labels = [h.text for n, h in renderer._handles.items() if n.startswith("/marks/labels/") and h.visible]
+    labels = [h.text for n, h in renderer.nodes().items() if n.startswith("/marks/labels/") and h.visible]
     assert "K" in labels
 
 
@@ -98,7 +98,7 @@ def test_why_shows_the_selected_robots_last_decision_and_its_regions_in_its_fram
         for m in uppers:  # "above me" in its own frame falls below it on the grid when flipped
             assert m.side == (1 if s.y_up[r] else -1) and m.at == why.origin[1]
     renderer.render(s.view())
-    assert any(n.startswith("/why/area") for n in renderer._handles)  # H_L^O shaded on the grid
+    assert any(n.startswith("/why/area") for n in renderer.nodes())  # H_L^O shaded on the grid
 
 
 def test_a_robot_that_moved_is_explained_where_it_stood_when_it_looked():

@@ -38,17 +38,17 @@ def session_of(k: int) -> Session:
 
 
 def _colour(renderer, name: str) -> list[int]:
-    return np.asarray(renderer._handles[name].colors).reshape(-1, 3)[0].tolist()
+    return np.asarray(renderer.nodes()[name].colors).reshape(-1, 3)[0].tolist()
 
 
 def test_robots_are_flat_discs_in_their_legend_colour_with_a_nose_on_their_own_plus_y(renderer):
     s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], y_up=[True, False, True])
     view = s.view()
     renderer.render(view)
-    robots = renderer._handles["/robots/off"]
+    robots = renderer.nodes()["/robots/off"]
     assert robots.point_shading == "flat" and robots.point_shape == "circle"  # unlit: the swatch's colour
     assert _colour(renderer, "/robots/off") == list(view.legend["off"].color)
-    noses = np.asarray(renderer._handles["/robots/y_axes"].points)
+    noses = np.asarray(renderer.nodes()["/robots/y_axes"].points)
     assert noses[0, 1] > 0 and noses[1, 1] < 1  # robot 1 at y = 1 is flipped: its nose points down
 
 
@@ -58,10 +58,10 @@ def test_phase_last_actor_and_selection_are_rings_under_the_robot(renderer):
     renderer.render(s.view())
     robot = 2 * 0.3  # the robot's disc
     for name in ("/phase/looked", "/ring/last", "/ring/selected"):
-        handle = renderer._handles[name]
+        handle = renderer.nodes()[name]
         assert handle.point_shape == "circle" and handle.visible
         assert np.asarray(handle.points)[:, :2].tolist() == [[2.0, 1.0]]
-    sizes = [renderer._handles[n].point_size for n in ("/phase/looked", "/ring/last", "/ring/selected")]
+    sizes = [renderer.nodes()[n].point_size for n in ("/phase/looked", "/ring/last", "/ring/selected")]
     assert robot * 0.5 < sizes[0] < sizes[1] < sizes[2]  # each a ring around the smaller one
 
 
@@ -70,12 +70,12 @@ def test_many_robots_are_one_point_cloud_per_light(renderer):
     renderer.render(s.view())
     clouds = {
         n: h
-        for n, h in renderer._handles.items()
+        for n, h in renderer.nodes().items()
         if n.startswith("/robots/") and n not in ("/robots/y_axes", "/robots/outline")
     }
     assert set(clouds) == {"/robots/off"}
     assert len(clouds["/robots/off"].points) == DENSE + 50
-    assert len(renderer._handles["/robots/y_axes"].points) == DENSE + 50
+    assert len(renderer.nodes()["/robots/y_axes"].points) == DENSE + 50
 
 
 def test_y_axis_diamonds_are_drawn_only_where_a_browser_is_zoomed_in_enough_to_see_them(renderer):
@@ -83,11 +83,11 @@ def test_y_axis_diamonds_are_drawn_only_where_a_browser_is_zoomed_in_enough_to_s
     renderer.render(s.view())
     renderer.frame_initial_camera(renderer.server.initial_camera)
     renderer.render(s.view())
-    assert not scene_detail(renderer._visible_height())[0]
-    assert renderer._handles["/robots/y_axes"].visible is False
+    assert not scene_detail(renderer.visible_height())[0]
+    assert renderer.nodes()["/robots/y_axes"].visible is False
     renderer.view_cells = 20.0  # a browser zoomed in on a corner of the run
     renderer.render(s.view())
-    noses = renderer._handles["/robots/y_axes"]
+    noses = renderer.nodes()["/robots/y_axes"]
     assert noses.visible and len(noses.points) == 1000
     assert scene_detail(20.0)[0] and not scene_detail(200.0)[0]
 
@@ -96,7 +96,7 @@ def test_a_crowd_framed_whole_plays_without_outlines_and_gets_them_back_when_pau
     s = session_of(1000)
     renderer.render(s.view())
     renderer.frame_initial_camera(renderer.server.initial_camera)
-    outline = renderer._handles["/robots/outline"]
+    outline = renderer.nodes()["/robots/outline"]
     playing = dataclasses.replace(s.view(), playing=True)
     renderer.render(playing)
     assert outline.visible is False  # a cell a few pixels wide: the discs alone, while it plays
@@ -120,24 +120,25 @@ def test_line_sets_and_halos_are_updated_in_place_and_hidden_when_empty(renderer
     renderer.render(s.view())
     s.step()  # robot picked by the scheduler looks: a halo appears
     renderer.render(s.view())
-    halos = dict(renderer._handles)
+    halos = dict(renderer.nodes())
     for _ in range(40):
         s.step()
         renderer.render(s.view())
     for name, handle in halos.items():
-        assert renderer._handles[name] is handle, f"{name} was re-created"
-    renderer._segments("/rays", np.zeros((0, 2, 3)), (0, 0, 0), 0.1)
-    assert renderer._handles["/rays"].visible is False
+        assert renderer.nodes()[name] is handle, f"{name} was re-created"
+    assert renderer.selection is not None
+    renderer.selection._segments("/rays", np.zeros((0, 2, 3)), (0, 0, 0), 0.1)
+    assert renderer.nodes()["/rays"].visible is False
 
 
 def test_target_cells_change_colour_in_edit_pattern_mode(renderer):
     s = Session([(0, 0), (2, 1), (3, 3)], [(0, 0), (1, 0), (2, 0)], y_up=[True, True, True])
     renderer.render(s.view())
-    targets = renderer._handles["/targets"]
+    targets = renderer.nodes()["/targets"]
     run_colour = np.asarray(targets.colors).tolist()
     s.set_mode("edit-pattern")
     renderer.render(s.view())
-    assert renderer._handles["/targets"] is targets
+    assert renderer.nodes()["/targets"] is targets
     assert np.asarray(targets.colors).tolist() != run_colour
 
 
@@ -153,18 +154,18 @@ def test_pending_moves_of_few_robots_are_line_segments(renderer):
     s = _pending_session(6)
     renderer.render(s.view())
     moves = {(r.position, r.pending) for r in s.view().robots if r.pending is not None}
-    segments = np.asarray(renderer._handles["/pending"].points)
+    segments = np.asarray(renderer.nodes()["/pending"].points)
     assert {(tuple(map(int, a[:2])), tuple(map(int, b[:2]))) for a, b in segments} == moves
-    assert "/pending_cells" not in renderer._handles
+    assert "/pending_cells" not in renderer.nodes()
 
 
 def test_pending_moves_of_many_robots_are_dots_on_their_destinations(renderer):
     s = _pending_session(DENSE + 1)
     renderer.render(s.view())
     destinations = {r.pending for r in s.view().robots if r.pending is not None}
-    dots = np.asarray(renderer._handles["/pending_cells"].points)
+    dots = np.asarray(renderer.nodes()["/pending_cells"].points)
     assert {(int(x), int(y)) for x, y, _ in dots} == destinations
-    assert "/pending" not in renderer._handles
+    assert "/pending" not in renderer.nodes()
 
 
 def test_grid_density_follows_the_width_of_the_run():
@@ -193,9 +194,9 @@ def test_a_run_at_the_edge_of_the_grid_is_drawn_exactly_around_a_nearby_origin(r
     renderer.render(s.view())
     ox, oy = renderer.origin
     assert abs(ox - far) < 10 and abs(oy + far) < 10
-    drawn = np.asarray(renderer._handles["/robots/off"].points)[:, :2]
+    drawn = np.asarray(renderer.nodes()["/robots/off"].points)[:, :2]
     assert drawn.tolist() == [[x - ox, y - oy] for x, y in start]  # exact, not rounded
-    rays = np.asarray(renderer._handles["/rays"].points)[:, :, :2]
+    rays = np.asarray(renderer.nodes()["/rays"].points)[:, :, :2]
     assert {tuple(map(float, p)) for p in rays.reshape(-1, 2)} <= {(x - ox, y - oy) for x, y in start}
     # A click ray straight down onto a robot's drawn position names that robot's grid cell.
     x, y = renderer.to_scene(start[1])
@@ -210,18 +211,18 @@ def test_numbers_beside_robots_and_a_red_mark_where_a_collision_happened(rendere
 
     s = demo_session()
     renderer.render(s.view())
-    texts = sorted(h.text for n, h in renderer._handles.items() if n.startswith("/numbers/") and h.visible)
+    texts = sorted(h.text for n, h in renderer.nodes().items() if n.startswith("/numbers/") and h.visible)
     assert texts == sorted(str(i) for i in range(10))
     s.set_numbers(False)
     renderer.render(s.view())
-    assert not any(h.visible for n, h in renderer._handles.items() if n.startswith("/numbers/"))
+    assert not any(h.visible for n, h in renderer.nodes().items() if n.startswith("/numbers/"))
     trace = Path(__file__).parent / "literal_traces" / "collision.jsonl"
     s.load_trace(trace.name, trace.read_bytes())
     while s.engine.redo() is not None:
         pass
     v = s.view()
     renderer.render(v)
-    marked = np.asarray(renderer._handles["/collision"].points)[:, :2]
+    marked = np.asarray(renderer.nodes()["/collision"].points)[:, :2]
     assert sorted(map(tuple, marked.tolist())) == sorted(renderer.to_scene(c) for c in v.collision[1])
 
 
@@ -322,15 +323,15 @@ def test_the_first_click_of_a_two_click_tool_is_marked_until_the_second(renderer
     view = s.view()
     assert view.anchor == (1, 0)
     renderer.render(view)
-    mark = renderer._handles["/anchor"]
+    mark = renderer.nodes()["/anchor"]
     assert mark.visible and mark.point_shape == "diamond"
     assert np.asarray(mark.points)[0, :2].tolist() == list(renderer.to_scene((1, 0)))
-    assert renderer._handles["/anchor_label/0"].text.startswith("first click")
+    assert renderer.nodes()["/anchor_label/0"].text.startswith("first click")
     s.click((4, 2))
     view = s.view()
     assert view.anchor is None
     renderer.render(view)
-    assert not renderer._handles["/anchor"].visible and not renderer._handles["/anchor_label/0"].visible
+    assert not renderer.nodes()["/anchor"].visible and not renderer.nodes()["/anchor_label/0"].visible
     s.set_mode("run")
     assert s.view().anchor is None
 
@@ -427,16 +428,16 @@ def test_under_manual_each_robot_says_on_the_canvas_what_a_click_on_it_runs():
     try:
         s = Session([(0, 0), (2, 1), (4, 0)], [(0, 0), (1, 0), (2, 0)])
         s.set_scheduler("manual")
-        renderer = SceneRenderer(server, layer="run")
+        renderer = SceneRenderer(server, selection=False)
         renderer.render(s.view())
-        texts = [renderer._handles[f"/numbers/{i}"].text for i in range(3)]
+        texts = [renderer.nodes()[f"/numbers/{i}"].text for i in range(3)]
         assert texts == ["0 → look", "1 → look", "2 → look"]
         s.click((2, 1))  # robot 1 Looks: its next phase is Compute
         renderer.render(s.view())
-        assert renderer._handles["/numbers/1"].text == "1 → compute"
+        assert renderer.nodes()["/numbers/1"].text == "1 → compute"
         s.set_scheduler("async")  # a scheduler that chooses: no phase words
         renderer.render(s.view())
-        assert [renderer._handles[f"/numbers/{i}"].text for i in range(3)] == ["0", "1", "2"]
+        assert [renderer.nodes()[f"/numbers/{i}"].text for i in range(3)] == ["0", "1", "2"]
     finally:
         server.stop()
 
@@ -472,9 +473,9 @@ def test_without_numbers_manual_draws_no_label_per_robot_and_a_lone_stale_word_m
         s = Session([(0, 0), (2, 1), (4, 0)], [(0, 0), (1, 0), (2, 0)])
         s.set_scheduler("manual")
         s.set_numbers(False)
-        renderer = SceneRenderer(server, layer="run")
+        renderer = SceneRenderer(server, selection=False)
         renderer.render(s.view())
-        assert not any(name.startswith("/numbers/") and h.visible for name, h in renderer._handles.items())
+        assert not any(name.startswith("/numbers/") and h.visible for name, h in renderer.nodes().items())
     finally:
         server.stop()
     pts = [[0.0, 0.0], [1.0, 0.0]]

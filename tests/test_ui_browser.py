@@ -653,7 +653,7 @@ def test_the_demo_played_to_formed_keeps_the_robots_on_the_target_cells(browser,
     v = app.session.view()
     assert v.outcome == "formed"
     assert {r.position for r in v.robots} == set(v.targets)  # the targets stayed where the pattern formed
-    drawn = np.asarray(app.renderer._handles["/targets"].points)[:, :2]
+    drawn = np.asarray(app.renderer.nodes()["/targets"].points)[:, :2]
     assert {app.renderer.to_scene(p) for p in v.targets} == {tuple(map(float, p)) for p in drawn}
     shot(page, "formed")
     page.close()
@@ -683,7 +683,7 @@ def test_a_crowd_framed_whole_hides_the_y_axis_diamonds_and_zooming_in_brings_th
     crowd = App(Session(random_solvable_start(1000, rng), random_pattern(1000, rng)), port=free_port())
     try:
         page = open_page(browser, crowd)
-        noses = lambda: crowd.renderer._handles["/robots/y_axes"]  # noqa: E731
+        noses = lambda: crowd.renderer.nodes()["/robots/y_axes"]  # noqa: E731
         wait_for(lambda: noses().visible is False)  # framed whole: a diamond would be a pixel
         box = page.locator("canvas").first.bounding_box()
         page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
@@ -851,7 +851,7 @@ def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(brow
     page.get_by_text("apf-opaque-grid-literal: COLLISION").wait_for()
     a, b = app.renderer, app.pair.second
     assert b is not None and b.origin[0] < a.origin[0]  # B is drawn to the right of A
-    titles = [h.text for n, h in b._handles.items() if n.startswith("/title/") and h.visible]
+    titles = [h.text for n, h in b.nodes().items() if n.startswith("/title/") and h.visible]
     assert titles == ["B: the paper as written · COLLISION"]  # in words a room reads
     page.get_by_role("button", name="Frame run").click()
     shot(page, "compare")
@@ -876,7 +876,7 @@ def test_two_browsers_select_apart_until_one_follows_the_presenter(browser, app)
     projector.mouse.click(x, y)
     wait_for(lambda: app.session.view(a).selected == 4)
     projector.get_by_text("Robot 4 —").first.wait_for()
-    rays = app.screens[b].selection._handles.get("/rays")
+    rays = app.screens[b].selection.nodes().get("/rays")
     assert app.session.view(b).selected is None and (rays is None or not rays.visible)
     laptop.get_by_text("Click a robot to see what it sees").first.wait_for()
     shot(laptop, "laptop-unchanged-by-the-projector")
@@ -884,8 +884,8 @@ def test_two_browsers_select_apart_until_one_follows_the_presenter(browser, app)
     wait_for(lambda: app.session.view(b).selected == 4)
     laptop.get_by_text("Following the presenter's selection.").wait_for()
     laptop.get_by_text("Robot 4 —").first.wait_for()
-    wait_for(lambda: app.screens[b].selection._handles.get("/rays") is not None)
-    wait_for(lambda: app.screens[b].selection._handles["/rays"].visible)
+    wait_for(lambda: app.screens[b].selection.nodes().get("/rays") is not None)
+    wait_for(lambda: app.screens[b].selection.nodes()["/rays"].visible)
     shot(laptop, "laptop-follows-the-projector")
     assert not projector.get_by_label("Follow presenter").is_visible()  # the presenter follows nobody
 
@@ -1279,13 +1279,13 @@ def test_in_edit_robots_a_robot_moves_with_the_move_tool(browser, app):
     # The first click is seen to wait for the second: the panel says so, the cell is marked.
     page.get_by_text(f"first click at {start}").wait_for()
     page.get_by_text("where it goes").first.wait_for()
-    wait_for(lambda: app.renderer._handles["/anchor"].visible)
+    wait_for(lambda: app.renderer.nodes()["/anchor"].visible)
     shot(page, "studio-move-first-click")
     x, y = screen_of(app, page, free)
     page.mouse.click(x, y)
     wait_for(lambda: free in s.editor.robots and start not in s.editor.robots)
     assert len(s.editor.robots) == s.engine.k
-    wait_for(lambda: not app.renderer._handles["/anchor"].visible)
+    wait_for(lambda: not app.renderer.nodes()["/anchor"].visible)
     shot(page, "studio-move-robot")
     page.close()
 
@@ -1529,7 +1529,7 @@ def test_tried_at_a_compare_the_students_run_compares_beside_itself(browser, app
     shot(student, "class-page-own-run-compare")
     student.get_by_role("button", name="Back to the lecture").click()
     wait_for(lambda: page.own is None and page._own_pair is None)
-    assert not second._handles  # its nodes removed from the student's scene
+    assert not second.nodes()  # its nodes removed from the student's scene
     student.close()
     presenter.close()
 

@@ -110,7 +110,7 @@ class App:
         # Docked, not floating: the panel takes its own strip of the window, so it never hides part of
         # the run, and the browser no longer renders (and, without a GPU, reads back) the pixels under it.
         gui.main_panel.dock_right()
-        self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
+        self.renderer = SceneRenderer(self.server, root="/shared", selection=False)
         self.pair = ComparePair(self.renderer)  # the run, and under Compare the second run to its right
         self.verifier = SharedVerifier(session, self.request_render)
         self.screens: dict[int, BrowserScreen] = {}

@@ -21,6 +21,7 @@ from apf_viz.ui.scene import (
     text_cells,
 )
 from apf_viz.ui.scene.compare_pair import ComparePair
+from apf_viz.ui.scene.selection import SelectionRenderer
 from apf_viz.workbench.screen_state import Role
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
@@ -54,7 +55,7 @@ class BrowserScreen:
     def __init__(self, app: Host, client) -> None:
         self.client = client
         self.state = app.session.join(client.client_id, app.role_of(client))
-        self.selection = SceneRenderer(client, layer="selection", base=app.renderer, root="/own")
+        self.selection = SelectionRenderer(client, app.renderer, root="/own")
         # The run it is attached to (the shared one, or its own: ui/own_runs.py); its panel's commands
         # go there.
         self.attachment = Attachment(app.session)
@@ -118,7 +119,7 @@ class BrowserScreen:
         self.attachment.own = own
         self._hiding = [self.client.scene.add_frame("/shared", show_axes=False, visible=False)]
         self.selection.clear()
-        self.own = SceneRenderer(self.client, layer="all", root="/mine")
+        self.own = SceneRenderer(self.client, root="/mine")
         self._own_pair = ComparePair(self.own)
         self._own_twin = own.screen.twin
 

@@ -45,7 +45,7 @@ class _Recorder:
     def __init__(self) -> None:
         with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: no page will ever connect
             self.server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
-        self.renderer = SceneRenderer(self.server, layer="run", root="/shared")
+        self.renderer = SceneRenderer(self.server, root="/shared", selection=False)
         self.pair = ComparePair(self.renderer)  # a stop that compares shows the run beside it too
         self.serializer = self.server.get_scene_serializer()
         self.frames = 0

@@ -46,7 +46,6 @@ from apf_viz.ui.scene.style import (
     STALE_MARK,
     VIEW_PX,
     Bounds,
-    Layer,
     light_colors,
 )
 
@@ -59,7 +58,6 @@ __all__ = [
     "STALE_MARK",
     "VIEW_PX",
     "Bounds",
-    "Layer",
     "SceneRenderer",
     "camera_aspect",
     "camera_cells",

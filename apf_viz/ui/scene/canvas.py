@@ -9,7 +9,7 @@ import numpy as np
 from apf_viz.core.portrayal import Frame, Line
 from apf_viz.ui.scene.camera import cell_of_ray, pose_for
 from apf_viz.ui.scene.labels import text_cells
-from apf_viz.ui.scene.style import LABEL_SCALE, REORIGIN_DISTANCE, VISER_POINT_SCALE, Bounds, Layer
+from apf_viz.ui.scene.style import LABEL_SCALE, REORIGIN_DISTANCE, VISER_POINT_SCALE, Bounds
 from apf_viz.workbench.palette import PointShape
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.legend import canvas_symbol
@@ -19,9 +19,7 @@ class Canvas:
     """What every part of the scene draws with: nodes created once and updated in place (points,
     segments, labels), the integer origin the float32 scene is drawn around, and the run's box."""
 
-    def __init__(
-        self, owner, prefix: str = "", layer: Layer = "all", base: Canvas | None = None, root: str = ""
-    ) -> None:
+    def __init__(self, owner, prefix: str = "", root: str = "") -> None:
         self.server = owner
         # A second run drawn beside the first (Compare) is a second renderer under its own prefix, its
         # origin set by the caller so that it stands to the right of the first.
@@ -29,17 +27,8 @@ class Canvas:
         # Every node is drawn under ``root`` (a frame): one browser can hide a whole scope at once (a
         # page trying a run of its own hides the shared run under a frame of its own of the same name).
         self.root = root
-        self.layer: Layer = layer
-        self.base = base
         self.fixed_origin: tuple[int, int] | None = None
         self.scene = owner.scene
-        if layer != "selection" and not prefix:
-            # The scene's own settings, once: a second renderer in the same scene (Compare) setting the
-            # up direction again makes every page reset its camera to the initial pose.
-            self.scene.set_up_direction("+z")
-            # Nothing here casts a shadow, but lights that may cast one make the browser clear three
-            # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
-            self.scene.configure_default_lights(enabled=True, cast_shadow=False)
         self._sprite_lights: set[str] = set()
         self._ghost_lights: set[str] = set()
         self._trail_lights: set[str] = set()
@@ -84,8 +73,6 @@ class Canvas:
     def _text_height(self) -> float:
         """A label's height in cells, for laying labels out where each page framed on the run shows them
         apart: boxes apart at the largest size stay apart at every smaller one."""
-        if self.base is not None:  # a page's selection, over the shared run's labels
-            return self.base._text_height()
         if self.text_height is not None:
             return self.text_height
         return text_cells(self.view_cells if self.view_cells is not None else self._visible_height())

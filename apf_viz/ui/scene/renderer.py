@@ -13,7 +13,7 @@ from apf_viz.ui.scene.grid import GridLayer
 from apf_viz.ui.scene.labels import label_box, number_labels, spec_box, spread
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
-from apf_viz.ui.scene.selection import SelectionLayer
+from apf_viz.ui.scene.selection import SelectionRenderer
 from apf_viz.ui.scene.style import DENSE, LAYER, Bounds, xyz
 from apf_viz.workbench.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.workbench.view_model import SessionView
@@ -22,12 +22,35 @@ NEXT_PHASE = {"idle": "look", "looked": "compute", "computed": "move"}  # Manual
 SPREAD_UP_TO = 60  # labels: beyond, each keeps its robot's upper right (see labels.spread)
 
 
-class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing):
+class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, Framing):
     """Draws session views into one scene: the server's (every browser) or one browser's.
 
-    ``layer``: ``run`` draws what every browser shares (robots, rings, targets, the algorithm's marks);
-    ``selection`` what belongs to one browser's selection (its ring, rays, ghosts, Why's regions), in
-    that browser's own scene, placed by the ``base`` renderer's origin; ``all`` both (one browser)."""
+    It draws what every browser shares (robots, rings, targets, the algorithm's marks). With
+    ``selection`` (a scene one browser alone sees: its own run, a test's), its part
+    :attr:`selection` draws the view's selection too (ring, rays, ghosts, Why's regions); the shared
+    run's selection is each browser's own :class:`SelectionRenderer`, in its own scene."""
+
+    def __init__(self, owner, prefix: str = "", root: str = "", selection: bool = True) -> None:
+        super().__init__(owner, prefix, root)
+        if not prefix:
+            # The scene's own settings, once: a second renderer in the same scene (Compare) setting the
+            # up direction again makes every page reset its camera to the initial pose.
+            self.scene.set_up_direction("+z")
+            # Nothing here casts a shadow, but lights that may cast one make the browser clear three
+            # 1024² shadow maps every frame: a tenth of a software-rendered frame (docs/PERFORMANCE.md).
+            self.scene.configure_default_lights(enabled=True, cast_shadow=False)
+        self.selection = SelectionRenderer(owner, self, root, prefix) if selection else None
+
+    def nodes(self) -> dict[str, object]:
+        nodes = super().nodes()
+        if self.selection is not None:
+            nodes.update(self.selection.nodes())
+        return nodes
+
+    def clear(self) -> None:
+        super().clear()
+        if self.selection is not None:
+            self.selection.clear()
 
     # ------------------------------------------------------------------ drawing
     def render(self, view: SessionView, title: str | None = None, beside: Sequence[Bounds] = ()) -> None:
@@ -35,11 +58,6 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         (Compare names each side); ``beside``: the labels another run in the same scene has placed (the
         first of Compare's), which this one's words keep clear of. Its own labels' boxes are kept in
         :attr:`label_boxes`."""
-        if self.layer == "selection":
-            assert self.base is not None
-            self.origin, self.bounds = self.base.origin, self.base.bounds
-            self._selection(view)
-            return
         editing_robots = view.mode == "edit-robots"
         grid_pts = np.array([r.position for r in view.robots], dtype=np.int64).reshape(-1, 2)
         self._place_origin(grid_pts, view)
@@ -75,8 +93,8 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, SelectionLayer, Framing)
         height = self._text_height()
         titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
         self.label_boxes = placed[len(beside) :] + titled
-        if self.layer == "all":
-            self._selection(view)
+        if self.selection is not None:
+            self.selection.render(view)
 
     def _robot_labels(
         self, view: SessionView, pts: np.ndarray, title: str | None, beside: Sequence[Bounds]

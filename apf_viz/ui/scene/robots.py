@@ -45,7 +45,8 @@ class RobotsLayer(Canvas):
     def _rings(self, view: SessionView, pts: np.ndarray) -> None:
         """Rings under the robots, widest at the bottom: will never act (a grey square, a deadlock),
         acted last (brown), and the phase (yellow: looked, orange: computed; none when idle). The
-        selected robot's (black) is its browser's own (:meth:`_selection`)."""
+        selected robot's (black) is its browser's own (a
+        :class:`~apf_viz.ui.scene.selection.SelectionRenderer`)."""
         phases = np.array([r.phase if view.phase_rings else "idle" for r in view.robots])
         for phase in ("looked", "computed"):
             at = pts[phases == phase] if len(phases) else pts[:0]

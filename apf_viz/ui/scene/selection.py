@@ -13,8 +13,22 @@ from apf_viz.workbench.palette import MARK_COLORS, region_color
 from apf_viz.workbench.view_model import SessionView
 
 
-class SelectionLayer(Canvas):
-    """Draws a browser's selection, in that browser's own scene."""
+class SelectionRenderer(Canvas):
+    """Draws a browser's selection, in that browser's own scene, over the run ``base`` draws (its origin,
+    its bounds, its labels kept clear of, its label height): a part of its own, not a mode of the run's
+    renderer."""
+
+    def __init__(self, owner, base: Canvas, root: str = "", prefix: str = "") -> None:
+        super().__init__(owner, prefix, root)
+        self.base = base
+
+    def render(self, view: SessionView) -> None:
+        """Draw the selection of ``view`` (the caller wraps it in the scene's ``atomic()``)."""
+        self.origin, self.bounds = self.base.origin, self.base.bounds
+        self._selection(view)
+
+    def _text_height(self) -> float:
+        return self.base._text_height()  # over the run's labels: laid out at their size
 
     def _selection(self, view: SessionView) -> None:
         """One browser's selection: its ring, rays to what it saw, ghosts, the regions Why tested. Drawn
@@ -81,8 +95,7 @@ class SelectionLayer(Canvas):
 
     def _taken(self) -> list:
         """The labels already on this page's canvas: the run's (robots' numbers, marks)."""
-        shared = self.base if self.base is not None else self
-        return list(shared.label_boxes)
+        return list(self.base.label_boxes)
 
     def _robot_points(self, view: SessionView) -> np.ndarray:
         return self._local([r.position for r in view.robots]).reshape(-1, 2)

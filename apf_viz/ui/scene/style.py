@@ -3,8 +3,6 @@ scene's units."""
 
 from __future__ import annotations
 
-from typing import Literal
-
 import numpy as np
 
 from apf_viz.workbench.view_model import SessionView
@@ -87,4 +85,3 @@ def xyz(points, z: float) -> np.ndarray:
 REORIGIN_DISTANCE = 1 << 20
 
 
-Layer = Literal["all", "run", "selection"]
