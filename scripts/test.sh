@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs everything the tests need (the package and test tools in .venv, Debian's Chromium for the
-# browser tests, pdflatex with TikZ for the figures' test) and runs the whole suite. `.ci/run` calls exactly this. `--quick`: all but the browser
-# tests and the slow ones (a few minutes); other arguments go to pytest.
+# browser tests, pdflatex with TikZ for the figures' test) and runs the whole suite, then the quick suite
+# again on the lowest versions pyproject.toml allows (scripts/test_lowest.sh). `.ci/run` calls exactly
+# this. `--quick`: all but the browser tests and the slow ones, current versions only; other arguments
+# go to pytest (and leave the lowest versions out).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
@@ -23,6 +25,7 @@ fi
 .venv/bin/python -m pip install -q -e '.[test,sweep,fast]'
 .venv/bin/python -m ruff check .
 .venv/bin/python -m mypy  # the package, as configured in pyproject.toml
+whole=$([ "$#" = 0 ] && echo yes || echo no)  # no arguments: the whole suite, then the lowest versions
 if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser's and the slow ones
   shift
   set -- -m "not browser and not slow" "$@"
@@ -30,3 +33,8 @@ fi
 # Four workers on two cores: a browser test mostly waits (on Chromium, on the server's frames), so two
 # more workers fill the waits (docs/PERFORMANCE.md, "The suite"). APF_VIZ_TEST_WORKERS=0: one process.
 .venv/bin/python -m pytest -n "${APF_VIZ_TEST_WORKERS:-4}" --dist load --durations=15 "$@"
+if [ "$whole" = yes ]; then
+  # The lowest version of every direct dependency (scripts/lowest.txt), in a fresh virtual environment:
+  # installed, `apf-viz serve` answering a page, and the quick suite.
+  bash scripts/test_lowest.sh
+fi

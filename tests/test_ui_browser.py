@@ -55,11 +55,19 @@ def app() -> Iterator[App]:
 
 
 def open_page(browser, app: App, viewport: dict | None = None):
+    before = set(app.screens)
     page = browser.new_page(viewport=viewport or VIEWPORT)
     page.set_default_timeout(60_000)  # waits for behaviour; a loaded machine is only slower
     page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
-    time.sleep(1.0)  # the first frames of the scene
+    wait_for(lambda: set(app.screens) - before)
+    # Two frames drawn since it joined (the first may have begun before), then two of the browser's
+    # own: the scene the server sent it is drawn there.
+    for _ in range(2):
+        frames = app.frames
+        app.request_render()
+        wait_for(lambda frames=frames: app.frames > frames)
+    page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
     return page
 
 
@@ -129,7 +137,7 @@ def screen_of(app: App, page, cell: tuple[int, int]) -> tuple[float, float]:
         app.request_render()
         box = presenter.state
         wait_for(lambda: box.camera == "moved" or _inside(app.renderer.bounds, box.framed_bounds))
-        time.sleep(0.5)  # the pose reaches the browser
+        wait_for(lambda: presenter._acknowledged or box.camera == "moved")  # the pose reached the browser
     try:
         camera = presenter.client.camera
         position, look_at, fov = camera.position, camera.look_at, float(camera.fov)
