@@ -5,8 +5,22 @@ import contextlib
 import os
 import signal
 import sys
+from typing import TYPE_CHECKING
 
 __version__ = "0.1.0"
+__all__ = ["Run", "Shown", "Verdict", "__version__", "check", "run", "sweep"]
+
+if TYPE_CHECKING:
+    from apf_viz.api import Run, Shown, Verdict, check, run, sweep
+
+
+def __getattr__(name: str) -> object:
+    """The library (apf_viz.api) is loaded when first asked for: ``apf-viz …`` starts without it."""
+    if name in __all__:
+        import apf_viz.api
+
+        return getattr(apf_viz.api, name)
+    raise AttributeError(f"module 'apf_viz' has no attribute {name!r}")
 
 
 def interrupted_while_starting(signum: int, frame: object) -> None:

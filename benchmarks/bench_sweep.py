@@ -11,7 +11,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from apf_viz.sweep import grid, parse_range, run_cell, run_sweep, usable_cores
+from apf_viz.sweeps import grid, parse_range, run_cell, run_sweep, usable_cores
 
 
 def main() -> None:

@@ -12,7 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from apf_viz.sweep import grid, report_progress, run_sweep, summary
+from apf_viz.sweeps import grid, report_progress, run_sweep, summary
 
 SCHEDULERS = ("async", "stale-first", "ssync", "fsync", "round-robin")
 

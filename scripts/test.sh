@@ -22,7 +22,7 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
   fi
 fi
-.venv/bin/python -m pip install -q -e '.[test,sweep,fast]'
+.venv/bin/python -m pip install -q -e '.[test,notebook,fast]'
 .venv/bin/python -m ruff check .
 .venv/bin/python -m mypy  # the package, as configured in pyproject.toml
 whole=$([ "$#" = 0 ] && echo yes || echo no)  # no arguments: the whole suite, then the lowest versions

@@ -10,7 +10,7 @@ import signal
 import subprocess
 import time
 
-from apf_viz.sweep import Cell, run_cell
+from apf_viz.sweeps import Cell, run_cell
 
 
 def crash_on_k4_seed2(cell: Cell, traces: str | None) -> dict:

@@ -103,7 +103,7 @@ def test_a_results_table_without_outcome_and_a_parquet_of_other_columns_are_one_
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from apf_viz.sweep import COLUMNS
+    from apf_viz.sweeps import COLUMNS
 
     partial = tmp_path / "partial.csv"
     partial.write_text(",".join(c for c in COLUMNS if c != "outcome") + "\n")
@@ -243,7 +243,7 @@ def test_a_command_without_its_extra_says_which_to_install(tmp_path, command, bl
 
 # ------------------------------------------------------------------------- 11. a run past its time
 def test_a_run_past_run_timeout_is_recorded_as_timeout_and_the_sweep_goes_on(tmp_path):
-    from apf_viz.sweep import grid, run_sweep
+    from apf_viz.sweeps import grid, run_sweep
 
     starts = tmp_path / "starts"
     starts.mkdir()
@@ -265,7 +265,7 @@ def test_a_run_past_run_timeout_is_recorded_as_timeout_and_the_sweep_goes_on(tmp
 
 
 def test_the_eta_weighs_runs_by_their_size():
-    from apf_viz.sweep import Cell, cost
+    from apf_viz.sweeps import Cell, cost
 
     small, large = Cell(10, 1, "async", "apf-opaque-grid", "compute"), Cell(100, 1, "async", "x", "compute")
     assert cost(large) > 20 * cost(small)
@@ -435,7 +435,7 @@ def test_a_cluster_address_where_a_peer_accepts_and_never_speaks_is_one_line(mon
     """Before, sweep and lights waited for ever: Dask's own timeout does not cover a silent peer."""
     import socket
 
-    from apf_viz.sweep import driver
+    from apf_viz.sweeps import driver
 
     monkeypatch.setattr(driver, "CONNECT_SECONDS", 2.0)
     with socket.socket() as silent:

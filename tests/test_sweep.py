@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from apf_viz.sweep import COLUMNS, KEY, grid, read_results, run_sweep
+from apf_viz.sweeps import COLUMNS, KEY, grid, read_results, run_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -123,7 +123,7 @@ def test_the_cli_sweep_prints_a_summary_and_plot_writes_the_figures(tmp_path):
 def test_a_generated_row_is_reproduced_by_the_documented_apf_viz_run_recipe(tmp_path):
     import math
 
-    from apf_viz.sweep import Cell, run_cell
+    from apf_viz.sweeps import Cell, run_cell
 
     k, seed = 6, 3
     r = run_cell(Cell(k, seed, "stale-first", "apf-opaque-grid", "compute"))

@@ -61,14 +61,18 @@ def open_page(browser, app: App, viewport: dict | None = None):
     page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
     wait_for(lambda: set(app.screens) - before)
-    # Two frames drawn since it joined (the first may have begun before), then two of the browser's
-    # own: the scene the server sent it is drawn there.
+    drawn_there(app, page)
+    return page
+
+
+def drawn_there(app: App, page) -> None:
+    """Two frames drawn from now (the first may have begun before), then two of the browser's own: what
+    the server sent the page is drawn there (instead of a fixed wait for "the first frames")."""
     for _ in range(2):
         frames = app.frames
         app.request_render()
         wait_for(lambda frames=frames: app.frames > frames)
     page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
-    return page
 
 
 def settled(app: App, screen) -> None:
@@ -435,7 +439,7 @@ def test_why_panel_lists_the_predicates_and_the_canvas_shades_the_regions(browse
         assert sorted(t.split(" · ")[0] for t in tags) == [str(i + 1) for i in range(len(tags))]
     shot(page, "why-panel")
     page.set_viewport_size({"width": 1024, "height": 768})
-    time.sleep(1.0)
+    drawn_there(app, page)
     shot(page, "why-panel-1024")
     page.close()
 
@@ -912,7 +916,7 @@ def test_a_camera_moved_by_hand_is_that_browsers_own_until_frame_run(browser, ap
     wait_for(lambda: screen.state.camera == "moved")
     page.get_by_role("button", name="Frame run").click()
     wait_for(lambda: screen.state.camera == "framed")
-    time.sleep(1.0)  # the browser reports the framed pose back: still framed
+    wait_for(lambda: screen._acknowledged)  # the browser reports the framed pose back: still framed
     assert screen.state.camera == "framed"
 
 
@@ -981,8 +985,7 @@ def test_a_camera_nobody_moved_keeps_the_whole_run_in_view_to_formed(browser, ap
     while app.session.step():
         v = app.session.view()
         if v.event in (60, 300, 540) or app.session.engine.finished:
-            app.request_render()
-            time.sleep(1.5)  # a frame, and the camera sent
+            settled(app, app.screens[cid])  # a frame, and the camera where it was sent
             cells = [r.position for r in app.session.view().robots] + list(app.session.view().targets)
             stops.append((v.event, inside_canvas(app, page, cid, cells)))
     assert app.session.engine.outcome == "formed"
@@ -1000,7 +1003,7 @@ def test_at_1024x768_step_event_last_event_and_why_show_together(browser, app):
     page.set_default_timeout(60_000)
     page.goto(app.addresses[0])  # the presenter address
     page.get_by_label("Event").wait_for()
-    time.sleep(1.5)
+    drawn_there(app, page)
     r = app.session.selected
     for locator in (
         page.get_by_role("button", name="Step"),
@@ -1264,8 +1267,7 @@ def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
     from apf_viz.core.pattern_match import matches_pattern
 
     assert matches_pattern(list(formed), list(drawn))  # every robot on a drawn target (up to placement)
-    app.request_render()
-    time.sleep(1.0)
+    drawn_there(app, page)
     shot(page, "studio-formed")
     page.close()
 

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import os
+import sys
 from collections.abc import Callable, Mapping
-from types import MappingProxyType
+from types import MappingProxyType, ModuleType
 from typing import cast
 
 from apf_viz.algorithms.apf_opaque_grid import ApfOpaqueGrid
@@ -54,6 +56,20 @@ def get_algorithm(name: str, plugins: Mapping[str, Factory] | None = None) -> Al
     )
 
 
+def _import_from_here(module: str) -> ModuleType:
+    """Import ``module`` as ``python -m`` would: the current folder first (the ``apf-viz`` script's
+    own folder is what Python puts first, not the user's), then the usual places."""
+    here = os.getcwd()
+    added = here not in sys.path
+    if added:
+        sys.path.insert(0, here)
+    try:
+        return importlib.import_module(module)
+    finally:
+        if added:
+            sys.path.remove(here)
+
+
 def load_plugin(spec: str) -> dict[str, Factory]:
     """Import ``package.module:Name`` (a class or factory taking no arguments) for the command line.
 
@@ -63,7 +79,13 @@ def load_plugin(spec: str) -> dict[str, Factory]:
     if not sep or not module or not attr:
         raise ValueError(f"cannot load algorithm {spec!r}: a plug-in is named package.module:Name")
     try:
-        factory = getattr(importlib.import_module(module), attr)
+        factory = getattr(_import_from_here(module), attr)
+    except ModuleNotFoundError as e:
+        raise ValueError(
+            f"cannot load algorithm {spec!r}: {e} (a plug-in's module is found in the current folder, "
+            f"as {module.split('.')[0]}.py or a package of that name, or wherever Python finds installed "
+            "modules)"
+        ) from None
     except (ImportError, AttributeError) as e:
         raise ValueError(f"cannot load algorithm {spec!r}: {e}") from None
     if not (inspect.isclass(factory) or inspect.isfunction(factory)):  # not os:abort, not a builtin

@@ -68,7 +68,7 @@ CLUSTER = re.compile(r"((tcp|tls|ws|wss|ucx)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9.
 
 def workers(text: str) -> int:
     """An argparse type: local worker processes, at most ``WORKERS_PER_CORE`` per core of this machine."""
-    from apf_viz.sweep import usable_cores
+    from apf_viz.sweeps import usable_cores
 
     n = positive(text)
     most = WORKERS_PER_CORE * usable_cores()

@@ -22,7 +22,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     need_extra("plot", ["matplotlib", "pyarrow"])
-    from apf_viz import lights, plot, sweep
+    from apf_viz import lights, plot
+    from apf_viz import sweeps as sweep
 
     check_readable(args.results)  # missing, a folder or a FIFO: one line
     if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):

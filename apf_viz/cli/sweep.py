@@ -43,7 +43,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     need_extra("sweep", ["dask", "distributed", "pyarrow"])
-    from apf_viz import sweep
+    from apf_viz import sweeps as sweep
 
     if args.out.suffix not in (".parquet", ".csv"):
         fail(f"--out {args.out}: write .parquet or .csv")

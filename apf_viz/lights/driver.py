@@ -52,7 +52,7 @@ def _run_stages(
     cluster: str | None,
     progress: Callable[[str], None] | None,
 ) -> list[dict]:
-    from apf_viz import sweep
+    from apf_viz import sweeps as sweep
 
     ks_text = ks_label(ks)
     done = {tuple(r[c] for c in KEY) for r in rows}
@@ -101,7 +101,7 @@ def base_verified_starts(
 ) -> list[tuple[str, list]]:
     """Stage 0: the base algorithm explored on every start of :func:`starts_for` (kept in ``path`` and
     reused when it covers them); the starts it verifies on, in order."""
-    from apf_viz.sweep import by_the_second, dask_client, shut_down
+    from apf_viz.sweeps import by_the_second, dask_client, shut_down
 
     starts = starts_for(ks)
     known: dict[str, dict] = {}
@@ -137,7 +137,7 @@ def _base_json(algorithm: str, known: dict[str, dict]) -> str:
 
 
 def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress) -> list[dict]:
-    from apf_viz.sweep import by_the_second, dask_client, shut_down
+    from apf_viz.sweeps import by_the_second, dask_client, shut_down
 
     client, local = dask_client(cluster, workers)
     shared = client.scatter(list(starts), broadcast=True)
@@ -171,7 +171,7 @@ def _result(fut, merge: Merge, ks) -> dict:
 
 
 def _progress_line(new: list[dict], total: int, seconds: float) -> str:
-    from apf_viz.sweep import duration
+    from apf_viz.sweeps import duration
 
     broken = sum(r["verdict"] == "breaks" for r in new)
     left = total - len(new)

@@ -82,7 +82,7 @@ def merges(algorithm: str, only: str | None = None) -> list[Merge]:
 
 def parse_ks(text: str) -> tuple[int, ...]:
     """The robot counts the explorer covers: 1–3 (every start of the box) and 4–5 (the stated starts)."""
-    from apf_viz.sweep import parse_range
+    from apf_viz.sweeps import parse_range
 
     ks = tuple(sorted(set(parse_range(text, "--ks"))))
     if not ks or ks[0] < 1 or ks[-1] > 5:

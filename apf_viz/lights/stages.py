@@ -143,7 +143,7 @@ def random_cells(variants: Sequence[str], runs: int) -> list:
     number; it draws the flips where the start gives none."""
     from apf_viz.core.adversarial_starts import symmetric_start
     from apf_viz.core.frames import random_y_up
-    from apf_viz.sweep import Cell
+    from apf_viz.sweeps import Cell
 
     demos = demo_starts()
     cells = []

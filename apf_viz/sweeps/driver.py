@@ -13,8 +13,8 @@ from pathlib import Path
 from apf_viz.core.files import check_writable, make_folder, remove_if_empty
 from apf_viz.core.formats import InputError
 from apf_viz.progress import show_progress
-from apf_viz.sweep.cells import KEY, Cell, row, run_cell
-from apf_viz.sweep.results import read_results, write_results
+from apf_viz.sweeps.cells import KEY, Cell, row, run_cell
+from apf_viz.sweeps.results import read_results, write_results
 
 
 @dataclass(frozen=True)

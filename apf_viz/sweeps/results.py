@@ -8,7 +8,7 @@ from pathlib import Path
 
 from apf_viz.core.files import check_readable, replace_atomically, write_atomic
 from apf_viz.core.formats import InputError
-from apf_viz.sweep.cells import _LATER_COLUMNS, COLUMNS, KEY
+from apf_viz.sweeps.cells import _LATER_COLUMNS, COLUMNS, KEY
 
 
 def read_results(path: Path) -> list[dict]:
