@@ -80,7 +80,7 @@ __all__ = [
 ]
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser() -> Parser:
     parser = Parser(
         prog="apf-viz",
         formatter_class=HelpFormatter,
@@ -100,6 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
             command.NAME, help=command.HELP, description=command.HELP, formatter_class=HelpFormatter
         )
         command.add_arguments(p)
+        parser.commands[command.NAME] = p
         p.set_defaults(func=command.run, _outputs=getattr(command, "OUTPUTS", ()))
     return parser
 
@@ -129,7 +130,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help")):
         argv = ["serve", *argv]  # the visualiser is the default command
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args, unknown = parser.parse_known_args(argv)
+    if unknown:  # said by the command's own parser: "apf-viz run: error: …", and its --help
+        parser.commands[args.command].error(f"unrecognized arguments: {' '.join(unknown)}")
     try:
         if args.command == "serve":  # the visualiser's saves are the user's own choice of file
             return args.func(args)

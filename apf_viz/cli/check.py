@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem
+from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem, seed
 
 NAME = "check"
 HELP = "explore every schedule of a small start (model checking)"
@@ -28,7 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="every assignment of y-axis flips, or the file's (a file without y_up: random from --seed)",
     )
     p.add_argument(
-        "--seed", type=int, default=1, help="seed of the y-axis flips when the robots file gives none"
+        "--seed", type=seed, default=1, help="seed of the y-axis flips when the robots file gives none"
     )
     p.add_argument(
         "--max-states", type=positive, default=1_000_000, help="stop with verdict 'budget' beyond this"

@@ -32,9 +32,10 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs) -> None:
         kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
+        self.commands: dict[str, Parser] = {}  # the top-level parser's: each command's own parser
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see --help)\n")
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def fail(message: str, code: int = EXIT_BAD_INPUT) -> NoReturn:
@@ -58,6 +59,8 @@ def int_within(low: int, high: float, what: str):
 
 
 positive = int_within(1, float("inf"), "a positive integer")
+# Seeds are 0 or more everywhere: --seed, sweep's --seeds, and apf_viz.run / check / sweep.
+seed = int_within(0, float("inf"), "a seed (an integer, 0 or more)")
 
 
 # A local worker is a process of its own (about 100 MB with its imports): more than this per core only
@@ -221,7 +224,7 @@ def add_run_options(p: argparse.ArgumentParser, schedulers: Sequence[str], defau
     )
     p.add_argument(
         "--seed",
-        type=int,
+        type=seed,
         default=1,
         help="seed of the scheduler, and of the y-axis flips when the robots file gives none",
     )
@@ -238,5 +241,5 @@ def add_box_options(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument("--count", type=int, required=True, help=f"number of {what}")
     p.add_argument("--width", type=int, required=True, help="the box is x = 0 .. width-1")
     p.add_argument("--height", type=int, required=True, help="the box is y = 0 .. height-1")
-    p.add_argument("--seed", type=int, default=1, help="the same seed draws the same points")
+    p.add_argument("--seed", type=seed, default=1, help="the same seed draws the same points")
     p.add_argument("--out", type=Path, help="write to this file (atomically) instead of standard output")

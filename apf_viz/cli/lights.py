@@ -55,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
         fail(f"--random {args.random:,}: a number of runs per merge, from 0 to {lights.MAX_RANDOM_RUNS:,}")
     chosen = lights.merges(args.algorithm, args.merges)
     ks = lights.parse_ks(args.ks)
+    print(_plan(args, len(chosen), ks), file=sys.stderr, flush=True)
     t0 = time.perf_counter()
     rows = lights.run_lab(  # Ctrl+C keeps what finished (cli/__init__.py's main: exit 130)
         chosen,
@@ -77,3 +78,32 @@ def run(args: argparse.Namespace) -> int:
     seconds = time.perf_counter() - t0
     print(f"apf-viz lights: {args.out}, and beside it {written}; {seconds:.0f} s", file=sys.stderr)
     return 0
+
+
+def _plan(args: argparse.Namespace, merges: int, ks) -> str:
+    """The first line, before any work: what the lab does, every file it writes, and how long stage 0
+    will take when an earlier run kept it (else it is timed, and the merges' bound said after it)."""
+    import json
+
+    from apf_viz import lights
+
+    base = lights.base_path(args.out)
+    traces = args.traces or args.out.with_name(args.out.stem + "-traces")
+    files = [f"{base} (stage 0)", f"{traces}/ (counterexamples)"]
+    if args.random:
+        files.append(f"{lights.random_path(args.out)} (the random runs)")
+    starts = lights.starts_for(ks)
+    kept = set()
+    if base.is_file():
+        data = json.loads(base.read_text(encoding="utf-8"))
+        if data.get("algorithm") == args.algorithm:
+            kept = {r["start"] for r in data["starts"]}
+    stage0 = (
+        "stage 0 kept from an earlier run"
+        if all(name in kept for name, _ in starts)
+        else f"stage 0 first: the base algorithm on {len(starts)} starts, timed, then the merges' bound said"
+    )
+    return (
+        f"apf-viz lights: {merges} merges of {args.algorithm}'s lights, k {lights.ks_label(ks)}; writes "
+        f"{args.out} and beside it {', '.join(files)}; {stage0}"
+    )

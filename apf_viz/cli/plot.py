@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from apf_viz.cli.common import need_extra
@@ -17,7 +18,9 @@ HELP = (
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("results", type=Path, help="the results file of apf-viz sweep or apf-viz lights")
-    p.add_argument("--out", type=Path, default=Path("plots"), help="folder for the PNGs")
+    p.add_argument(
+        "--out", type=Path, default=Path("plots"), help="folder for the PNGs (default: ./plots, said first)"
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -26,6 +29,7 @@ def run(args: argparse.Namespace) -> int:
     from apf_viz import sweeps as sweep
 
     check_readable(args.results)  # missing, a folder or a FIFO: one line
+    print(f"apf-viz plot: writing PNGs into {args.out}/", file=sys.stderr, flush=True)
     if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):
         written = [plot.plot_lights(lights.read_lights(args.results), args.out)]
     else:

@@ -59,7 +59,16 @@ def _run_stages(
     todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]
     if todo:
         starts = base_verified_starts(todo[0].algorithm, ks, base_path(out), workers, cluster, progress)
-        rows += _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress)
+        bound = merges_bound(base_path(out), starts, len(todo), workers)
+        if progress:
+            print(
+                f"apf-viz lights: {len(todo)} merges to explore on the {len(starts)} starts the base "
+                f"algorithm verifies; at most about {sweep.duration(bound)} (stage 0's time on those "
+                "starts for each merge, shared by the workers; a merge stops at its first failure)",
+                file=sys.stderr,
+                flush=True,
+            )
+        rows += _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress, bound)
     if random_runs:
         mine = {(m.algorithm, m.name) for m in chosen}
         survivors = [
@@ -131,12 +140,25 @@ def base_verified_starts(
     return [(name, start) for name, start in starts if known[name]["verdict"] == "verified"]
 
 
+def merges_bound(path: Path, starts: Sequence[tuple[str, list]], merges: int, workers: int | None) -> float:
+    """About how long the merges can take at most, in seconds: each explores at most the starts the base
+    algorithm verifies on, which stage 0 timed (kept in ``path``); the workers share them."""
+    from apf_viz.sweeps import usable_cores
+
+    rows = json.loads(path.read_text(encoding="utf-8"))["starts"]
+    timed = {r["start"]: r.get("seconds", 0.0) for r in rows}
+    per_merge = sum(timed.get(name, 0.0) for name, _ in starts)
+    return merges * per_merge / (workers or usable_cores())
+
+
 def _base_json(algorithm: str, known: dict[str, dict]) -> str:
     rows = sorted(known.values(), key=lambda r: r["start"])
     return json.dumps({"algorithm": algorithm, "starts": rows}, indent=1) + "\n"
 
 
-def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress) -> list[dict]:
+def _explore_all(
+    todo, ks, starts, traces, out, rows, workers, cluster, progress, bound: float
+) -> list[dict]:
     from apf_viz.sweeps import by_the_second, dask_client, shut_down
 
     client, local = dask_client(cluster, workers)
@@ -151,7 +173,7 @@ def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress
             if finished:
                 write_lights(out, rows + new)
             if progress:
-                progress(_progress_line(new, len(todo), time.monotonic() - t0))
+                progress(_progress_line(new, len(todo), time.monotonic() - t0, bound))
     except KeyboardInterrupt:
         write_lights(out, rows + new)
         print("\napf-viz lights: interrupted; keeping the merges that finished", file=sys.stderr)
@@ -170,13 +192,20 @@ def _result(fut, merge: Merge, ks) -> dict:
         )
 
 
-def _progress_line(new: list[dict], total: int, seconds: float) -> str:
+def _progress_line(new: list[dict], total: int, seconds: float, bound: float) -> str:
+    """Where the merges stand. The ETA counts down every second from the bound (stage 0's time per
+    merge): merges that break stop early, so an average over the finished ones would promise too little
+    and then stand still while the surviving ones run; past the bound it says by how much."""
     from apf_viz.sweeps import duration
 
     broken = sum(r["verdict"] == "breaks" for r in new)
     left = total - len(new)
-    # Merges that break stop early and the rest run to the end: the average so far is a rough guide.
-    eta = "done" if not left else duration(seconds / len(new) * left) if new else "…"
+    if not left:
+        eta = "done"
+    elif seconds <= bound:
+        eta = f"at most about {duration(bound - seconds)}"
+    else:
+        eta = f"any moment (over the estimate by {duration(seconds - bound)})"
     done = f"{len(new)}/{total} merges explored, {broken} broken"
     return f"apf-viz lights: {done}, {duration(seconds)}, ETA {eta}"
 
