@@ -233,3 +233,15 @@ def test_the_notebook_runs_top_to_bottom(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     assert "collision after" in done.stdout
     assert (tmp_path / "moves-against-kD.png").stat().st_size > 5_000
+
+
+def test_the_docstrings_examples_hold():
+    import doctest
+
+    import apf_viz.api.checks
+    import apf_viz.api.runs
+    import apf_viz.api.sweeps
+
+    for module in (apf_viz.api.runs, apf_viz.api.checks, apf_viz.api.sweeps):
+        failed, tried = doctest.testmod(module, raise_on_error=False, verbose=False)
+        assert tried and not failed, module.__name__

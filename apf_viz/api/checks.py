@@ -113,9 +113,10 @@ def check(
     every assignment of the robots' y-axes, ``"file"`` the robots' own (or the random ones ``seed``
     draws). Stops at the first failure; the verdict, states and schedule are the command's.
 
-    >>> v = check("literal-collision-4", "literal-collision-4", algorithm="apf-opaque-grid-literal")
-    >>> v.verdict, v.replay().outcome
-    ('collision', 'collision')
+    >>> v = check([(0, 0), (0, 1), (0, 2), (0, 4)], [(0, 1), (1, 1), (2, 1), (1, 0)],
+    ...           algorithm="apf-opaque-grid-literal", flips="all")
+    >>> v.verdict, len(v.schedule), v.replay().outcome
+    ('collision', 41, 'collision')
     """
     from apf_viz.explore.check import all_flips
     from apf_viz.explore.check import check as explore
