@@ -102,6 +102,9 @@ def test_serve_says_in_one_line_what_it_cannot_use_and_prints_the_presenter_code
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # A background job of a non-interactive shell ignores SIGINT, and a Python started so keeps it
+        # ignored: the Ctrl+C below must reach it however the suite was started (tests/sweep_helpers.py).
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         lines = []

@@ -53,15 +53,7 @@ class Verdict:
         from apf_viz.core.run import RunSummary
         from apf_viz.explore.check import counterexample_engine
 
-        engine = counterexample_engine(
-            self._algorithm,
-            list(self._robots),
-            list(self._pattern),
-            self.y_up,
-            self._scheduler,
-            self._result(),
-            self._light_semantics,
-        )
+        engine = counterexample_engine(*self._counterexample())
         start = Start(list(self._robots), list(self.y_up), list(self._pattern), "the start", "the pattern")
         replayed = Run(engine, self._scheduler, 0, start, {})
         replayed.summary = RunSummary.of(engine)
@@ -73,16 +65,20 @@ class Verdict:
             raise InputError(f"verdict {self.verdict}: no counterexample to write")
         from apf_viz.explore.check import counterexample_text
 
-        text = counterexample_text(
+        write_atomic(os.fspath(path), counterexample_text(*self._counterexample()))
+
+    def _counterexample(self) -> tuple:
+        """What the explorer's counterexample is replayed from (explore/check.py's arguments)."""
+        robots, pattern = list(self._robots), list(self._pattern)
+        return (
             self._algorithm,
-            list(self._robots),
-            list(self._pattern),
+            robots,
+            pattern,
             self.y_up,
             self._scheduler,
             self._result(),
             self._light_semantics,
         )
-        write_atomic(os.fspath(path), text)
 
     def _result(self) -> Result:
         return Result(

@@ -55,7 +55,6 @@ def run(args: argparse.Namespace) -> int:
         fail(f"--random {args.random:,}: a number of runs per merge, from 0 to {lights.MAX_RANDOM_RUNS:,}")
     chosen = lights.merges(args.algorithm, args.merges)
     ks = lights.parse_ks(args.ks)
-    print(_plan(args, len(chosen), ks), file=sys.stderr, flush=True)
     t0 = time.perf_counter()
     rows = lights.run_lab(  # Ctrl+C keeps what finished (cli/__init__.py's main: exit 130)
         chosen,
@@ -66,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
         workers=args.workers,
         cluster=args.cluster,
         progress=lights.report_progress,
+        plan=_plan(args, len(chosen), ks),
     )
     names = {m.name for m in chosen}
     print(lights.summary([r for r in rows if r["merge"] in names and r["ks"] == lights.ks_label(ks)]))

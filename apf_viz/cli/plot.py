@@ -29,11 +29,18 @@ def run(args: argparse.Namespace) -> int:
     from apf_viz import sweeps as sweep
 
     check_readable(args.results)  # missing, a folder or a FIFO: one line
-    print(f"apf-viz plot: writing PNGs into {args.out}/", file=sys.stderr, flush=True)
     if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):
-        written = [plot.plot_lights(lights.read_lights(args.results), args.out)]
+        table = lights.read_lights(args.results)
+        _say_where(args.out)  # once the table is read: a bad one is refused in its one line
+        written = [plot.plot_lights(table, args.out)]
     else:
-        written = plot.plot(sweep.read_results(args.results), args.out)
+        rows = sweep.read_results(args.results)
+        _say_where(args.out)
+        written = plot.plot(rows, args.out)
     for path in written:
         print(path)
     return 0
+
+
+def _say_where(out: Path) -> None:
+    print(f"apf-viz plot: writing PNGs into {out}/", file=sys.stderr, flush=True)

@@ -26,13 +26,23 @@ def run_lab(
     workers: int | None = None,
     cluster: str | None = None,
     progress: Callable[[str], None] | None = None,
+    plan: str | None = None,
 ) -> list[dict]:
-    """Every stage for every merge not already in ``out``; returns every row of the file."""
+    """Every stage for every merge not already in ``out``; returns every row of the file. ``plan``: a
+    line said once the inputs are checked and the cluster is reached, before any work (what the lab
+    does and every file it writes)."""
     check_writable(out)
     for beside in (base_path(out), random_path(out)):  # files it names itself: checked before any work
         check_writable(beside, through_links=False)
     rows = read_lights(out)
     traces = traces or out.with_name(out.stem + "-traces")
+    if plan is not None and cluster is not None:
+        from apf_viz.sweeps import dask_client, shut_down
+
+        client, local = dask_client(cluster, workers)  # an unreachable cluster: its one line, first
+        shut_down({}, client, local)
+    if plan is not None:
+        print(plan, file=sys.stderr, flush=True)
     made = make_folder(traces)
     try:
         return _run_stages(chosen, ks, out, rows, traces, random_runs, workers, cluster, progress)
