@@ -9,6 +9,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -245,3 +246,45 @@ def test_the_docstrings_examples_hold():
     for module in (apf_viz.api.runs, apf_viz.api.checks, apf_viz.api.sweeps):
         failed, tried = doctest.testmod(module, raise_on_error=False, verbose=False)
         assert tried and not failed, module.__name__
+
+
+@pytest.mark.browser
+def test_a_run_shown_in_a_notebook_cell_plays_in_a_browser_from_disk(browser, tmp_path):
+    """``Run.show()``'s cell output, as a notebook puts it in its page: viser's player in the frame draws
+    the run and plays it, with every request off the disk refused (nothing fetched)."""
+    import numpy as np
+    from PIL import Image
+
+    r = apf_viz.run("sym-call-7", "cup-7", seed=3)
+    page_file = tmp_path / "notebook.html"
+    page_file.write_text(f"<!doctype html><html><body><h1>Out[1]:</h1>{r.show()._repr_html_()}</body></html>")
+    context = browser.new_context(viewport={"width": 1024, "height": 768})
+    refused: list[str] = []
+
+    def route(request_route):
+        if request_route.request.url.startswith(("file:", "about:", "data:", "blob:")):
+            request_route.continue_()
+        else:
+            refused.append(request_route.request.url)
+            request_route.abort()
+
+    context.route("**/*", route)
+    page = context.new_page()
+    try:
+        page.goto(page_file.as_uri())
+        cell = page.frame_locator("iframe")
+        cell.locator("canvas").first.wait_for(timeout=60_000)
+        field = cell.locator("input.mantine-NumberInput-input").first
+        field.wait_for(timeout=60_000)
+        start = float(field.input_value())
+        deadline = time.time() + 30
+        while float(field.input_value()) <= start and time.time() < deadline:
+            time.sleep(0.2)
+        assert float(field.input_value()) > start  # it plays
+        from io import BytesIO
+
+        shot = np.asarray(Image.open(BytesIO(cell.locator("canvas").first.screenshot())).convert("RGB"))
+        assert shot.std() > 5  # it draws
+        assert refused == []
+    finally:
+        context.close()
