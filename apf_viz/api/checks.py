@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
-from apf_viz.api.inputs import Points, start_of
+from apf_viz.api.inputs import Points, Start, start_of
 from apf_viz.api.runs import Run, _seed, refuse_unsolvable
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.files import write_atomic
@@ -40,6 +40,27 @@ class Verdict:
     _scheduler: str
     _light_semantics: str
 
+    @classmethod
+    def of(
+        cls, result: Result, y_up, start: Start, algorithm: Algorithm, scheduler: str, light_semantics: str
+    ) -> Verdict:
+        """The explorer's result on ``start`` under the flips ``y_up``."""
+        return cls(
+            result.verdict,
+            result.states,
+            result.transitions,
+            result.seconds,
+            result.detail,
+            tuple(y_up),
+            tuple(tuple(s) for s in result.schedule),
+            result.loop_start,
+            tuple(start.robots),
+            tuple(start.pattern),
+            algorithm,
+            scheduler,
+            light_semantics,
+        )
+
     @property
     def failed(self) -> bool:
         return self.verdict not in ("verified", "budget")
@@ -49,7 +70,6 @@ class Verdict:
         whose :attr:`Run.outcome` is the failure (a ValueError when there is no counterexample)."""
         if not self.failed:
             raise InputError(f"verdict {self.verdict}: no counterexample to replay")
-        from apf_viz.api.inputs import Start
         from apf_viz.core.run import RunSummary
         from apf_viz.explore.check import counterexample_engine
 
@@ -138,18 +158,4 @@ def check(
         light_semantics=light_semantics,
         reduction=reduction,
     )
-    return Verdict(
-        result.verdict,
-        result.states,
-        result.transitions,
-        result.seconds,
-        result.detail,
-        tuple(y_up),
-        tuple(tuple(s) for s in result.schedule),
-        result.loop_start,
-        tuple(start.robots),
-        tuple(start.pattern),
-        chosen,
-        scheduler,
-        light_semantics,
-    )
+    return Verdict.of(result, y_up, start, chosen, scheduler, light_semantics)
