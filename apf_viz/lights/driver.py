@@ -166,9 +166,7 @@ def _base_json(algorithm: str, known: dict[str, dict]) -> str:
     return json.dumps({"algorithm": algorithm, "starts": rows}, indent=1) + "\n"
 
 
-def _explore_all(
-    todo, ks, starts, traces, out, rows, workers, cluster, progress, bound: float
-) -> list[dict]:
+def _explore_all(todo, ks, starts, traces, out, rows, workers, cluster, progress, bound: float) -> list[dict]:
     from apf_viz.sweeps import by_the_second, dask_client, shut_down
 
     client, local = dask_client(cluster, workers)

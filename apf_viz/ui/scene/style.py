@@ -83,5 +83,3 @@ def xyz(points, z: float) -> np.ndarray:
 # The browser draws in float32, exact for integers only below 2^24 and smooth only well below: the scene is
 # drawn relative to an integer origin near the run, moved when the run is farther than this from it.
 REORIGIN_DISTANCE = 1 << 20
-
-
