@@ -190,6 +190,28 @@ def test_the_library_saves_by_name_lists_and_loads_never_a_path(tmp_path):
     assert not list(tmp_path.glob("lib/*.tmp"))  # written atomically, nothing left over
 
 
+def test_save_takes_the_pattern_the_page_shows_in_edit_robots_mode_too(tmp_path):
+    """Drawn in Edit pattern, then Edit robots (which shows and counts the drawn targets): Save saves
+    the drawing, not the run's pattern."""
+    from apf_viz.workbench.library import PatternLibrary
+
+    s = session()
+    s.use_library(PatternLibrary(tmp_path / "lib"))
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    s.draw_box((0, 0), (2, 2), erase=False)
+    drawn = sorted(s.editor.pattern)
+    assert len(drawn) == 9 and drawn != sorted(s.config.pattern)
+    s.set_mode("edit-robots")
+    assert "saved 9 cells" in s.save_pattern("drawn")
+    s.clear_pattern()
+    s.load_saved_pattern("drawn")
+    xs = [x for x, _ in drawn]
+    assert sorted((x - min(xs), y) for x, y in drawn) == sorted(
+        (x - min(p[0] for p in s.editor.pattern), y) for x, y in s.editor.pattern
+    )
+
+
 def test_the_move_all_buttons_translate_the_draft_by_one_cell():
     s = session()
     before = list(s.editor.pattern)

@@ -100,9 +100,10 @@ class EditCommands(SessionCore):
 
     @shared_only
     def save_pattern(self, name: str) -> str:
-        """The pattern being drawn (in Run: the run's) saved under ``name`` in the library."""
+        """The pattern the page shows saved under ``name`` in the library: the one being drawn in either
+        Edit mode (the robots' mode shows and counts it too), the run's in Run."""
         with self.lock:
-            cells = self.editor.pattern if self.mode == "edit-pattern" else list(self.config.pattern)
+            cells = self.editor.pattern if self.mode != "run" else list(self.config.pattern)
             path = self.library.save(name, cells)
             self.saved = self.library.names()
             return f"saved {len(cells)} cells as {name.strip()!r} ({path})"
