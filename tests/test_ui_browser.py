@@ -108,7 +108,7 @@ def event_value(page) -> int:
     return int(page.get_by_label("Event").input_value())
 
 
-def wait_for(predicate, timeout: float = 30.0) -> None:
+def wait_for(predicate, timeout: float = 60.0) -> None:
     """Wait for behaviour, however loaded the machine (a timeout is a deadlock guard, not a speed test)."""
     end = time.time() + timeout
     while time.time() < end:
@@ -141,7 +141,7 @@ def screen_of(app: App, page, cell: tuple[int, int]) -> tuple[float, float]:
         app.request_render()
         box = presenter.state
         wait_for(lambda: box.camera == "moved" or _inside(app.renderer.bounds, box.framed_bounds))
-        wait_for(lambda: presenter._acknowledged or box.camera == "moved")  # the pose reached the browser
+        time.sleep(0.5)  # the pose reaches the browser (it may report none: a pose it already has)
     try:
         camera = presenter.client.camera
         position, look_at, fov = camera.position, camera.look_at, float(camera.fov)
