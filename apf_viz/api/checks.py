@@ -70,14 +70,11 @@ class Verdict:
         whose :attr:`Run.outcome` is the failure (a ValueError when there is no counterexample)."""
         if not self.failed:
             raise InputError(f"verdict {self.verdict}: no counterexample to replay")
-        from apf_viz.core.run import RunSummary
         from apf_viz.explore.check import counterexample_engine
 
         engine = counterexample_engine(*self._counterexample())
         start = Start(list(self._robots), list(self.y_up), list(self._pattern), "the start", "the pattern")
-        replayed = Run(engine, self._scheduler, 0, start, {})
-        replayed.summary = RunSummary.of(engine)
-        return replayed
+        return Run(engine, self._scheduler, 0, start, {})
 
     def save_counterexample(self, path: str | os.PathLike[str]) -> None:
         """Write the counterexample as a trace file, as ``apf-viz check --counterexample`` does."""

@@ -16,10 +16,9 @@ from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.files import write_atomic
 from apf_viz.core.formats import InputError, trace_text
 from apf_viz.core.grid import Point
-from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary, advance, trace_header
 from apf_viz.core.schedulers import AUTOMATIC, DEFAULT_SCHEDULER, make_scheduler
-from apf_viz.core.symmetry import describe_axis, unsolvable_axis
+from apf_viz.core.symmetry import unsolvable_start
 
 if TYPE_CHECKING:
     import pandas
@@ -90,12 +89,9 @@ def _seed(seed: int) -> int:
 def refuse_unsolvable(start: Start) -> None:
     """Theorem 1: a start mirror-symmetric about a robot-free horizontal line forms no pattern (unless
     it is the pattern already)."""
-    axis = unsolvable_axis(start.robots)
-    if axis is not None and not matches_pattern(start.robots, start.pattern):
-        raise InputError(
-            f"{start.robots_name}: unsolvable start: mirror-symmetric about {describe_axis(axis)}, a "
-            "horizontal line through no robot (Theorem 1); force=True runs it anyway"
-        )
+    refused = unsolvable_start(start.robots, start.pattern)
+    if refused is not None:
+        raise InputError(f"{start.robots_name}: {refused[1]}; force=True runs it anyway")
 
 
 class Run:

@@ -16,10 +16,9 @@ from apf_viz.algorithms import ALGORITHMS, DEFAULT_ALGORITHM, algorithm_from_com
 from apf_viz.core.files import check_writable, write_atomic
 from apf_viz.core.formats import check_sizes, load_pattern, load_robots
 from apf_viz.core.grid import as_point
-from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.run import RunSummary
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER, REGISTRY
-from apf_viz.core.symmetry import describe_axis, unsolvable_axis
+from apf_viz.core.symmetry import unsolvable_start
 from apf_viz.demos import shipped_file
 
 EXIT_FORMED, EXIT_NOT_FORMED, EXIT_BAD_INPUT, EXIT_UNSOLVABLE = 0, 1, 2, 3
@@ -121,13 +120,11 @@ def shipped(path: Path | None, kind: str, option: str) -> Path | None:
 def refuse_unsolvable(robots_path: Path, points: list, targets: list, as_json: bool) -> None:
     """Theorem 1: a start mirror-symmetric about a robot-free horizontal line cannot form any pattern
     (unless it already is the pattern). Exit 3, naming the axis."""
-    axis = unsolvable_axis(points)
-    if axis is None or matches_pattern(points, targets):
+    refused = unsolvable_start(points, targets)
+    if refused is None:
         return
-    message = (
-        f"{robots_path}: unsolvable start: mirror-symmetric about {describe_axis(axis)}, a horizontal "
-        "line through no robot (Theorem 1); --force runs it anyway"
-    )
+    axis, why = refused
+    message = f"{robots_path}: {why}; --force runs it anyway"
     if as_json:
         print(json.dumps({"outcome": "unsolvable", "axis": float(axis), "message": message}))
     fail(message, EXIT_UNSOLVABLE)

@@ -83,8 +83,6 @@ def run(args: argparse.Namespace) -> int:
 def _plan(args: argparse.Namespace, merges: int, ks) -> str:
     """The first line, before any work: what the lab does, every file it writes, and how long stage 0
     will take when an earlier run kept it (else it is timed, and the merges' bound said after it)."""
-    import json
-
     from apf_viz import lights
 
     base = lights.base_path(args.out)
@@ -93,11 +91,7 @@ def _plan(args: argparse.Namespace, merges: int, ks) -> str:
     if args.random:
         files.append(f"{lights.random_path(args.out)} (the random runs)")
     starts = lights.starts_for(ks)
-    kept = set()
-    if base.is_file():
-        data = json.loads(base.read_text(encoding="utf-8"))
-        if data.get("algorithm") == args.algorithm:
-            kept = {r["start"] for r in data["starts"]}
+    kept = lights.kept_base(base, args.algorithm)
     stage0 = (
         "stage 0 kept from an earlier run"
         if all(name in kept for name, _ in starts)

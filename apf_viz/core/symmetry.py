@@ -7,7 +7,7 @@ symmetric about at most one horizontal line: y = (y_min + y_max) / 2.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from fractions import Fraction
 
 from apf_viz.core.grid import Point
@@ -33,3 +33,18 @@ def describe_axis(c: Fraction) -> str:
         return f"y = {c.numerator}"
     whole, _ = divmod(abs(c.numerator), 2)
     return f"y = {'-' if c < 0 else ''}{whole}.5"
+
+
+def unsolvable_start(robots: Sequence[Point], pattern: Sequence[Point]) -> tuple[Fraction, str] | None:
+    """Theorem 1 refuses this start: its axis, and why in words (the command line and the library each
+    add how to run it anyway). None when it is solvable, or already the pattern."""
+    from apf_viz.core.pattern_match import matches_pattern
+
+    axis = unsolvable_axis(robots)
+    if axis is None or matches_pattern(robots, pattern):
+        return None
+    why = (
+        f"unsolvable start: mirror-symmetric about {describe_axis(axis)}, a horizontal line through no "
+        "robot (Theorem 1)"
+    )
+    return axis, why

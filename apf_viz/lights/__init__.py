@@ -29,6 +29,7 @@ the merges already in the file; Ctrl+C keeps what finished.
 
 from apf_viz.lights.driver import base_path as base_path
 from apf_viz.lights.driver import base_verified_starts as base_verified_starts
+from apf_viz.lights.driver import kept_base as kept_base
 from apf_viz.lights.driver import random_path as random_path
 from apf_viz.lights.driver import report_progress as report_progress
 from apf_viz.lights.driver import run_lab as run_lab

@@ -69,7 +69,7 @@ def _run_stages(
     todo = [m for m in chosen if (m.algorithm, m.name, ks_text) not in done]
     if todo:
         starts = base_verified_starts(todo[0].algorithm, ks, base_path(out), workers, cluster, progress)
-        bound = merges_bound(base_path(out), starts, len(todo), workers)
+        bound = merges_bound(base_path(out), todo[0].algorithm, starts, len(todo), workers)
         if progress:
             print(
                 f"apf-viz lights: {len(todo)} merges to explore on the {len(starts)} starts the base "
@@ -123,11 +123,7 @@ def base_verified_starts(
     from apf_viz.sweeps import by_the_second, dask_client, shut_down
 
     starts = starts_for(ks)
-    known: dict[str, dict] = {}
-    if path.is_file():
-        data = json.loads(path.read_text(encoding="utf-8"))
-        if data.get("algorithm") == algorithm:
-            known = {r["start"]: r for r in data["starts"]}
+    known = kept_base(path, algorithm)
     todo = [(name, start) for name, start in starts if name not in known]
     if todo:
         client, local = dask_client(cluster, workers)
@@ -150,14 +146,24 @@ def base_verified_starts(
     return [(name, start) for name, start in starts if known[name]["verdict"] == "verified"]
 
 
-def merges_bound(path: Path, starts: Sequence[tuple[str, list]], merges: int, workers: int | None) -> float:
+def kept_base(path: Path, algorithm: str) -> dict[str, dict]:
+    """Stage 0's rows kept in ``path`` by an earlier run for ``algorithm``, by start name (none if the
+    file is missing or was made for another algorithm)."""
+    if not path.is_file():
+        return {}
+    data = json.loads(path.read_text(encoding="utf-8"))
+    return {r["start"]: r for r in data["starts"]} if data.get("algorithm") == algorithm else {}
+
+
+def merges_bound(
+    path: Path, algorithm: str, starts: Sequence[tuple[str, list]], merges: int, workers: int | None
+) -> float:
     """About how long the merges can take at most, in seconds: each explores at most the starts the base
     algorithm verifies on, which stage 0 timed (kept in ``path``); the workers share them."""
     from apf_viz.sweeps import usable_cores
 
-    rows = json.loads(path.read_text(encoding="utf-8"))["starts"]
-    timed = {r["start"]: r.get("seconds", 0.0) for r in rows}
-    per_merge = sum(timed.get(name, 0.0) for name, _ in starts)
+    timed = kept_base(path, algorithm)
+    per_merge = sum(timed[name].get("seconds", 0.0) for name, _ in starts if name in timed)
     return merges * per_merge / (workers or usable_cores())
 
 

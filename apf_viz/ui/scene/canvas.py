@@ -60,22 +60,18 @@ class Canvas:
         self._labels(prefix, placed)
 
     def visible_height(self) -> float:
-        """How many cells tall the framed view is."""
-        return self._visible_height()
-
-    # ------------------------------------------------------------------ batched helpers
-    def _visible_height(self) -> float:
         """How many cells tall the framed view is (the initial camera's pose: what browsers are framed
         to, near enough for laying out labels)."""
         position, look_at, fov = self.framed_pose
         return 2.0 * abs(position[2] - look_at[2]) * float(np.tan(fov / 2))
 
+    # ------------------------------------------------------------------ batched helpers
     def _text_height(self) -> float:
         """A label's height in cells, for laying labels out where each page framed on the run shows them
         apart: boxes apart at the largest size stay apart at every smaller one."""
         if self.text_height is not None:
             return self.text_height
-        return text_cells(self.view_cells if self.view_cells is not None else self._visible_height())
+        return text_cells(self.view_cells if self.view_cells is not None else self.visible_height())
 
     def _in_place(self, name: str, data: np.ndarray, create: Callable[[], object], field: str) -> None:
         """Send ``data`` to the node ``name`` only if it changed: create the node once, then assign

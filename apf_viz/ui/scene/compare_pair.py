@@ -34,7 +34,7 @@ class ComparePair:
         gap = max(xs) - min(xs) + len(config.robots) + 8
         self.second.fixed_origin = (a.origin[0] - gap, a.origin[1])
         # One camera shows both runs: the second's labels are laid out for the first's zoom.
-        self.second.view_cells = a.view_cells if a.view_cells is not None else a._visible_height()
+        self.second.view_cells = a.view_cells if a.view_cells is not None else a.visible_height()
         self.second.text_height = a._text_height()
         self.second.render(other, compare_title("B", other), beside=a.label_boxes)
         b = self.second.bounds

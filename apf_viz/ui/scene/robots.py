@@ -23,7 +23,7 @@ class RobotsLayer(Canvas):
         robots = view.robots[: len(pts)]
         lights = np.array([r.light for r in robots], dtype=object)
         palette = light_colors(view)
-        noses, rims = scene_detail(self.view_cells if self.view_cells is not None else self._visible_height())
+        noses, rims = scene_detail(self.view_cells if self.view_cells is not None else self.visible_height())
         rimmed = pts if rims or not view.playing or len(pts) < RIM_CROWD else pts[:0]
         self._points(
             "/robots/outline",
