@@ -633,6 +633,18 @@ def test_download_schedule_after_manual_clicks_then_upload_it_on_a_reset_run_rep
         s.load_schedule("four.jsonl", b'{"format": "apf-viz-schedule", "version": 1, "robots": 4}\n')
 
 
+def _first_differing_decision(s: Session) -> int:
+    """The first differing decision of the run and its Compare twin, by a diff of their two event lists
+    made here: the 1-based number of the first Compute whose rule, pending move or light differs."""
+    twin = s.screen.twin.engine
+    run_events, twin_events = s.engine.history.events(), twin.history.events()
+    for n, (a, b) in enumerate(zip(run_events, twin_events, strict=False), 1):
+        assert (a.robot, a.phase) == (b.robot, b.phase)  # the same schedule
+        if a.phase == "compute" and (a.rule_id, a.move, a.light) != (b.rule_id, b.move, b.light):
+            return n
+    raise AssertionError("no decision differs")
+
+
 def test_compare_steps_a_second_algorithm_with_the_run_and_names_the_first_divergence():
     from apf_viz.core.formats import load_trace
     from apf_viz.core.schedule import schedule_of_trace, schedule_text
@@ -651,8 +663,9 @@ def test_compare_steps_a_second_algorithm_with_the_run_and_names_the_first_diver
     v = s.view()
     assert v.compare is not None and v.compare.outcome == "collision" and v.outcome != "collision"
     assert v.compare.event <= v.event and v.divergence is not None
-    at, what, robot = v.divergence
-    assert 0 < at <= 41 and " | " in what and what.startswith(f"robot {robot} ")
+    at, what, robot, then = v.divergence
+    assert at == _first_differing_decision(s) and what.startswith(f"robot {robot} · Compute")
+    assert then.count("Move") == 2 and then.startswith(f"robot {robot} ")  # the move that follows, both
     assert v.diverged == robot and v.compare.diverged == robot  # marked in both runs
     s.seek(0)
     v = s.view()

@@ -842,7 +842,7 @@ def test_verify_shows_verified_on_a_small_start_and_loads_the_literal_papers_vio
     page.close()
 
 
-def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(browser, app):
+def test_compare_draws_two_runs_side_by_side_and_names_the_first_differing_decision(browser, app):
     from apf_viz.core.schedule import schedule_of_trace, schedule_text
 
     demos = Path(__file__).parent.parent / "demo_patterns"
@@ -859,7 +859,16 @@ def test_compare_draws_two_runs_side_by_side_and_names_the_first_divergence(brow
     for n in range(1, 42):
         step.click()
         wait_for(lambda n=n: app.session.engine.step_index == n)
-    page.get_by_text("First divergence at event").wait_for()
+    # Where the decisions first differ, by a diff of the two runs' events made here (robot, rule, move).
+    twin = app.session.screen.twin.engine
+    pairs = zip(app.session.engine.history.events(), twin.history.events(), strict=False)
+    first = next(
+        n
+        for n, (a, b) in enumerate(pairs, 1)
+        if a.phase == "compute" and (a.rule_id, a.move, a.light) != (b.rule_id, b.move, b.light)
+    )
+    page.get_by_text(f"First differing decision at event {first}, robot").wait_for()
+    page.get_by_text("Its consequence: A robot").wait_for()
     page.get_by_text("apf-opaque-grid-literal: COLLISION").wait_for()
     a, b = app.renderer, app.pair.second
     assert b is not None and b.origin[0] < a.origin[0]  # B is drawn to the right of A

@@ -24,11 +24,13 @@ from apf_viz.workbench.run_config import RunConfig
 
 
 class Divergence(NamedTuple):
-    """The first event at which the two runs differ: its number, both sides in words, and its robot."""
+    """The first decision at which the two runs differ: its event number, both sides in words, its robot,
+    and (once it has happened in both runs, else "") the move that follows it in each: its consequence."""
 
     event: int
     what: str
     robot: int
+    consequence: str = ""
 
 
 class Twin:
@@ -44,6 +46,7 @@ class Twin:
         self._alone_after: tuple[int, int, int] | None = None
         # (history generations, steps compared, events in them, the divergence found): scanned once.
         self._divergence: tuple[tuple[int, int], int, int, Divergence | None] = ((-1, -1), 0, 0, None)
+        self._divergence_step = 0  # the step in which the divergence found lies
 
     def follow(self, run: Engine, config: RunConfig) -> Engine:
         """The twin at the run's step (rebuilt when the run's configuration changed)."""
@@ -76,8 +79,9 @@ class Twin:
         return True
 
     def divergence(self, run: Engine) -> Divergence | None:
-        """(event number, what differs) of the first event at which the two configurations differ: a
-        Compute that sets another light, or a Move to another point; None while they agree."""
+        """The first decision at which the two runs differ (a Compute whose rule, target or light
+        differs; a Move differs only after one), with the move that follows it; None while they agree.
+        Only a decision the run has reached is named."""
         twin = self.engine
         if twin is None:
             return None
@@ -92,17 +96,36 @@ class Twin:
                 events += 1
                 if _differs(a, b):
                     found = Divergence(events, f"{describe(a)} | {describe(b)}", a.robot)
+                    self._divergence_step = checked
                     break
             checked += 1
         self._divergence = (key, checked, events, found)
-        if found is not None and found[0] <= run.state.events:
-            return found
-        return None
+        if found is None or found.event > run.state.events:
+            return None
+        return found._replace(consequence=self._consequence(run, twin, found.robot))
+
+    def _consequence(self, run: Engine, twin: Engine, robot: int) -> str:
+        """The Move of ``robot`` after the differing Compute, in each run, once both have made it."""
+        moves = [_next_move(engine, self._divergence_step, robot) for engine in (run, twin)]
+        if any(m is None for m in moves):
+            return ""
+        return " | ".join(describe(m) for m in moves if m is not None)
+
+
+def _next_move(engine: Engine, after: int, robot: int) -> Event | None:
+    """The first Move of ``robot`` in the steps after step ``after`` that ``engine`` has taken."""
+    for i in range(after + 1, engine.step_index):
+        for e in engine.history.steps[i].events:
+            if e.robot == robot and e.phase == "move":
+                return e
+    return None
 
 
 def _differs(a: Event, b: Event) -> bool:
+    """A different decision: another rule fired, another target (the pending move), or another light. A
+    Move differs only where a decision differed before it, or a collision stopped one run."""
     if a.phase == "compute":
-        return a.light != b.light
+        return a.rule_id != b.rule_id or a.move != b.move or a.light != b.light
     if a.phase == "move":
         return a.to != b.to or a.collision != b.collision
     return False
@@ -110,7 +133,9 @@ def _differs(a: Event, b: Event) -> bool:
 
 def describe(ev: Event) -> str:
     if ev.phase == "compute":
-        return f"robot {ev.robot} · Compute → light {ev.light}"
+        rule = f" by {ev.rule_id}" if ev.rule_id else ""
+        where = f", to move {ev.move.value}" if ev.move is not None else ", to stay"
+        return f"robot {ev.robot} · Compute{rule} → light {ev.light}{where}"
     if ev.phase == "move" and ev.to is not None:
         where = f"robot {ev.robot} · Move → ({ev.to[0]}, {ev.to[1]}) on the grid"
         return where + (" COLLISION" if ev.collision else "")

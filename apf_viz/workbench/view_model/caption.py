@@ -126,7 +126,7 @@ def _compared(view: SessionView) -> str:
 
     part = ""
     if view.divergence is not None:  # on the canvas, a diamond on that robot in both runs
-        part = f" · they part at event {view.divergence[0]}, robot {view.divergence[2]} (◆)"
+        part = f" · they decide differently at event {view.divergence[0]}, robot {view.divergence[2]} (◆)"
     return f"<div>{side('left', view)} · {side('right', other)}{part}</div>"
 
 

@@ -326,17 +326,22 @@ def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tup
 
 
 def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, int, int], divergence) -> str:
-    """Compare: each side's (algorithm, outcome, event, moves), and the first event where they differ."""
+    """Compare: each side's (algorithm, outcome, event, moves), the first decision where they differ and the
+    move that follows it in each."""
 
     def side(name: str, s: tuple[str, str | None, int, int]) -> str:
         algorithm, outcome, event, moves = s
         return f"{name} **{algorithm}**: {(outcome or 'running').upper()}, event {event}, {moves} moves"
 
     if divergence is None:
-        split = "Same configurations so far."
+        split = "Same decisions so far."
     else:
-        at, what, _ = divergence
-        split = f"First divergence at event **{at}**: A {what.split(' | ')[0]}; B {what.split(' | ')[1]}"
+        at, what, robot, then = divergence
+        a_did, b_did = what.split(" | ")
+        split = f"First differing decision at event **{at}**, robot {robot} (◆): A {a_did}; B {b_did}"
+        if then:
+            a_then, b_then = then.split(" | ")
+            split += f"  \nIts consequence: A {a_then}; B {b_then}"
     return f"{side('A', a)}  \n{side('B', b)}  \n{split}"
 
 
