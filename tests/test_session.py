@@ -563,21 +563,82 @@ def test_a_branch_sets_the_recorded_future_aside_and_return_goes_back_to_it():
     s.back()  # at step 3: robot 1's Look and Compute are the recorded future
     s.click(s.engine.current_points()[2])  # a different choice: a branch
     v = s.view()
-    assert v.set_aside == (3, 2) and s.engine.history.length == 4
+    assert v.branches == ("#1: left at step 3, 2 step(s), stopped at event 5",)
+    assert s.engine.history.length == 4
     branch = s.engine.history.events()
     s.return_to_set_aside()
     v = s.view()
-    assert v.steps == 3 and v.trace_position is not None and v.following_what == "the set-aside branch"
+    assert v.steps == 3 and v.trace_position is not None and v.following_what == "branch #1"
     while s.step():  # Step follows the set-aside steps to their end
         pass
     assert s.engine.history.events() == recorded
-    assert s.view().set_aside == (3, 1)  # the branch just left is set aside in turn
+    assert s.view().branches == ("#2: left at step 3, 1 step(s), stopped at event 4",)  # the line left
     s.return_to_set_aside()
     while s.step():
         pass
     assert s.engine.history.events() == branch
     with pytest.raises(InputError, match="no branch"):
         Session(START, PATTERN).return_to_set_aside()
+
+
+def test_no_branch_is_lost_branch_return_branch_again_and_both_are_re_entered():
+    """Branch at step 20, return to the trunk, branch again at step 30: both branches are kept, listed
+    with where they left and how they end, and each is re-entered to exactly its own steps."""
+    s = session(scheduler="async", seed=3)
+    for _ in range(40):
+        assert s.step()
+    trunk = s.engine.history.events()
+    s.seek(20)
+    s.set_scheduler("round-robin")  # another adversary from here: a different line
+    for _ in range(8):
+        s.step()
+    first = s.engine.history.events()
+    assert first[: len(trunk)] != trunk
+    s.return_to_set_aside()  # back on the trunk …
+    while s.step():
+        if s.engine.step_index >= 40:
+            break
+    assert s.engine.history.events() == trunk
+    s.seek(30)
+    s.branch_here()  # leave the followed line: the scheduler chooses
+    s.set_scheduler("fsync")  # every robot at once: surely not the trunk's step
+    for _ in range(5):
+        s.step()  # … and a second branch off it, at step 30
+    second = s.engine.history.events()
+    labels = s.view().branches
+    assert len(labels) == 2
+    assert "left at step 20, 8 step(s), stopped at event 28" in labels[0]  # the first branch
+    assert "left at step 30, 10 step(s), stopped at event 40" in labels[1]  # the trunk's rest
+    for label, events in ((labels[0], first), (labels[1], trunk)):
+        number = int(label[1:].split(":")[0])
+        s.return_to_set_aside(number)
+        while s.step():
+            pass
+        assert s.engine.history.events() == events
+    assert len(s.view().branches) == 2  # entering one kept the line left: still two besides this one
+    assert second in _lines_of(s)
+
+
+def _lines_of(s: Session) -> list:
+    """The events of every kept branch, each entered in turn (the line left each time kept)."""
+    lines = []
+    for label in s.view().branches:
+        s.return_to_set_aside(int(label[1:].split(":")[0]))
+        while s.step():
+            pass
+        lines.append(s.engine.history.events())
+    return lines
+
+
+def test_back_a_cycle_undoes_the_last_actors_look_compute_and_move():
+    s = session(scheduler="manual")
+    for r in (0, 1, 0, 0):  # robot 0: Look, (robot 1: Look), Compute, Move
+        s.click(s.engine.current_points()[r])
+    said = s.back_cycle()
+    assert "robot 0" in said and s.engine.step_index == 0  # before robot 0's Look, robot 1's too
+    s.seek(2)
+    s.back_cycle()  # the last actor at step 2 is robot 1, whose Look was step 1
+    assert s.engine.step_index == 1
 
 
 def test_click_select_inspects_without_advancing_in_manual():
@@ -733,3 +794,37 @@ def test_compare_goes_on_with_the_run_beside_it_once_the_run_is_over():
     assert "the run beside it is over too" in s.why_not_step()
     s.seek(3)
     assert s.view().compare.event == s.view().event  # Back: the steps it took alone are dropped
+
+
+def test_every_downloaded_trace_is_the_run_with_its_verdict():
+    """Right after a trace (a counterexample) loads, the file is the whole trace with its verdict; once
+    the run has left it, the file is the run so far with its outcome, and no panel speaks of the trace."""
+    from apf_viz.core.formats import load_trace
+
+    demos = Path(__file__).parent.parent / "demo_patterns"
+    path = demos / "traces" / "literal-collision-4.jsonl"
+    s = demo_session()
+    s.load_trace(path.name, path.read_bytes())
+    assert s.engine.step_index == 0 and "verdict: collision" in s.view().trace_note
+    out = Path(__file__).parent / "_downloaded.jsonl"
+    try:
+        out.write_text(s.trace_file())
+        header, events = load_trace(out)
+        _, original = load_trace(path)
+        assert events == original and header.options["verdict"] == "collision"
+        assert header.options["shown_at_event"] == 0
+        for _ in range(10):
+            s.step()
+        s.branch_here()  # leave the trace: the scheduler chooses from here
+        assert s.view().trace_note == "" and "The trace" not in s.view().trace_line
+        s.step()
+        out.write_text(s.trace_file())
+        header, events = load_trace(out)
+        assert len(events) == s.engine.state.events and header.options["verdict"] == "running"
+        while s.step():
+            pass
+        out.write_text(s.trace_file())
+        header, events = load_trace(out)
+        assert header.options["verdict"] == s.engine.state.outcome and len(events) == s.engine.state.events
+    finally:
+        out.unlink(missing_ok=True)

@@ -206,10 +206,11 @@ def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
     s.compare_with("apf-opaque-grid-literal")
     while s.step():
         pass
-    at, what, robot = s.view().divergence
+    at, what, robot, then = s.view().divergence
+    assert then  # played on: the move that followed the decision, in both runs
     s.seek_event(at)
     v = s.view()
-    assert v.event == at and v.divergence == (at, what, robot)
+    assert v.event == at and v.divergence == (at, what, robot, "")  # its consequence is still to come
     assert v.last_events[0].startswith(
         f"robot {robot} · "
     )  # the run's side of the difference is the last event

@@ -13,9 +13,9 @@ from collections.abc import Mapping
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
-from apf_viz.core.history import StepRecord
 from apf_viz.core.portrayal import Configuration, stage_of
 from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
+from apf_viz.workbench.branches import Branch, Branches, ending
 from apf_viz.workbench.move_series import MoveSeries
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.stage_log import StageLog
@@ -77,8 +77,12 @@ class RunController:
         # A replayed trace is followed step by step until the person branches (Branch here).
         self.following = engine is not None and engine.history.length > 0
         self.following_what = "the trace"
-        # Steps a branch dropped (where, what), so that the person can go back to them.
-        self.set_aside: tuple[int, list[StepRecord]] | None = None
+        # Every line of steps a branch dropped, so that the person can go back to any of them.
+        self.branches = Branches()
+        # How the recorded line ends, as last seen at its end: (history generation, length, words, outcome).
+        self._line_end: tuple[int, int, str, str | None] = (-1, -1, "", None)
+        if engine is not None:
+            self._note_end()
         self.trace_events = trace_events if self.following else 0
         # What the trace's header says about it (a verdict, a livelock's loop): kept for this run.
         self.trace_options: dict[str, object] = dict(trace_options or {}) if self.following else {}
@@ -93,6 +97,7 @@ class RunController:
         by the first step that differs from it."""
         with self.lock:
             self.following = False
+            self.trace_options = {}  # its verdict and loop describe the trace, not the run it becomes
 
     def restart(self, config: RunConfig) -> None:
         """A new run from this configuration (a new start, pattern, algorithm or light semantics)."""
@@ -110,11 +115,15 @@ class RunController:
         """Take over an engine built elsewhere (a replayed trace of ``trace_events`` events, whose header
         has ``trace_options``, or a followed schedule: ``what``), at its start; Step then follows it."""
         with self.lock:
+            self.engine = engine
+            self._note_end_of(engine)  # it was replayed to its end: how a branch left from it ends
+            line_end = self._line_end
             engine.seek(0)
             engine.skip_noops = config.skip_noops  # it replayed with every activation; a branch skips
             if not trace_events:
                 engine.settle_outcome()  # a trace of a start where nobody can act: stuck at once
             self._rebuild(config, engine, trace_events, trace_options)
+            self._line_end = line_end
             self.following_what = what
 
     def reset(self) -> None:
@@ -155,7 +164,9 @@ class RunController:
         """One step chosen by the scheduler. False if the run is over (or the scheduler is Manual)."""
         with self.lock:
             if self.following:  # the trace decides: its next recorded step, until its end
-                return not self.engine.finished and self.engine.redo() is not None
+                stepped = not self.engine.finished and self.engine.redo() is not None
+                self._note_end()
+                return stepped
             if self.engine.finished or self.config.scheduler in BY_HAND:
                 return False
             record = make_scheduler(self.config.scheduler).choose(
@@ -169,37 +180,85 @@ class RunController:
         with self.lock:
             phase = self.engine.next_event(robot)
             self._branching_step([robot], None)
-            self.following = False  # a person's choice leaves the trace
+            if self.following:  # a person's choice leaves the trace, and what its header said
+                self.following, self.trace_options = False, {}
             return phase
 
     def _branching_step(self, robots, round: int | None) -> None:
-        """A step that may differ from the recorded future: then the future is set aside, not lost."""
+        """A step that may differ from the recorded future: then the future is kept as a branch."""
         history = self.engine.history
         generation = history.generation
+        line_end = self._end_words(generation, history.length)
         self.engine.step(robots, round=round)
         if history.generation != generation and history.dropped is not None:
-            self.set_aside = history.dropped
+            at, records = history.dropped
+            self.branches.keep(at, records, line_end)
+        self._note_end()
 
-    def return_to_set_aside(self) -> None:
-        """Go back to the steps a branch dropped: replay them from where they were dropped, then follow
-        them (Step, Play) from there. The branch left is set aside in turn, so this toggles."""
+    def _end_words(self, generation: int, length: int) -> str:
+        """How the recorded line of that generation and length ends, if it was seen at its end."""
+        seen_generation, seen_length, words, _ = self._line_end
+        if (seen_generation, seen_length) == (generation, length):
+            return words
+        return f"recorded to step {length}, not played to its end"
+
+    def _note_end(self) -> None:
+        self._note_end_of(self.engine)
+
+    def _note_end_of(self, engine: Engine) -> None:
+        """Remember how the line ends when the engine stands at the end of its history."""
+        if engine.step_index == engine.history.length:
+            h = engine.history
+            self._line_end = (h.generation, h.length, ending(engine), engine.state.outcome or "running")
+
+    def line_verdict(self) -> dict[str, object]:
+        """How the recorded line ends, if it was seen at its end: a trace header's verdict."""
+        generation, length, words, outcome = self._line_end
+        h = self.engine.history
+        if (generation, length) != (h.generation, h.length) or outcome is None:
+            return {}
+        return {"verdict": outcome, "detail": words.lower()}
+
+    @property
+    def set_aside(self) -> Branch | None:
+        """The newest branch kept (Return to set-aside branch enters it)."""
+        return self.branches.newest
+
+    def return_to_set_aside(self, number: int | None = None) -> None:
+        """Enter a kept branch (the newest by default): replay its line from where it leaves the run's,
+        then follow it (Step, Play) from there. The line left is kept as a branch in turn: none is lost."""
         with self.lock:
-            if self.set_aside is None:
-                raise InputError("no branch was set aside")
-            at, records = self.set_aside
+            number = self.branches.find(number).number  # the newest now, not once the line left is kept
+            at, records = self.branches.path_to(number)
             e = self.engine
             self._playing = False
             e.seek(at)
-            generation = e.history.generation
             for record in records:
                 if e.finished:
                     break
-                e.step(record.robots, round=record.round)
-            left = e.history.dropped if e.history.generation != generation else None
+                self._branching_step(record.robots, record.round)
+            entered = self.branches.entered(number)
             self.trace_events = e.state.events
-            e.seek(at)
-            self.set_aside = left
-            self.following, self.following_what = True, "the set-aside branch"
+            e.seek(entered.at)  # where the branch left: Step follows it from there
+            self.following, self.following_what = True, f"branch #{entered.number}"
+            self.trace_options = {}  # a trace's verdict describes the trace's line, not a branch
+
+    def back_cycle(self) -> str:
+        """Back over the whole Look-Compute-Move cycle of the robot that acted last: to just before its
+        latest Look (its Move, Compute and Look undone together, and every step between them)."""
+        with self.lock:
+            self._playing = False
+            e = self.engine
+            if e.step_index == 0:
+                return "at the start: nothing to undo"
+            last = e.history.steps[e.step_index - 1].events
+            robot = last[-1].robot
+            for i in range(e.step_index - 1, -1, -1):
+                if any(ev.robot == robot and ev.phase == "look" for ev in e.history.steps[i].events):
+                    e.seek(i)
+                    return f"back over robot {robot}'s cycle: to step {i}, before its Look"
+            e.seek(0)
+            return f"back to the start: robot {robot}'s cycle began there"
 
     def back(self) -> None:
         with self.lock:
@@ -213,6 +272,7 @@ class RunController:
         with self.lock:
             self._playing = False
             self.engine.seek(int(min(max(step, 0), self.engine.history.length)))
+            self._note_end()
 
     # ------------------------------------------------------------------ playing
     def play(self) -> None:
@@ -246,6 +306,7 @@ class RunController:
             scheduler = self.config.scheduler
             if allowance >= 3 and not self.following and make_scheduler(scheduler).forced_when_alone:
                 taken = self.engine.walk(allowance)  # Manual is never forced: the person chooses
+                self._note_end()
                 if taken:
                     return taken
             if not self.step():

@@ -112,7 +112,7 @@ class RunFolder:
         self.restore = gui.add_button(
             "Return to set-aside branch",
             visible=False,
-            hint="go back to the recorded steps the last branch dropped, and follow them",
+            hint="enter the newest branch kept, and follow it (History lists them all)",
         )
         self.restore.on_click(self.ctx.guard(lambda e: s.return_to_set_aside()))
 
@@ -278,7 +278,7 @@ class RunFolder:
         if self.branch.visible != following:
             self.branch.visible = following
         put(self.trace, content=view.trace_line)
-        restore = view.set_aside is not None and drives
+        restore = bool(view.branches) and drives
         if self.restore.visible != restore:
             self.restore.visible = restore
         put(self.aside, content=view.aside_line)
@@ -288,6 +288,7 @@ class HistoryFolder:
     """The run's history: the events before the last, speed, the timeline, the counts."""
 
     def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
         s = ctx.session
         with gui.add_folder("History"):
             self.log = gui.add_markdown("")
@@ -302,6 +303,18 @@ class HistoryFolder:
                 hint="scrub the history; stepping from the past branches",
             ))  # fmt: skip
             self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
+            cycle = ctx.driving(gui.add_button(
+                "Back a cycle", hint="undo the last actor's whole Look-Compute-Move cycle"
+            ))  # fmt: skip
+            cycle.on_click(ctx.guard(lambda e: s.back_cycle(), "Back a cycle"))
+            self.branches = ctx.driving(gui.add_dropdown(
+                "Branches", ("—",), initial_value="—", visible=False,
+                hint="every line of steps a step from the past left: where it left, how it ends",
+            ))  # fmt: skip
+            self.enter = ctx.driving(gui.add_button(
+                "Enter branch", visible=False, hint="replay the chosen branch, follow it; this line is kept"
+            ))  # fmt: skip
+            self.enter.on_click(ctx.guard(self._enter, "Branches"))
             self.stats = gui.add_markdown("")
             self.numbers = ctx.driving(
                 gui.add_checkbox("Numbers", initial_value=True, hint="each robot's number beside it")
@@ -313,7 +326,26 @@ class HistoryFolder:
             ))  # fmt: skip
             self.trails.on_update(ctx.from_browser(lambda e: s.set_trails(self.trails.value)))
 
+    def _enter(self, event) -> str:
+        chosen = self.branches.value
+        if not chosen.startswith("#"):
+            return "choose a branch in the Branches list"
+        number = int(chosen[1:].split(":")[0])
+        self.ctx.session.return_to_set_aside(number)
+        return f"entered branch #{number}: Step follows it"
+
+    def _refresh_branches(self, view: SessionView) -> None:
+        options = view.branches[::-1] or ("—",)  # newest first
+        if tuple(self.branches.options) != options:
+            self.branches.options = options
+            self.branches.value = options[0]
+        shown = bool(view.branches)
+        if self.branches.visible != shown:
+            self.branches.visible = shown
+            self.enter.visible = shown
+
     def refresh(self, view: SessionView) -> None:
+        self._refresh_branches(view)
         put(self.timeline, max=max(1, view.history_length))
         put(self.timeline, value=view.steps)
         log = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])

@@ -265,9 +265,14 @@ class SessionCore:
         """Stop following a loaded trace: from this event on, the chosen scheduler runs."""
         self.run.branch_here()
 
-    def return_to_set_aside(self) -> None:
-        """Back to the recorded steps the last branch dropped; Step then follows them."""
-        self.run.return_to_set_aside()
+    def return_to_set_aside(self, number: int | None = None) -> None:
+        """Enter a kept branch (the newest by default); Step then follows it. The line left is kept."""
+        self.run.return_to_set_aside(number)
+
+    def back_cycle(self) -> str:
+        """Back over the last actor's whole Look-Compute-Move cycle."""
+        with self.lock:
+            return self.run.back_cycle()
 
     # ------------------------------------------------------------------ building runs
     def _start(self, config: RunConfig) -> None:

@@ -176,6 +176,17 @@ class FileCommands(SessionCore):
             return pattern_json(self.editor.pattern if self.mode == "edit-pattern" else self.config.pattern)
 
     def trace_file(self) -> str:
+        """The run as a trace file, at any moment, with its verdict: while a trace or branch is followed,
+        its whole line (what its header said kept, and the event the page stands at); else the run so
+        far, up to the step shown, with its outcome so far."""
         with self.lock:
-            header = trace_header(self.engine, self.scheduler_name, self.seed)
-            return trace_text(header, self.engine.history.events(self.engine.step_index))
+            e, run = self.engine, self.run
+            if run.following:
+                upto = e.history.length
+                options: dict[str, object] = {**run.line_verdict(), **run.trace_options}
+                options["shown_at_event"] = e.state.events
+            else:
+                upto = e.step_index
+                options = {"verdict": e.state.outcome or "running", "events": e.state.events}
+            header = trace_header(e, self.scheduler_name, self.seed, options)
+            return trace_text(header, e.history.events(upto))

@@ -86,7 +86,7 @@ def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
         never_act=tuple(range(e.k)) if stuck else (),
         algorithm=run.config.algorithm,
         algorithm_title=title_of(e.algorithm),
-        set_aside=(run.set_aside[0], len(run.set_aside[1])) if run.set_aside else None,
+        branches=run.branches.labels(),
         following_what=run.following_what,
         compare=_twin_view(run, screen) if screen.twin is not None and running else None,
         divergence=(split := screen.twin.divergence(e) if screen.twin is not None and running else None),
@@ -198,7 +198,7 @@ def _sentences(view: SessionView, crash: str | None, stuck: bool, mirrored: bool
         "stats": story.stats(view.algorithm, view.__dict__),
         "counts": story.counts(view.mode, view.draft_count, view.robot_count, len(view.robots), view.axis),
         "trace_line": story.trace_line(view.trace_position, view.following_what, view.trace_note),
-        "aside_line": story.aside_line(view.set_aside),
+        "aside_line": story.aside_line(view.branches),
     }
     twin = view.compare
     if twin is not None:

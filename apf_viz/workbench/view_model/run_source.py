@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from typing import Protocol
 
 from apf_viz.core.engine import Engine
-from apf_viz.core.history import StepRecord
+from apf_viz.workbench.branches import Branches
 from apf_viz.workbench.move_series import MoveSeries
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.stage_log import StageLog
@@ -21,7 +21,7 @@ class RunSource(Protocol):
     config: RunConfig
     following: bool  # a trace is followed step by step
     following_what: str  # "the trace", or what else is followed
-    set_aside: tuple[int, list[StepRecord]] | None  # the steps a branch dropped (where, what)
+    branches: Branches  # the lines of steps branches dropped
 
     @property
     def trace_options(self) -> Mapping[str, object]: ...

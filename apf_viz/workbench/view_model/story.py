@@ -303,10 +303,11 @@ def trace_line(position: tuple[int, int] | None, what: str, note: str) -> str:
     return line
 
 
-def aside_line(set_aside: tuple[int, int] | None) -> str:
-    if set_aside is None:
+def aside_line(branches: tuple[str, ...]) -> str:
+    """The branches kept, each re-enterable from the Branches list."""
+    if not branches:
         return ""
-    return f"Set aside: the branch you left, {set_aside[1]} recorded step(s) after step {set_aside[0]}."
+    return f"Branches kept: **{len(branches)}** (Enter branch follows one; the line you leave is kept)."
 
 
 def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tuple[tuple[int, str], ...]:
