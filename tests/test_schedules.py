@@ -306,3 +306,46 @@ def test_the_visualiser_takes_an_uploaded_schedule_with_its_flips():
     while session.engine.step_index < len(other.history.steps):
         session.step()
     assert session.engine.current_points() == other.current_points()
+
+
+def test_a_schedule_line_carries_a_note_that_is_shown_when_it_is_played():
+    from apf_viz.core.schedule import Activation, Round, parse_schedule, schedule_text
+    from apf_viz.ui.app import demo_session
+
+    s = demo_session()
+    k = s.engine.k
+    lines = [
+        Activation(robot=0, phase="look", note="robot 0 looks first: it sees <everyone>"),
+        Activation(robot=0, phase="compute"),
+        Round(round=[1, 2], note="then a round"),
+    ]
+    text = schedule_text(k, lines)
+    assert '"note": null' not in text and parse_schedule(text).notes == {2: lines[0].note, 4: "then a round"}
+    s.load_schedule("notes.jsonl", text.encode())
+    s.step()
+    assert s.view().note_here == "robot 0 looks first: it sees <everyone>"
+    s.step()
+    assert s.view().note_here == ""  # a line without a note
+    for _ in range(3):  # the round's Look, Compute and Move: its note on the step that ends it
+        s.step()
+    assert s.view().note_here == "then a round"
+    too_long = '{"robot": 0, "phase": "look", "note": "' + "x" * 301 + '"}'
+    with pytest.raises(InputError, match="note"):
+        parse_schedule(text + too_long + "\n", "long.jsonl")
+
+
+def test_a_followed_schedule_passes_nobody_over_as_its_replay_says(tmp_path):
+    """``run --schedule`` and ``replay`` of its trace agree: a schedule chooses every activation, so no
+    robot·step is passed over; the scheduler that goes on after it (``--then``) passes robots over."""
+    demos = Path(__file__).resolve().parent.parent / "demo_patterns"
+    lines = ['{"format": "apf-viz-schedule", "version": 1, "robots": 10}']
+    lines += [json.dumps({"robot": r, "phase": p}) for r in (0, 1) for p in ("look", "compute", "move")]
+    schedule = tmp_path / "six.jsonl"
+    schedule.write_text("\n".join(lines) + "\n")
+    trace = tmp_path / "six-trace.jsonl"
+    files = ["--robots", str(demos / "starts" / "demo-10.json"), "--pattern", str(demos / "heart.json")]
+    ran = run_cli("run", *files, "--schedule", str(schedule), "--trace", str(trace), "--json")
+    replayed = run_cli("replay", "--trace", str(trace), "--json")
+    assert json.loads(ran.stdout)["skipped"] == 0 == json.loads(replayed.stdout)["skipped"]
+    then = run_cli("run", *files, "--schedule", str(schedule), "--then", "async", "--json")
+    assert json.loads(then.stdout)["skipped"] > 0

@@ -12,6 +12,7 @@ from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem
 NAME = "check"
 HELP = "explore every schedule of a small start (model checking)"
 OUTPUTS = ("counterexample",)
+WANTED = ("collision", "escape", "deadlock", "livelock")  # explore/explorer.py's WANTED (a test holds them)
 """The options naming files this command writes (never one of its inputs)."""
 
 
@@ -43,6 +44,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="explore every interleaving (without it, ASYNC skips the orders of invisible events: the same "
         "verdict and counterexample, fewer states; apf-viz docs verification)",
     )
+    p.add_argument(
+        "--want",
+        choices=WANTED,
+        help="look for this kind of failure only: the others end their run and the search goes on past "
+        "them (verdict 'absent', exit 0, when none exists in any schedule)",
+    )
     p.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
     p.add_argument("--force", action="store_true", help="explore an unsolvable start anyway")
     p.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
@@ -63,9 +70,10 @@ def run(args: argparse.Namespace) -> int:
         progress=not args.json,
         light_semantics=args.light_semantics,
         reduction=not args.no_reduction,
+        want=args.want,
     )
     written = None
-    if result.verdict not in ("verified", "budget") and args.counterexample:
+    if result.verdict not in ("verified", "budget", "absent") and args.counterexample:
         write_counterexample(
             args.counterexample,
             algorithm,
@@ -82,6 +90,7 @@ def run(args: argparse.Namespace) -> int:
             json.dumps(
                 {
                     "verdict": result.verdict,
+                    "want": args.want,
                     "states": result.states,
                     "transitions": result.transitions,
                     "seconds": round(result.seconds, 3),
@@ -98,4 +107,4 @@ def run(args: argparse.Namespace) -> int:
             f"{result.seconds:.2f} s{'; ' + result.detail if result.detail else ''}"
             f"{'; counterexample: ' + written if written else ''}"
         )
-    return {"verified": 0, "budget": 4}.get(result.verdict, 1)
+    return {"verified": 0, "absent": 0, "budget": 4}.get(result.verdict, 1)

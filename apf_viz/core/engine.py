@@ -94,7 +94,7 @@ class Engine(EngineCore):
     def _apply(self, record: StepRecord) -> list[Event]:
         st = self.state
         robots, round = record
-        if self.skip_noops:
+        if self.skip_noops and self.counts_passed_over:
             st.skipped += self.k - int(np.count_nonzero(self.eligible()))
         phase = st.phase[robots[0]]
         version = st.version

@@ -96,6 +96,8 @@ class EngineCore:
         self.max_recorded = max_recorded
         self.checkpoint_every = checkpoint_every
         self.skip_noops = skip_noops
+        # Whether a step counts the robots its chooser passed over (a schedule file passes nobody over).
+        self.counts_passed_over = True
         self.use_watches = use_watches
         self.fast_forward = fast_forward and skip_noops
         self.check_walks = check_walks_requested() if check_walks is None else check_walks

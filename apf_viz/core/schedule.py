@@ -58,13 +58,19 @@ class ScheduleHeader(BaseModel):
         return self
 
 
+NOTE_LENGTH = 300
+"""A line's note, at most this many characters: words for the Last event line, not a document."""
+
+
 class Activation(BaseModel):
     """One ASYNC event: this robot's next phase, which must be ``phase``. A robot that does not exist
-    (a negative number included) is refused when the run reaches it, so that the run so far is kept."""
+    (a negative number included) is refused when the run reaches it, so that the run so far is kept.
+    ``note``: what the person who wrote the line wants said when it is played."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
     robot: StrictInt
     phase: Phase
+    note: str | None = Field(default=None, max_length=NOTE_LENGTH)
 
 
 class Round(BaseModel):
@@ -72,6 +78,7 @@ class Round(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
     round: list[StrictInt] = Field(min_length=1)
+    note: str | None = Field(default=None, max_length=NOTE_LENGTH)
 
 
 Line = Activation | Round
@@ -85,7 +92,7 @@ class Schedule:
     or an activation of a robot that does not exist, refused when followed: the run up to it is kept)
     as ``-1 - i``, the i-th of ``_others`` (an index as large as 10^23 would not fit the array)."""
 
-    __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "y_up")
+    __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "notes", "y_up")
 
     def __init__(
         self, k: int, y_up: Sequence[bool] | None = None, light_semantics: LightSemantics | None = None
@@ -96,8 +103,11 @@ class Schedule:
         self._numbers = array("q")
         self._codes = array("q")
         self._others: list[Line] = []
+        self.notes: dict[int, str] = {}  # line number → the note written on that line
 
     def add(self, number: int, line: Line) -> None:
+        if line.note:
+            self.notes[number] = line.note
         if isinstance(line, Activation) and 0 <= line.robot < self.k:
             self._add_activation(number, line.robot, _PHASE_CODE[line.phase])
             return
@@ -189,7 +199,7 @@ def schedule_text(
         header["y_up"] = [bool(u) for u in y_up]
     if light_semantics is not None:
         header["light_semantics"] = light_semantics
-    body = (json.dumps(line.model_dump()) for line in lines)
+    body = (json.dumps(line.model_dump(exclude_none=True)) for line in lines)
     return "\n".join([json.dumps(header), *body]) + "\n"
 
 
@@ -236,6 +246,14 @@ def follow(engine: Engine, schedule: Schedule, where: str = "schedule") -> Itera
     number after it ran. A robot whose activation changes nothing is activated as written. (The flips
     and light semantics are the engine's: :func:`adversary_flips` says which flips to build it with.)"""
     check_robots(schedule, engine.k, where)
+    engine.counts_passed_over = False  # the schedule chooses: no scheduler passes anyone over
+    try:
+        yield from _follow(engine, schedule, where)
+    finally:
+        engine.counts_passed_over = True
+
+
+def _follow(engine: Engine, schedule: Schedule, where: str) -> Iterator[int]:
     lc_atomic = engine.light_semantics == "lc-atomic"
     k = engine.k
     for n, robot, what in schedule:

@@ -12,7 +12,7 @@ from apf_viz.core.files import write_atomic
 from apf_viz.core.formats import trace_text
 from apf_viz.core.grid import Point
 from apf_viz.core.run import trace_header
-from apf_viz.explore.explorer import Decisions, Explorer, Result
+from apf_viz.explore.explorer import Decisions, Explorer, Result, Wanted
 
 
 def check(
@@ -25,8 +25,10 @@ def check(
     progress: bool = True,
     light_semantics: str = "compute",
     reduction: bool = True,
+    want: Wanted | None = None,
 ) -> tuple[Result, tuple[bool, ...]]:
-    """Explore each assignment of flips; stop at the first violation. States add up across flips."""
+    """Explore each assignment of flips; stop at the first violation (with ``want``: the first of that
+    kind, the others passed over). States add up across flips."""
     total_states = total_transitions = 0
     seconds = 0.0
     last: Result | None = None
@@ -43,13 +45,16 @@ def check(
             light_semantics=light_semantics,
             reduction=reduction,
             decisions=decisions,
+            want=want,
         )
         total_states += r.states
         total_transitions += r.transitions
         seconds += r.seconds
         r.states, r.transitions, r.seconds = total_states, total_transitions, seconds
+        if last is not None and r.verdict == "absent" and last.verdict == "absent":
+            r.detail = _passed_together(last.detail, r.detail)
         last = r
-        if r.verdict != "verified":
+        if r.verdict not in ("verified", "absent"):
             return r, tuple(y_up)
     assert last is not None
     return last, tuple(flips[-1])
@@ -67,6 +72,7 @@ def explore(
     light_semantics: str = "compute",
     reduction: bool = True,
     decisions: Decisions | None = None,
+    want: Wanted | None = None,
 ) -> Result:
     """One assignment of flips (``decisions``: what searches from the same start share). With
     ``reduction`` (ASYNC only) the search skips the orders of invisible
@@ -85,12 +91,29 @@ def explore(
             light_semantics=light_semantics,  # type: ignore[arg-type]
             reduction=reduce,
             decisions=decisions,
+            want=want,
         ).run()
 
+    if want is not None:  # every edge is followed past the failures not wanted: no reduction
+        return search(False)
     r = search(reduction)
     if reduction and scheduler == "async" and r.verdict not in ("verified", "budget"):
         r = _shortest(r, search(False))
     return r
+
+
+def _passed_together(before: str, now: str) -> str:
+    """Two flip assignments' "absent" details as one: the failures passed over, added up."""
+    counts: dict[str, int] = {}
+    for detail in (before, now):
+        _, _, passed = detail.partition("; passed over: ")
+        for part in filter(None, passed.split(", ")):
+            n, kind = part.split(" ", 1)
+            counts[kind] = counts.get(kind, 0) + int(n.replace(",", ""))
+    head = now.partition("; passed over: ")[0]
+    if not counts:
+        return head
+    return head + "; passed over: " + ", ".join(f"{n:,} {kind}" for kind, n in sorted(counts.items()))
 
 
 def _shortest(reduced: Result, full: Result) -> Result:

@@ -8,6 +8,11 @@ Verdicts: ``collision``; ``escape`` (a robot left the box around start ∪ patte
 finite); ``deadlock`` (a terminal state that is not the pattern); ``livelock`` (a strongly connected set of
 states, not all quiescent, in which every robot acts: a fair execution that never ends); ``budget`` (the
 state limit was hit first: nothing is proved); ``verified``.
+
+``want`` looks for one kind of failure only: a violation of another kind ends that run (its edge leads
+nowhere) and the search goes on past it, so a deadlock is found where a collision would have stopped
+the search first. None of that kind in the whole space is verdict ``absent`` (what was passed over is
+counted in the detail).
 """
 
 from __future__ import annotations
@@ -23,9 +28,11 @@ from apf_viz.core.grid import Point, as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.explore.state_space import Decisions, State, StateSpace, Violation
 
-__all__ = ["Decisions", "Explorer", "Result", "Verdict"]
+__all__ = ["WANTED", "Decisions", "Explorer", "Result", "Verdict", "Wanted"]
 
-Verdict = Literal["verified", "collision", "escape", "deadlock", "livelock", "budget"]
+Verdict = Literal["verified", "collision", "escape", "deadlock", "livelock", "budget", "absent"]
+Wanted = Literal["collision", "escape", "deadlock", "livelock"]
+WANTED: tuple[Wanted, ...] = ("collision", "escape", "deadlock", "livelock")
 
 
 @dataclass
@@ -79,8 +86,11 @@ class Explorer:
         progress: Callable[[int, int, float], None] | None = None,
         reduction: bool = False,
         decisions: Decisions | None = None,
+        want: Wanted | None = None,
     ) -> None:
         self.algorithm = algorithm
+        self.want = want
+        self.passed: dict[str, int] = {}  # with ``want``: the failures of other kinds passed over
         self.robots = [as_point(p) for p in robots]
         self.pattern = tuple(as_point(p) for p in pattern)
         self.y_up = tuple(y_up)
@@ -109,7 +119,7 @@ class Explorer:
             light_semantics == "lc-atomic",
             # Partial-order reduction (docs/VERIFICATION.md): only under ASYNC, where one event is one
             # robot's.
-            reduction and scheduler == "async",
+            reduction and scheduler == "async" and want is None,  # the reduction's argument is for "all"
             # Shared by the searches of one start under several flips (explore/check.py), or this one's own.
             decisions if decisions is not None else Decisions(),
             box,
@@ -141,8 +151,12 @@ class Explorer:
         quiet = [self.space.quiescent(s) for s in graph.states]
         for i, s in enumerate(graph.states):
             if quiet[i] and not matches_pattern(self.space.positions(s, graph.origins[i]), self.pattern):
-                detail = "a terminal state that is not the pattern"
-                return self._fail("deadlock", detail, graph, i, None, t0)
+                if self.want in (None, "deadlock"):
+                    detail = "a terminal state that is not the pattern"
+                    return self._fail("deadlock", detail, graph, i, None, t0)
+                self.passed["deadlock"] = self.passed.get("deadlock", 0) + 1
+        if self.want in ("collision", "escape", "deadlock"):
+            return self._absent(graph, t0)
         loop = self._fair_cycle(graph, quiet)
         seconds = time.perf_counter() - t0
         if loop is not None:
@@ -157,7 +171,37 @@ class Explorer:
                 loop_start=len(stem),
                 detail="a fair cycle of states that never becomes quiescent",
             )
+        if self.want is not None:
+            return self._absent(graph, t0)
         return Result("verified", n, graph.transitions, seconds)
+
+    def _absent(self, graph: Graph, t0: float) -> Result:
+        """No failure of the kind wanted anywhere in the space searched (within the box)."""
+        passed = ", ".join(f"{n:,} {kind}(s)" for kind, n in sorted(self.passed.items()))
+        detail = f"no {self.want} in any schedule (every state within the box searched)"
+        if passed:
+            detail += f"; passed over: {passed}"
+        seconds = time.perf_counter() - t0
+        return Result("absent", len(graph.states), graph.transitions, seconds, detail=detail)
+
+    def _successors_past_violations(
+        self, st: State, origin: Point, out: list[tuple[State, Point]]
+    ) -> tuple[tuple[tuple[int, ...], ...], Violation | None]:
+        """Every edge (``want``): a violation of another kind is counted and leads nowhere; the first
+        of the kind wanted is returned, with the edges before it."""
+        space = self.space
+        groups: list[tuple[int, ...]] = []
+        for g in space.every_group():
+            try:
+                out.append(space.edge(st, origin, g))
+            except Violation as v:
+                kind = "collision" if str(v).startswith("collision") else "escape"
+                if kind == self.want:
+                    return tuple(groups), v
+                self.passed[kind] = self.passed.get(kind, 0) + 1
+                continue
+            groups.append(g)
+        return tuple(groups), None
 
     def _search(self, t0: float) -> Result | Graph:
         """Every state reachable from the start, breadth first, or the Result that stopped the search (a
@@ -174,10 +218,13 @@ class Explorer:
             i += 1
             nexts: list[tuple[State, Point]] = []
             violation = None
-            try:
-                groups = successors(states[i], origins[i], nexts)
-            except Violation as v:
-                groups, violation = before, v  # the edges before it are searched first, as any edges
+            if self.want is not None:
+                groups, violation = self._successors_past_violations(states[i], origins[i], nexts)
+            else:
+                try:
+                    groups = successors(states[i], origins[i], nexts)
+                except Violation as v:
+                    groups, violation = before, v  # the edges before it are searched first, as any edges
             out: list[int] = []
             for p, (st, o) in enumerate(nexts):
                 j = index.get(st)

@@ -77,6 +77,8 @@ class RunController:
         # A replayed trace is followed step by step until the person branches (Branch here).
         self.following = engine is not None and engine.history.length > 0
         self.following_what = "the trace"
+        # A followed schedule's notes, by the step whose line carried them (kept while those steps are).
+        self.step_notes: dict[int, str] = {}
         # Every line of steps a branch dropped, so that the person can go back to any of them.
         self.branches = Branches()
         # How the recorded line ends, as last seen at its end: (history generation, length, words, outcome).
@@ -193,7 +195,12 @@ class RunController:
         if history.generation != generation and history.dropped is not None:
             at, records = history.dropped
             self.branches.keep(at, records, line_end)
+            self.step_notes = {n: note for n, note in self.step_notes.items() if n <= at}
         self._note_end()
+
+    def note_here(self) -> str:
+        """The note a schedule's line wrote for the step just taken, if any."""
+        return self.step_notes.get(self.engine.step_index, "")
 
     def _end_words(self, generation: int, length: int) -> str:
         """How the recorded line of that generation and length ends, if it was seen at its end."""

@@ -3,6 +3,7 @@ story of the last events."""
 
 from __future__ import annotations
 
+import html
 import time
 
 from apf_viz.demos import scenarios
@@ -195,6 +196,8 @@ class RunFolder:
         put(self.controls, options=("Step", "Back", "Pause" if view.playing else "Play", "Reset"))
         put(self.event, value=view.event)
         last = f"**Last event:** {view.last_events[0]}" if view.last_events else "**Last event:** —"
+        if view.note_here:  # the schedule's author speaks: their words, escaped, never markup
+            last += f"  \n📝 <i>{html.escape(view.note_here)}</i>"
         now = time.monotonic()
         if self.last_event.content != last and (
             not view.playing or now - self._last_event_at >= LAST_EVENT_REFRESH_S

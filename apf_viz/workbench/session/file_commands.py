@@ -145,13 +145,16 @@ class FileCommands(SessionCore):
         with self.lock:
             config, notes = _with_schedule_adversary(self.config, schedule, filename)
             engine = config.engine(self.run.plugins)
+            written: dict[int, str] = {}  # the step a line's note belongs to: the last step it made
             try:
-                for _ in follow(engine, schedule, filename):
-                    pass
+                for n in follow(engine, schedule, filename):
+                    if n in schedule.notes:
+                        written[engine.step_index] = schedule.notes[n]
             except ScheduleError as e:
                 notes.append(f"{e}; the run follows the schedule up to there")
             self._drafts_follow(config)
             self.run.adopt(config, engine, engine.state.events, what=f"the schedule {filename}")
+            self.run.step_notes = written
             self.scenario_note = ""
             self.mode = "run"
             self._clear_selections()

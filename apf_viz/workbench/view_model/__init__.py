@@ -74,6 +74,7 @@ def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
         outcome=st.outcome,
         caption=story.caption(e, None, True, []),
         last_events=story.last_events(e),
+        note_here=run.note_here(),
         trace_position=run.trace_position,
         # Formed, nothing is pending any more: rings of phase and of the last actor would read as marks.
         last_actor=story.last_actor(e) if running and st.outcome != "formed" else None,

@@ -98,7 +98,8 @@ def _status(view: SessionView) -> str:
 
 def _event_line(view: SessionView) -> str:
     last = html.escape(view.last_events[0]) if view.last_events else "the start"
-    return f"Event {view.event} · {last}"
+    note = f" · <i>{html.escape(view.note_here)}</i>" if view.note_here else ""
+    return f"Event {view.event} · {last}{note}"
 
 
 def _why(view: SessionView) -> str:

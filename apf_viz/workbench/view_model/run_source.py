@@ -23,6 +23,8 @@ class RunSource(Protocol):
     following_what: str  # "the trace", or what else is followed
     branches: Branches  # the lines of steps branches dropped
 
+    def note_here(self) -> str: ...
+
     @property
     def trace_options(self) -> Mapping[str, object]: ...
 

@@ -93,6 +93,7 @@ class SessionView:
     scenario_note: str = ""  # what the Demo scenario shown shows
     algorithm: str = ""  # the run's algorithm (by name)
     algorithm_title: str = ""  # the run's algorithm in words (Compare's titles, the caption)
+    note_here: str = ""  # what a followed schedule's line says of the step just taken
     branches: tuple[str, ...] = ()  # the lines of steps branches dropped, oldest first, as listed
     following_what: str = "the trace"  # what Step follows while trace_position is set
     click_advances: bool = True  # Manual: a click on a robot runs its next phase (else: selects only)
