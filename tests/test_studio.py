@@ -71,16 +71,20 @@ def test_move_translates_the_pattern_and_moves_one_robot_in_one_action():
     assert (9, 9) in s.editor.robots and (5, 1) not in s.editor.robots and len(s.editor.robots) == 4
 
 
-def test_fit_pattern_never_removes_what_was_drawn_and_fit_robots_says_what_it_did():
-    """The issue's drawing: more cells than robots. Fit pattern removes nothing (it used to drop the last
-    drawn: APF + ring + box left the old heart); Fit robots places robots instead, the start solvable;
-    Undo brings back either."""
+def test_a_fit_is_previewed_and_says_what_it_did_and_undo_brings_back_either():
+    """More cells than robots: the preview says what each fit would do before it is clicked; Fit pattern
+    trims the last-drawn cells (as the command line's --count does), and Undo brings them back; Fit
+    robots places robots instead, the start solvable."""
     s = session()
     s.clear_pattern()
     s.draw_box((0, 0), (2, 1), erase=False)  # 6 cells for 4 robots
     drawn = list(s.editor.pattern)
+    preview = s.screen.studio.fit_preview(s.editor)
+    assert preview == "Fit pattern trims the 2 last-drawn cells · Fit robots adds 2 robots"
     said = s.transform("Fit pattern")
-    assert s.editor.pattern == drawn and "nothing removed" in said and "Fit robots" in said
+    assert s.editor.pattern == drawn[:4] and "removed the 2 last-drawn cells" in said
+    s.transform("Undo")
+    assert s.editor.pattern == drawn
     said = s.transform("Fit robots")
     assert len(s.editor.robots) == 6 and "added 2 robots" in said and s.editor.pattern == drawn
     assert s.editor.problem() is None  # sizes equal, and the start is solvable
@@ -227,3 +231,103 @@ def test_next_stage_while_editing_says_why_not_a_scheduler_it_does_not_need():
     s.set_mode("edit-robots")
     said = s.run_until("stage")
     assert said.startswith("Next move / Next stage runs in Run mode") and "Manual" not in said
+
+
+def test_the_eraser_erases_a_click_and_a_dragged_stroke_is_one_undo():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (5, 0), erase=False)
+    s.set_tool("eraser")
+    s.click((0, 0))
+    assert (0, 0) not in s.editor.pattern
+    s.stroke("start", (1, 0))
+    s.stroke("update", (4, 0))  # a fast pointer: every cell between is erased
+    s.stroke("end", None)
+    assert s.editor.pattern == [(5, 0)]
+    s.transform("Undo")  # the whole stroke, at once
+    assert sorted(s.editor.pattern) == [(1, 0), (2, 0), (3, 0), (4, 0), (5, 0)]
+    s.set_tool("cell")
+    s.stroke("start", (0, 3))
+    s.stroke("update", (2, 5))
+    s.stroke("end", None)
+    assert {(0, 3), (1, 4), (2, 5)} <= set(s.editor.pattern)  # painted along the drag
+    s.transform("Undo")
+    assert not {(0, 3), (1, 4), (2, 5)} & set(s.editor.pattern)
+    s.stroke("start", (9, 9))
+    s.stroke("end", None)
+    s.stroke("start", (9, 9))  # a drag over a painted cell only: nothing changed, no step kept
+    s.stroke("end", None)
+    s.transform("Undo")
+    assert (9, 9) not in s.editor.pattern
+
+
+def test_flood_fill_fills_a_closed_outline_refuses_an_open_one_and_undoes():
+    s = session()
+    s.clear_pattern()
+    s.set_tool("outline")
+    s.click((0, 0))
+    s.click((4, 3))  # 14 border cells, 6 inside
+    s.set_tool("fill")
+    assert "filled 6 cells" in s.click((2, 1))
+    assert len(s.editor.pattern) == 20
+    s.transform("Undo")
+    assert len(s.editor.pattern) == 14
+    s.set_tool("eraser")
+    s.click((0, 1))  # a gap in the outline
+    s.set_tool("fill")
+    with pytest.raises(ValueError, match="open"):
+        s.click((2, 1))
+    assert len(s.editor.pattern) == 13  # the refused fill changed nothing
+
+
+def test_the_live_mirror_copies_every_cell_drawn_or_erased_across_its_axes():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (4, 0), erase=False)  # the axis x = 2 is its middle
+    assert "x = 2" in s.set_mirror("x ↔")
+    s.set_tool("cell")
+    s.click((0, 2))
+    assert (0, 2) in s.editor.pattern and (4, 2) in s.editor.pattern
+    s.set_tool("eraser")
+    s.click((1, 0))
+    assert (1, 0) not in s.editor.pattern and (3, 0) not in s.editor.pattern
+    s.set_mirror("both")  # about the box's centre now: x = 2, y = 1
+    s.set_tool("cell")
+    s.click((0, -1))
+    assert {(0, -1), (4, -1), (0, 3), (4, 3)} <= set(s.editor.pattern)
+    s.transform("Undo")  # one click, four cells: one Undo
+    assert not {(0, -1), (4, -1), (0, 3), (4, 3)} & set(s.editor.pattern)
+    s.set_mirror("off")
+    s.click((7, 7))
+    assert (7, 7) in s.editor.pattern and (-3, 7) not in s.editor.pattern
+
+
+def test_a_selection_is_copied_pasted_cut_and_moved():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (1, 1), erase=False)
+    s.draw_box((5, 5), (5, 5), erase=False)
+    s.set_tool("select")
+    assert "selected 4 cell(s)" in s.draw_box((-1, -1), (2, 2), erase=False)
+    assert len(s.editor.pattern) == 5  # selecting draws nothing
+    s.selection_command("Copy")
+    s.set_tool("paste")
+    s.click((10, 0))
+    assert {(10, 0), (11, 0), (10, 1), (11, 1)} <= set(s.editor.pattern)
+    s.transform("→")  # Move all moves the selection only
+    assert (2, 0) in s.editor.pattern and (0, 0) not in s.editor.pattern and (5, 5) in s.editor.pattern
+    assert "cut: 4 cell(s)" in s.selection_command("Cut")
+    assert set(s.editor.pattern) == {(5, 5), (10, 0), (11, 0), (10, 1), (11, 1)}
+    s.click((20, 20))  # the cut cells are on the clipboard
+    assert (21, 21) in s.editor.pattern
+    assert "nothing selected" in s.selection_command("Delete")
+
+
+def test_a_fit_that_takes_seconds_is_said_first_and_goes_on_when_asked_again():
+    s = session()
+    s.clear_pattern()
+    s.draw_box((0, 0), (29, 19), erase=False)  # 600 cells for 4 robots
+    said = s.transform("Fit robots")
+    assert "will place 596 robots" in said and "again" in said and len(s.editor.robots) == 4
+    said = s.transform("Fit robots")
+    assert len(s.editor.robots) == 600

@@ -264,3 +264,54 @@ def robots_fitted(
         taken.add(cell)
     added = n - len(robots)
     return out, f"added {added} robots beside the others" if added else f"already {n} robots"
+
+
+def reflected(cells: Sequence[Point], twice_x: int | None, twice_y: int | None) -> Cells:
+    """``cells`` with their mirror images (the studio's live mirror): about the vertical line x =
+    ``twice_x``/2, the horizontal line y = ``twice_y``/2, or both (then four copies); halves allowed."""
+    out = list(cells)
+    if twice_x is not None:
+        out += [(twice_x - x, y) for x, y in out]
+    if twice_y is not None:
+        out += [(x, twice_y - y) for x, y in out]
+    return merged([], out)
+
+
+FILL_AREA = 250_000
+"""The flood fill searches at most this many cells (the drawing's box): a fill is a gesture, not a job."""
+
+
+def flood_filled(cells: Sequence[Point], seed: Point) -> Cells:
+    """The empty cells 4-connected to ``seed`` (which is empty), bounded by ``cells``: the region a paint
+    bucket fills. Refused when the region is open (it reaches outside the drawing's box: on an infinite
+    grid it would never end), or the box is larger than :data:`FILL_AREA`."""
+    taken = set(cells)
+    if seed in taken:
+        raise ShapeError(f"{seed} is drawn already: the fill fills an empty region (the eraser empties)")
+    if not taken:
+        raise ShapeError("nothing drawn to bound the fill: draw a closed outline first")
+    x0, x1 = min(x for x, _ in taken), max(x for x, _ in taken)
+    y0, y1 = min(y for _, y in taken), max(y for _, y in taken)
+    open_region = f"the region at {seed} is open (it reaches outside the drawing): close its outline first"
+    if not (x0 < seed[0] < x1 and y0 < seed[1] < y1):
+        raise ShapeError(open_region)
+    if (x1 - x0 + 1) * (y1 - y0 + 1) > FILL_AREA:
+        raise ShapeError(f"the drawing's box is larger than {FILL_AREA:,} cells: too large to fill")
+    region, seen, frontier = [], {seed}, [seed]
+    while frontier:
+        x, y = frontier.pop()
+        if not (x0 < x < x1 and y0 < y < y1):
+            raise ShapeError(open_region)
+        region.append((x, y))
+        for p in ((x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)):
+            if p not in taken and p not in seen:
+                seen.add(p)
+                frontier.append(p)
+    return region
+
+
+def inside(cells: Sequence[Point], a: Point, b: Point) -> Cells:
+    """The cells of ``cells`` in the box with corners ``a`` and ``b`` (a selection)."""
+    (xa, ya), (xb, yb) = a, b
+    x0, x1, y0, y1 = min(xa, xb), max(xa, xb), min(ya, yb), max(ya, yb)
+    return [(x, y) for x, y in cells if x0 <= x <= x1 and y0 <= y <= y1]

@@ -228,14 +228,14 @@ class App:
         self.server.stop()
 
     # ------------------------------------------------------------------ events
-    def cell_at(self, client, screen: tuple[float, float]) -> tuple[int, int] | None:
-        """The grid cell under a point of a browser's canvas (0..1 each way from its top-left)."""
+    def point_at(self, client, screen: tuple[float, float]) -> tuple[float, float] | None:
+        """The grid point under a point of a browser's canvas (0..1 each way from its top-left)."""
         try:
             origin, direction = ray_through(client.camera, screen)
         except (AssertionError, TypeError, ValueError):  # the browser has not reported its camera
             return None
         page = self._screen(client)
-        return (page.renderer if page else self.renderer).cell_of_ray(tuple(origin), tuple(direction))
+        return (page.renderer if page else self.renderer).point_of_ray(tuple(origin), tuple(direction))
 
     def _on_click(self, event) -> None:
         page = self._screen(event.client)  # a page trying its own run clicks in its own run

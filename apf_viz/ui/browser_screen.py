@@ -46,7 +46,7 @@ class Host(Protocol):
     def claim_presenter(self, client_id: int, code: str) -> str: ...
     def frame_client(self, client) -> None: ...
     def frame_all(self) -> None: ...
-    def cell_at(self, client, screen: tuple[float, float]) -> tuple[int, int] | None: ...
+    def point_at(self, client, screen: tuple[float, float]) -> tuple[float, float] | None: ...
 
 
 class BrowserScreen:
@@ -76,7 +76,7 @@ class BrowserScreen:
             browser=client.client_id,
             verifier=app.verifier,
             frame_all=app.frame_all,
-            cell_at=app.cell_at,
+            point_at=app.point_at,
             claim_presenter=(lambda code: app.claim_presenter(client.client_id, code))
             if app.by_code
             else None,

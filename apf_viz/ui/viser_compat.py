@@ -21,6 +21,10 @@ The accesses, and what each costs when it is missing:
   embeds (:data:`PLAYER_TIME_FIELD_JS`), through which ui/lecture_page.py seeks stop to stop. Without it
   the exported lecture says so in its caption and plays as a slideshow. Its contract test is a browser's
   (tests/test_lecture_projector.py, the exported page).
+- ``notification corner`` (in the page): the class of the box viser's notifications stand in
+  (:data:`NOTICES_BESIDE_THE_RUN`), moved from over the canvas to the bottom-right corner, over the panel.
+  Without it notifications stand where viser puts them, over the canvas's top-left corner. Its contract
+  test is a browser's (tests/test_bench_browser.py).
 """
 
 from __future__ import annotations
@@ -151,6 +155,15 @@ PLAYER_TIME_FIELD_JS = """function () {
     }
     return null;
   }"""
+
+
+# ---------------------------------------------------------------- where notifications stand
+# CSS for the page: viser's notifications (Mantine's) in the bottom-right corner, over the panel (or, in
+# presentation mode, the caption's end), the panel's width at 1024 px, so that they never cover the run.
+NOTICES_BESIDE_THE_RUN = (
+    "<style>.mantine-Notifications-root{position:fixed!important;top:auto!important;left:auto!important;"
+    "right:12px!important;bottom:12px!important;max-width:360px}</style>"
+)
 
 
 # ---------------------------------------------------------------- the check at start

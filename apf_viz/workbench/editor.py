@@ -30,6 +30,7 @@ class Editor:
         self.pattern: list[Point] = [as_point(p) for p in pattern]
         self._undo: list[Draft] = []
         self._redo: list[Draft] = []
+        self._gesture: Draft | None = None  # the draft before a gesture in progress (a drag)
 
     # ------------------------------------------------------------------ history
     @property
@@ -42,11 +43,30 @@ class Editor:
         self.robots, self.y_up, self.pattern = list(robots), list(y_up), list(pattern)
 
     def _record(self) -> None:
-        """Keep the draft as it is before a change (a new change forgets what Redo had)."""
+        """Keep the draft as it is before a change (a new change forgets what Redo had). During a gesture
+        it was kept once, when the gesture began: one Undo takes back the whole drag."""
+        if self._gesture is not None:
+            return
         self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], self.draft]
         self._redo = []
 
+    def begin_gesture(self) -> None:
+        """A drag begins: its changes, however many, are one step of the history."""
+        self.end_gesture()
+        self._record()
+        self._gesture = self.draft
+
+    def end_gesture(self) -> None:
+        """The drag ends; a drag that changed nothing leaves no step in the history."""
+        if self._gesture is None:
+            return
+        unchanged = self.draft == self._gesture
+        self._gesture = None
+        if unchanged and self._undo and self._undo[-1] == self.draft:
+            self._undo.pop()
+
     def undo(self) -> str:
+        self.end_gesture()
         if not self._undo:
             return "nothing to undo"
         self._redo.append(self.draft)

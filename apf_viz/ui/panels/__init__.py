@@ -81,7 +81,7 @@ class Panels:
         browser: Hashable | None = None,
         verifier: SharedVerifier | None = None,
         frame_all: Callable[[], None] = lambda: None,
-        cell_at: Callable | None = None,
+        point_at: Callable | None = None,
         claim_presenter: Claim | None = None,
     ) -> None:
         self.session = session
@@ -89,8 +89,8 @@ class Panels:
             session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
         )
         self.ctx.client = owner if browser is not None else None
-        if cell_at is not None:
-            self.ctx.cell_at = cell_at
+        if point_at is not None:
+            self.ctx.point_at = point_at
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]

@@ -109,8 +109,8 @@ class PanelContext:
     presenting: Callable[[], bool] = lambda: False  # set by the browser's Presentation
     release_focus: Callable[[], None] = lambda: None  # set by the Run folder: the keys drive the run again
     client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
-    # The grid cell under a point of a browser's canvas (0..1 each way), or None: the App's projection.
-    cell_at: Callable[[object, tuple[float, float]], tuple[int, int] | None] = lambda client, point: None
+    # The grid point under a point of a browser's canvas (0..1 each way), or None: the App's projection.
+    point_at: Callable[[object, tuple[float, float]], tuple[float, float] | None] = lambda client, point: None
     driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
     shared_handles: list = field(default_factory=list)  # shown only where it drives the shared run
     # Try it yourself (ui/own_runs.py): a class page branches a run of its own, and comes back; the App

@@ -1,12 +1,18 @@
 """Edit: draw the pattern or place the robots with the studio's tools (workbench/studio.py); switching back to
 Run checks the drafts and restarts. A box is dragged on the canvas (viser's rectangle select, this
-browser's own; Shift erases) while the Box tool is chosen in an edit mode."""
+browser's own; Shift erases) while the Box or Select tool is chosen in an edit mode; the cell tool and
+the eraser paint along a drag (ui/scene/paint_surface.py)."""
 
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put, tell
-from apf_viz.workbench.studio import FIT_PATTERN, FIT_ROBOTS, NUDGES, TOOLS, TRANSFORMS
+from apf_viz.ui.scene.camera import covered_cells
+from apf_viz.ui.scene.paint_surface import PaintSurface
+from apf_viz.workbench.selection import SELECTION_COMMANDS
+from apf_viz.workbench.studio import FIT_PATTERN, FIT_ROBOTS, MIRRORS, NUDGES, PAINTING, TOOLS, TRANSFORMS
 from apf_viz.workbench.view_model import SessionView
+
+REFRAMED = ("Rotate 90°", "Scale ×2", "Mirror ↔", "Mirror ↕")  # transforms after which the camera reframes
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
@@ -29,16 +35,23 @@ class EditFolder:
             self.text = gui.add_text(
                 "Text", initial_value="APF", hint="letters A–Z, digits, spaces (3×5 font)"
             )
-            self.text.on_update(ctx.from_browser(lambda e: s.set_tool_text(self.text.value), "Text"))
+            self.text.on_update(ctx.from_browser(self._on_text, "Text"))
             self.tool_hint = gui.add_markdown("")
+            self.mirror = gui.add_dropdown(
+                "Mirror", tuple(MIRRORS), initial_value="off", hint="copy every cell drawn across the middle"
+            )
+            self.mirror.on_update(ctx.from_browser(lambda e: s.set_mirror(self.mirror.value), "Mirror"))
+            selection = gui.add_button_group("Selection", SELECTION_COMMANDS)
+            selection.on_click(ctx.guard(lambda e: s.selection_command(e.target.value), "Selection"))
             transforms = gui.add_button_group("Transform", TRANSFORMS[:4])
-            transforms.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            transforms.on_click(ctx.guard(self._on_transform, "Edit"))
             nudge = gui.add_button_group("Move all", tuple(NUDGES))
             nudge.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             history = gui.add_button_group("History ", ("Undo", "Redo"))
             history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
             fit = gui.add_button_group("Fit to k", (FIT_PATTERN, FIT_ROBOTS))
             fit.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            self.fit_preview = gui.add_markdown("")
             gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
             self.save_as = gui.add_text("Save as", initial_value="", hint="a name for the pattern drawn")
             gui.add_button("Save pattern", hint="into the pattern library (serve --library DIR)").on_click(
@@ -54,6 +67,36 @@ class EditFolder:
             )
             command.on_trigger(ctx.guard(lambda e, label=label: s.transform(label), "Edit"))
         self._boxing = False
+        self._surface = PaintSurface(ctx.client, self._stroke) if ctx.client is not None else None
+
+    def _on_text(self, event) -> None:
+        """A refused text leaves the field as the studio holds it: what is drawn next is what it says."""
+        s = self.ctx.session
+        try:
+            s.set_tool_text(self.text.value)
+        except ValueError:
+            self.text.value = s.screen.studio.text
+            raise
+
+    def _on_transform(self, event) -> str:
+        said = self.ctx.session.transform(event.target.value)
+        if event.target.value in REFRAMED and event.client is not None:
+            self.ctx.changed()
+            self.ctx.frame(event.client)  # the drawing moved or grew: show it whole again
+        return said
+
+    def _stroke(self, client, phase: str, screen: tuple[float, float] | None) -> None:
+        """A drag on the paint surface: the cell under the pointer painted (or erased) along the way."""
+        point = self.ctx.point_at(client, screen) if screen is not None else None
+        cell = (round(point[0]), round(point[1])) if point is not None else None
+        session = self.ctx.session
+        if not session.may_drive(client.client_id):
+            return
+        try:
+            session.stroke(phase, cell)
+        except ValueError as err:
+            tell(client, "Refused", str(err), error=True)
+        self.ctx.changed()
 
     def _on_saved(self, event) -> str | None:
         name = self.saved.value
@@ -79,12 +122,14 @@ class EditFolder:
         self.ctx.changed()
 
     def _box(self, event, erase: bool) -> None:
-        """A box dragged on this browser's canvas: its corners as cells, then filled or erased."""
-        a, b = (self.ctx.cell_at(event.client, corner) for corner in (event.screen_min, event.screen_max))
+        """A box dragged on this browser's canvas: the cells whose centres it covers (what its preview
+        shows), then filled, erased or selected."""
+        a, b = (self.ctx.point_at(event.client, corner) for corner in (event.screen_min, event.screen_max))
         if a is None or b is None:
             tell(event.client, "Box", "drag the box over the grid", error=True)
             return
-        self.ctx.guard(lambda e: self.ctx.session.draw_box(a, b, erase), "Box")(event)
+        first, last = covered_cells(a, b)
+        self.ctx.guard(lambda e: self.ctx.session.draw_box(first, last, erase), "Box")(event)
 
     def _boxes(self, wanted: bool) -> None:
         """Rectangle select on this browser's canvas only while it draws boxes (a plain drag is the
@@ -112,7 +157,12 @@ class EditFolder:
             second = "where it goes" if studio.tool == "move" else "the second"
             hint = f"**first click at {view.anchor}**: now click {second} ({hint})"
         put(self.tool_hint, content=f"<small>{hint}</small>")
-        self._boxes(view.mode != "run" and studio.tool == "box")
+        self._boxes(view.mode != "run" and studio.tool in ("box", "select"))
+        if self._surface is not None:
+            self._surface.show(view.mode != "run" and studio.tool in PAINTING)
+        if self.mirror.value != studio.mirror:
+            self.mirror.value = studio.mirror
+        put(self.fit_preview, content=f"<small>{view.fit_preview}</small>" if view.fit_preview else "")
         options = ("—", *self.ctx.session.saved)
         if tuple(self.saved.options) != options:
             self.saved.options = options

@@ -72,6 +72,7 @@ class RunFolder:
             # a field has focus, and the dropdown keeps it. A constant handler in this browser's own panel
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
             gui.add_html(ESCAPE_RELEASES)
+            gui.add_html(viser_compat.NOTICES_BESIDE_THE_RUN)  # notifications never cover the run
             self._release = gui.add_html("")
             self._releases = 0
             ctx.release_focus = self.release_focus  # for the other folders' fields (Edit's Mode)

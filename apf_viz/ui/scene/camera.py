@@ -89,6 +89,25 @@ def camera_aspect(camera) -> float:
 
 def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     """The grid cell a click ray hits on the plane z = 0 (robots are small, so the cell is enough)."""
+    point = point_of_ray(origin, direction)
+    return None if point is None else (round(point[0]), round(point[1]))
+
+
+def covered_cells(a: tuple[float, float], b: tuple[float, float]) -> tuple[tuple[int, int], tuple[int, int]]:
+    """The corners of the cells a dragged rectangle covers the centres of (what its preview shows
+    filled); a rectangle narrower than a cell takes the cells its corners are in."""
+    x0, x1 = sorted((a[0], b[0]))
+    y0, y1 = sorted((a[1], b[1]))
+    cx0, cx1, cy0, cy1 = math.ceil(x0), math.floor(x1), math.ceil(y0), math.floor(y1)
+    if cx0 > cx1:
+        cx0 = cx1 = round((x0 + x1) / 2)
+    if cy0 > cy1:
+        cy0 = cy1 = round((y0 + y1) / 2)
+    return (cx0, cy0), (cx1, cy1)
+
+
+def point_of_ray(origin, direction) -> tuple[float, float] | None:
+    """Where a ray hits the plane z = 0 (None: it does not, or a browser sent a ray of no numbers)."""
     ox, oy, oz = origin
     dx, dy, dz = direction
     if abs(dz) < 1e-9:
@@ -99,7 +118,7 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     x, y = ox + t * dx, oy + t * dy
     if not (math.isfinite(x) and math.isfinite(y)):
         return None  # a browser may send any ray
-    return (round(x), round(y))
+    return (x, y)
 
 
 def pose_for(

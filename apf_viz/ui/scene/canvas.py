@@ -7,7 +7,7 @@ from collections.abc import Callable
 import numpy as np
 
 from apf_viz.core.portrayal import Frame, Line
-from apf_viz.ui.scene.camera import cell_of_ray, pose_for
+from apf_viz.ui.scene.camera import cell_of_ray, point_of_ray, pose_for
 from apf_viz.ui.scene.labels import text_cells
 from apf_viz.ui.scene.style import LABEL_SCALE, REORIGIN_DISTANCE, VISER_POINT_SCALE, Bounds
 from apf_viz.workbench.palette import PointShape
@@ -217,6 +217,11 @@ class Canvas:
         """The grid cell a click ray hits (see :func:`cell_of_ray`), in grid coordinates."""
         cell = cell_of_ray(origin, direction)
         return None if cell is None else (cell[0] + self.origin[0], cell[1] + self.origin[1])
+
+    def point_of_ray(self, origin, direction) -> tuple[float, float] | None:
+        """Where a ray hits the grid, in grid coordinates (a cell's centre is its whole point)."""
+        point = point_of_ray(origin, direction)
+        return None if point is None else (point[0] + self.origin[0], point[1] + self.origin[1])
 
     def _update_bounds(self, pts: np.ndarray, view: SessionView) -> None:
         """The box the camera keeps in view: robots, targets, and the corners of the overlays' frames

@@ -87,6 +87,7 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, Framing):
         self._segments("/axis", axis if axis is not None else np.zeros((0, 2, 3)), MARK_COLORS["axis"], 4.0)
         placed = self._marks(view, pts, said_boxes)
         self._anchor(view)
+        self._studio(view)
         x0, _, _, y1 = self.bounds
         # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
         self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])

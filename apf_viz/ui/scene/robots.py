@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 
+from apf_viz.core.portrayal import Line
 from apf_viz.ui.scene.camera import scene_detail
 from apf_viz.ui.scene.canvas import Canvas
 from apf_viz.ui.scene.style import LAYER, NOSE_CELLS, RIM_CROWD, SIZE, Z, light_colors, xyz
@@ -89,3 +92,21 @@ class RobotsLayer(Canvas):
             ("first click: now the second", (float(x) + 0.5, float(y) + 0.35, 0.1)) for x, y in at.tolist()
         ]
         self._labels("/anchor_label", said)
+
+    def _studio(self, view: SessionView) -> None:
+        """Edit: the selection's box (dashes round the cells it took) and the live mirror's axes."""
+        segments = np.zeros((0, 2, 3), np.float32)
+        if view.selection_box is not None:
+            (xa, ya), (xb, yb) = self._local(list(view.selection_box)).tolist()
+            x0, x1 = min(xa, xb) - 0.5, max(xa, xb) + 0.5
+            y0, y1 = min(ya, yb) - 0.5, max(ya, yb) + 0.5
+            corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)]
+            segments = np.array(
+                [[(*a, 0.07), (*b, 0.07)] for a, b in itertools.pairwise(corners)], np.float32
+            )
+        self._segments("/studio/selection", segments, MARK_COLORS["selected"], 2.0)
+        mirror_x, mirror_y = view.mirror_axes
+        axes = [Line("x", mirror_x, "")] if mirror_x is not None else []
+        axes += [Line("y", mirror_y, "")] if mirror_y is not None else []
+        lines = np.concatenate([self._line(a) for a in axes]) if axes else np.zeros((0, 2, 3), np.float32)
+        self._segments("/studio/mirror", lines, MARK_COLORS["axis"], 2.0)

@@ -13,6 +13,8 @@ from apf_viz.core.schedulers import BY_HAND
 from apf_viz.workbench.library import PatternLibrary
 from apf_viz.workbench.screen_state import Mode
 from apf_viz.workbench.session.core import SessionCore, shared_only
+from apf_viz.workbench.studio import PAINTING
+from apf_viz.workbench.studio import Mode as EditMode
 
 
 class EditCommands(SessionCore):
@@ -75,6 +77,7 @@ class EditCommands(SessionCore):
             if mode == "edit-pattern":
                 self._place_draft_beside_robots()
             self.mode = mode
+            self.screen.studio.selection.clear()  # a selection is of one draft
             return None
 
     def _place_draft_beside_robots(self) -> None:
@@ -146,13 +149,38 @@ class EditCommands(SessionCore):
         """A box dragged in an edit mode: filled, or (``erase``) emptied."""
         with self.lock:
             for cell in (a, b):
-                if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
-                    raise InputError(
-                        f"{cell} is outside the grid this tool supports (|x|, |y| ≤ {COORD_LIMIT:,})"
-                    )
+                _on_grid(cell)
             if self.mode == "run":
                 return "drag a box in Edit pattern or Edit robots"
             return self.screen.studio.box(self.editor, self.mode, a, b, erase)
+
+    def set_mirror(self, which: str) -> str:
+        """The live mirror: off, x ↔, y ↕ or both, about the middle of the draft being edited."""
+        with self.lock:
+            mode: EditMode = "edit-robots" if self.mode == "edit-robots" else "edit-pattern"
+            return self.screen.studio.set_mirror(self.editor, mode, which)
+
+    def stroke(self, phase: str, cell: Point | None) -> str:
+        """A drag on the canvas with the cell tool or the eraser: ``phase`` start, update or end (the
+        cell under the pointer; None where it is off the grid)."""
+        with self.lock:
+            studio = self.screen.studio
+            if phase == "end" or self.mode == "run" or studio.tool not in PAINTING:
+                studio.stroke_end(self.editor)
+                return ""
+            if cell is None:
+                return ""
+            _on_grid(cell)
+            if phase == "start":
+                return studio.stroke_begin(self.editor, self.mode, cell, studio.tool == "eraser")
+            return studio.stroke_to(self.editor, self.mode, cell)
+
+    def selection_command(self, name: str) -> str:
+        """Copy, Cut, Delete or Deselect the studio's selection."""
+        with self.lock:
+            if self.mode == "run":
+                return "select cells in Edit pattern or Edit robots"
+            return self.screen.studio.selection_command(self.editor, self.mode, name)
 
     def transform(self, name: str) -> str:
         """Mirror, rotate, scale or fit the draft being edited; Undo and Redo."""
@@ -164,3 +192,9 @@ class EditCommands(SessionCore):
             if name == "Redo":
                 return self.editor.redo()
             return self.screen.studio.transform(self.editor, self.mode, name)
+
+
+def _on_grid(cell: Point) -> None:
+    """Refuse a cell outside the grid this tool supports (a browser may send any point)."""
+    if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
+        raise InputError(f"{cell} is outside the grid this tool supports (|x|, |y| ≤ {COORD_LIMIT:,})")

@@ -61,7 +61,8 @@ def present_run(run: RunSource, screen: SharedScreen) -> SessionView:
     st = e.state
     pts = e.current_points()
     running = screen.mode == "run"
-    robots = robot_views(e, pts) if screen.mode != "edit-robots" else _drafted_robots(e, screen)
+    # In either Edit mode the robots drawn are the drafted ones, the robots the header counts.
+    robots = robot_views(e, pts) if running else _drafted_robots(e, screen)
     overlays = _overlays(run, screen, pts, st.lights)
     numbers = run_numbers(e, overlays)
     crash = story.collision(e, pts) if st.outcome == "collision" and running else None
@@ -115,6 +116,9 @@ def _screen_fields(run: RunSource, screen: SharedScreen) -> dict[str, Any]:
         "robot_count": len(screen.editor.robots) if editing else run.engine.k,
         "axis": screen.editor.axis() if screen.mode == "edit-robots" else None,
         "anchor": screen.studio.anchor if editing else None,
+        "fit_preview": screen.studio.fit_preview(screen.editor) if editing else "",
+        "selection_box": screen.studio.selection.box if editing else None,
+        "mirror_axes": screen.studio.axes if editing else (None, None),
         "click_advances": screen.click_advances,
         "scenario_note": screen.scenario_note,
         "lecture": lecture_words(screen.lecture, run.engine, run.playing),
@@ -328,7 +332,7 @@ def _configuration(run: RunSource, pts: list[Point], lights: list[str]) -> Confi
 
 
 def _drafted_robots(e: Engine, screen: SharedScreen) -> list[RobotView]:
-    """Edit robots: the robots being placed, not the run's."""
+    """Edit robots or pattern: the robots being placed (the drafts), not the run's."""
     first = e.algorithm.lights[0]
     editor = screen.editor
     return [

@@ -352,7 +352,9 @@ def counts(mode: str, draft_count: int, robot_count: int, robots: int, axis: flo
         fit = "" if draft_count == robot_count else " — Fit pattern or Fit robots makes them equal"
         return f"Targets: **{draft_count}** / robots: {robot_count}{fit}"
     if mode == "edit-robots":
-        if axis is not None:
+        if robot_count == 0:
+            theorem = "  \n✖ no robots: place at least one (a start needs robots to be solvable)"
+        elif axis is not None:
             theorem = (
                 f"  \n⚠ **unsolvable** (Theorem 1): mirror-symmetric about y = {axis:g}, a line through no "
                 "robot (drawn) — no algorithm can form every pattern from it; move or add a robot"

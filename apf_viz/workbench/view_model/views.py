@@ -71,6 +71,9 @@ class SessionView:
     robot_count: int  # robots being placed (in Run: the run's)
     axis: float | None  # the unsolvable symmetry axis of the robots being edited, if any
     anchor: Point | None = None  # Edit: the first click of a two-click tool (line, outline, move)
+    fit_preview: str = ""  # Edit: what Fit pattern and Fit robots would do now
+    selection_box: tuple[Point, Point] | None = None  # Edit: the corners of the studio's selection
+    mirror_axes: tuple[float | None, float | None] = (None, None)  # Edit: the live mirror's x and y axes
     selected: int | None = None  # this browser's (or, following, the presenter's) selected robot
     rays: tuple[tuple[Point, Point], ...] = ()  # to what the selected robot saw (its snapshot) or sees now
     ghosts: tuple[Ghost, ...] = ()  # where a robot was seen, in the light seen, if changed since
