@@ -3,12 +3,22 @@ and re-entered from the History folder, and what the studio saves being what the
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterator
 
 import pytest
 
 from apf_viz.ui.app import App, demo_session, free_port
-from tests.test_ui_browser import open_page, shot, wait_for
+from tests.test_ui_browser import (
+    _choose,
+    _drag,
+    open_folder,
+    open_page,
+    projector_page,
+    screen_of,
+    shot,
+    wait_for,
+)
 
 pytest.importorskip("playwright.sync_api")
 
@@ -74,4 +84,112 @@ def test_branch_return_branch_again_and_both_branches_are_re_entered(browser, ap
     app.request_render()
     page.get_by_text("Branches kept: 2").wait_for()  # entering keeps the line left: none is lost
     shot(page, "branches-1024")
+    page.close()
+
+
+def _text_field(page, label: str):
+    """A viser text field by its label (the label's ``for`` names no input: by the row it stands in)."""
+    row = page.locator(".mantine-Flex-root").filter(has=page.get_by_text(label, exact=True)).last
+    return row.locator("input").first
+
+
+def _undo(page) -> None:
+    page.keyboard.press("Control+z")
+
+
+def test_the_eraser_flood_fill_live_mirror_and_drag_painting_are_each_one_gesture_with_undo(browser, app):
+    """At 1024×768: an outline filled by one click, a row erased by one drag, a cell drawn with its
+    mirror image by one click, a row painted by one drag; each taken back by one Ctrl+Z."""
+    s = app.session
+    page, _, _ = projector_page(browser, app)
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit pattern")
+    wait_for(lambda: s.mode == "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    wait_for(lambda: s.editor.pattern == [])
+    _choose(page, "Tool", "outline")
+    wait_for(lambda: s.screen.studio.tool == "outline")
+    page.mouse.click(*screen_of(app, page, (9, 0)))
+    wait_for(lambda: s.screen.studio.anchor == (9, 0))
+    page.mouse.click(*screen_of(app, page, (14, 4)))
+    wait_for(lambda: len(s.editor.pattern) == 18)
+    outline = set(s.editor.pattern)
+    _choose(page, "Tool", "fill")
+    wait_for(lambda: s.screen.studio.tool == "fill")
+    page.mouse.click(*screen_of(app, page, (11, 2)))  # inside: 4 × 3 cells
+    wait_for(lambda: len(s.editor.pattern) == 30)
+    shot(page, "studio-filled")
+    _undo(page)
+    wait_for(lambda: set(s.editor.pattern) == outline)
+    _choose(page, "Tool", "eraser")
+    wait_for(lambda: s.screen.studio.tool == "eraser")
+    time.sleep(0.5)  # the paint surface reaches the page
+    _drag(page, app, (9, 0), (14, 0))  # the bottom row, by one drag
+    wait_for(lambda: not outline & {(x, 0) for x in range(9, 15)} & set(s.editor.pattern))
+    assert set(s.editor.pattern) == outline - {(x, 0) for x in range(9, 15)}
+    _undo(page)
+    wait_for(lambda: set(s.editor.pattern) == outline)  # the whole stroke, at once
+    _choose(page, "Mirror", "x ↔")
+    wait_for(lambda: s.screen.studio.mirror == "x ↔")  # about x = 11.5, the outline's middle
+    _choose(page, "Tool", "cell")
+    wait_for(lambda: s.screen.studio.tool == "cell")
+    page.mouse.click(*screen_of(app, page, (9, 6)))
+    wait_for(lambda: {(9, 6), (14, 6)} <= set(s.editor.pattern))
+    shot(page, "studio-mirror")
+    _undo(page)
+    wait_for(lambda: set(s.editor.pattern) == outline)
+    _choose(page, "Mirror", "off")
+    wait_for(lambda: s.screen.studio.mirror == "off")
+    time.sleep(0.5)
+    _drag(page, app, (9, 7), (14, 7))  # painted along the drag
+    wait_for(lambda: {(x, 7) for x in range(9, 15)} <= set(s.editor.pattern))
+    _undo(page)
+    wait_for(lambda: set(s.editor.pattern) == outline)
+    page.close()
+
+
+def test_save_in_edit_robots_saves_the_pattern_drawn(browser, app, tmp_path):
+    from apf_viz.workbench.library import PatternLibrary
+
+    s = app.session
+    s.use_library(PatternLibrary(tmp_path / "library"))
+    page, _, _ = projector_page(browser, app)
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit pattern")
+    wait_for(lambda: s.mode == "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    _choose(page, "Tool", "box")
+    wait_for(lambda: s.screen.studio.tool == "box")
+    time.sleep(0.5)
+    _drag(page, app, (9, 0), (14, 3))
+    wait_for(lambda: len(s.editor.pattern) == 24)
+    drawn = set(s.editor.pattern)
+    _choose(page, "Mode", "Edit robots")
+    wait_for(lambda: s.mode == "edit-robots")
+    page.get_by_text("Robots: 10 / targets: 24").wait_for()
+    field = _text_field(page, "Save as")
+    field.fill("my-box")
+    field.press("Enter")
+    page.get_by_role("button", name="Save pattern").click()
+    wait_for(lambda: "my-box" in s.saved)
+    assert set(map(tuple, s.library.load("my-box"))) == drawn  # the drawing, not the run's heart
+    page.close()
+
+
+def test_notifications_stand_over_the_panel_never_over_the_run(browser, app):
+    """The contract of ui/viser_compat.py's notification corner: a notification's box lies right of the
+    canvas's run area (over the panel), whatever viser's default."""
+    page, cid, screen = projector_page(browser, app)
+    page.get_by_role("button", name="Frame run").click()
+    from apf_viz.ui.panels.context import tell
+
+    tell(screen.client, "Hello", "a notification")
+    note = page.locator(".mantine-Notification-root").filter(has_text="a notification")
+    note.wait_for()
+    time.sleep(0.6)  # it slides in
+    box = note.bounding_box()
+    canvas = page.locator("canvas").first.bounding_box()
+    panel_left = canvas["x"] + canvas["width"]
+    assert box is not None and box["x"] >= panel_left - 5, (box, panel_left)
+    shot(page, "notification-corner")
     page.close()

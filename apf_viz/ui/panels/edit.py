@@ -5,6 +5,8 @@ the eraser paint along a drag (ui/scene/paint_surface.py)."""
 
 from __future__ import annotations
 
+import html
+
 from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.scene.camera import covered_cells
 from apf_viz.ui.scene.paint_surface import PaintSurface
@@ -37,20 +39,25 @@ class EditFolder:
             )
             self.text.on_update(ctx.from_browser(self._on_text, "Text"))
             self.tool_hint = gui.add_markdown("")
+            self.said = gui.add_markdown("")  # what the last edit did: in the panel, not over the run
             self.mirror = gui.add_dropdown(
                 "Mirror", tuple(MIRRORS), initial_value="off", hint="copy every cell drawn across the middle"
             )
-            self.mirror.on_update(ctx.from_browser(lambda e: s.set_mirror(self.mirror.value), "Mirror"))
+            self.mirror.on_update(
+                ctx.from_browser(self._quietly(lambda e: s.set_mirror(self.mirror.value)), "Mirror")
+            )
             selection = gui.add_button_group("Selection", SELECTION_COMMANDS)
-            selection.on_click(ctx.guard(lambda e: s.selection_command(e.target.value), "Selection"))
+            selection.on_click(
+                ctx.guard(self._quietly(lambda e: s.selection_command(e.target.value)), "Selection")
+            )
             transforms = gui.add_button_group("Transform", TRANSFORMS[:4])
-            transforms.on_click(ctx.guard(self._on_transform, "Edit"))
+            transforms.on_click(ctx.guard(self._quietly(self._on_transform), "Edit"))
             nudge = gui.add_button_group("Move all", tuple(NUDGES))
-            nudge.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            nudge.on_click(ctx.guard(self._quietly(lambda e: s.transform(e.target.value)), "Edit"))
             history = gui.add_button_group("History ", ("Undo", "Redo"))
-            history.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            history.on_click(ctx.guard(self._quietly(lambda e: s.transform(e.target.value)), "Edit"))
             fit = gui.add_button_group("Fit to k", (FIT_PATTERN, FIT_ROBOTS))
-            fit.on_click(ctx.guard(lambda e: s.transform(e.target.value), "Edit"))
+            fit.on_click(ctx.guard(self._quietly(lambda e: s.transform(e.target.value)), "Edit"))
             self.fit_preview = gui.add_markdown("")
             gui.add_button("Clear pattern").on_click(ctx.guard(lambda e: s.clear_pattern()))
             self.save_as = gui.add_text("Save as", initial_value="", hint="a name for the pattern drawn")
@@ -65,9 +72,20 @@ class EditFolder:
             command = gui.add_command(
                 label, description=f"{label} the last edit", hotkey=key, modifier=modifier
             )
-            command.on_trigger(ctx.guard(lambda e, label=label: s.transform(label), "Edit"))
+            command.on_trigger(ctx.guard(self._quietly(lambda e, label=label: s.transform(label)), "Edit"))
         self._boxing = False
         self._surface = PaintSurface(ctx.client, self._stroke) if ctx.client is not None else None
+
+    def _quietly(self, fn):
+        """An edit's words go to the line under the tool (this browser's), not to a notification: the
+        drawing itself shows what changed. A refusal still raises, and is notified."""
+
+        def said(event) -> None:
+            words = fn(event)
+            if isinstance(words, str):
+                put(self.said, content=f"<small>↳ {html.escape(words)}</small>" if words else "")
+
+        return said
 
     def _on_text(self, event) -> None:
         """A refused text leaves the field as the studio holds it: what is drawn next is what it says."""
@@ -129,7 +147,7 @@ class EditFolder:
             tell(event.client, "Box", "drag the box over the grid", error=True)
             return
         first, last = covered_cells(a, b)
-        self.ctx.guard(lambda e: self.ctx.session.draw_box(first, last, erase), "Box")(event)
+        self.ctx.guard(self._quietly(lambda e: self.ctx.session.draw_box(first, last, erase)), "Box")(event)
 
     def _boxes(self, wanted: bool) -> None:
         """Rectangle select on this browser's canvas only while it draws boxes (a plain drag is the
