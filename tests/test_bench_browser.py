@@ -193,3 +193,32 @@ def test_notifications_stand_over_the_panel_never_over_the_run(browser, app):
     assert box is not None and box["x"] >= panel_left - 5, (box, panel_left)
     shot(page, "notification-corner")
     page.close()
+
+
+def test_arrows_on_a_focused_slider_move_the_slider_only_and_f_after_a_mode_frames(browser, app):
+    import numpy as np
+
+    s = app.session
+    for _ in range(30):
+        s.step()
+    page, _, screen = projector_page(browser, app)
+    app.request_render()
+    slider = page.get_by_role("slider").filter(has=page.locator("xpath=.")).nth(1)  # Speed, then Timeline
+    wait_for(lambda: screen.client.camera is not None)
+    time.sleep(1.0)
+    before = np.array(screen.client.camera.position, dtype=float)
+    slider.focus()
+    page.keyboard.down("ArrowLeft")  # held: the camera turns while a key it listens to is held
+    time.sleep(0.6)
+    page.keyboard.up("ArrowLeft")
+    wait_for(lambda: s.engine.step_index < 30)  # the timeline moved back …
+    time.sleep(1.0)
+    after = np.array(screen.client.camera.position, dtype=float)
+    assert np.allclose(before, after, atol=1e-6), (before, after)  # … and the view did not turn
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit robots")
+    wait_for(lambda: s.mode == "edit-robots")
+    page.wait_for_function("document.activeElement === document.body")  # the dropdown let go
+    page.keyboard.press("f")
+    assert page.get_by_role("combobox", name="Mode").input_value() == "Edit robots"  # no "Edit robotsf"
+    page.close()

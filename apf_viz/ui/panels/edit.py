@@ -123,6 +123,7 @@ class EditFolder:
     def _on_tool(self) -> None:
         self.ctx.session.set_tool(self.tool.value)
         self.tool.hint = TOOLS[self.tool.value]
+        self.ctx.release_focus()  # a key typed next is a shortcut, not a search in the dropdown
 
     def _on_mode(self, event) -> None:
         if event.client is None:
@@ -135,7 +136,7 @@ class EditFolder:
         if problem:  # refused: the drafts stay, and the browser that asked is told why
             self.mode.value = MODE_LABELS[s.mode]
             tell(event.client, "Still editing", problem, error=True)
-        elif s.mode == "run":  # back to the run: Space plays it, not the dropdown
+        else:  # the keys act on the run again (Space plays, F frames), not on the dropdown
             self.ctx.release_focus()
         self.ctx.changed()
 

@@ -26,6 +26,16 @@ ESCAPE_RELEASES = (
     '">'
 )
 
+# A focused slider (the Timeline, Speed) takes the arrow keys for itself: the page's camera listens to
+# them on the document, after the slider has moved, and would turn the view too. Stopped at the body, on
+# their way up from a slider, they never reach it. One listener a page, installed as above.
+SLIDER_KEYS_STAY = (
+    '<img alt="" src="data:,slider" style="display:none" onerror="'
+    "if(!window.apfSliderKeys){window.apfSliderKeys=1;document.body.addEventListener('keydown',function(e){"
+    "var t=e.target;if(t&&t.getAttribute&&t.getAttribute('role')==='slider'){e.stopPropagation();}});}"
+    '">'
+)
+
 RELEASE_FOCUS = (
     '<img alt="" src="data:,{n}" style="display:none" '
     'onerror="document.activeElement && document.activeElement.blur && document.activeElement.blur()">'
@@ -34,7 +44,8 @@ RELEASE_FOCUS = (
 
 KEYS_DRIVING = (
     "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
-    "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them)</small>"
+    "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them). In a focused field "
+    "or slider, keys act on it alone; Esc gives them back</small>"
 )
 KEYS_FOLLOWING = (
     "<small>Keys: F frame the run · P presentation mode (the presenter's keys drive the run)</small>"
@@ -72,6 +83,7 @@ class RunFolder:
             # a field has focus, and the dropdown keeps it. A constant handler in this browser's own panel
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
             gui.add_html(ESCAPE_RELEASES)
+            gui.add_html(SLIDER_KEYS_STAY)
             gui.add_html(viser_compat.NOTICES_BESIDE_THE_RUN)  # notifications never cover the run
             self._release = gui.add_html("")
             self._releases = 0
@@ -308,9 +320,9 @@ class HistoryFolder:
             ))  # fmt: skip
             self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
             cycle = ctx.driving(gui.add_button(
-                "Back a cycle", hint="undo the last actor's whole Look-Compute-Move cycle"
+                "Undo the last cycle", hint="back before the last actor's Look: its whole Look-Compute-Move"
             ))  # fmt: skip
-            cycle.on_click(ctx.guard(lambda e: s.back_cycle(), "Back a cycle"))
+            cycle.on_click(ctx.guard(lambda e: s.back_cycle(), "Undo the last cycle"))
             self.branches = ctx.driving(gui.add_dropdown(
                 "Branches", ("—",), initial_value="—", visible=False,
                 hint="every line of steps a step from the past left: where it left, how it ends",
