@@ -108,6 +108,8 @@ class SessionCore:
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
         self.saved = self.library.names()  # their names, read once and after each save
+        # A pattern's name, by its cells (sorted): the name it was saved or loaded under, for a download.
+        self.pattern_names: dict[tuple[Point, ...], str] = {}
 
     # ------------------------------------------------------------------ browsers
     def join(self, browser: Hashable, role: Role = "presenter") -> BrowserState:

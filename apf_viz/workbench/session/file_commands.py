@@ -175,8 +175,12 @@ class FileCommands(SessionCore):
             return robots_json(self.config.robots, self.config.y_up)
 
     def pattern_file(self) -> str:
+        """The pattern the page shows (the drawn one in either Edit mode, the run's in Run), named as it
+        was saved or loaded, else by its size."""
         with self.lock:
-            return pattern_json(self.editor.pattern if self.mode == "edit-pattern" else self.config.pattern)
+            cells = list(self.editor.pattern if self.mode != "run" else self.config.pattern)
+            name = self.pattern_names.get(tuple(sorted(cells))) or f"pattern of {len(cells)} cells"
+            return pattern_json(cells, name)
 
     def trace_file(self) -> str:
         """The run as a trace file, at any moment, with its verdict: while a trace or branch is followed,
