@@ -222,3 +222,36 @@ def test_arrows_on_a_focused_slider_move_the_slider_only_and_f_after_a_mode_fram
     page.keyboard.press("f")
     assert page.get_by_role("combobox", name="Mode").input_value() == "Edit robots"  # no "Edit robotsf"
     page.close()
+
+
+def test_a_schedule_note_is_shown_when_its_line_is_played(browser, app):
+    import json
+
+    s = app.session
+    lines = [json.dumps({"format": "apf-viz-schedule", "version": 1, "robots": s.engine.k})]
+    lines.append(json.dumps({"robot": 0, "phase": "look", "note": "robot 0 looks first: watch its rays"}))
+    lines.append(json.dumps({"robot": 0, "phase": "compute"}))
+    s.load_schedule("noted.jsonl", ("\n".join(lines) + "\n").encode())
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    _click_steps(page, app, 1)
+    page.get_by_text("robot 0 looks first: watch its rays").first.wait_for()
+    shot(page, "schedule-note")
+    _click_steps(page, app, 1)
+    wait_for(lambda: s.view().note_here == "")
+    page.get_by_text("robot 0 looks first: watch its rays").first.wait_for(state="hidden")
+    page.close()
+
+
+def test_a_refused_text_leaves_the_field_as_the_studio_holds_it(browser, app):
+    s = app.session
+    page, _, _ = projector_page(browser, app)
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit pattern")
+    wait_for(lambda: s.mode == "edit-pattern")
+    field = _text_field(page, "Text")
+    field.fill("Hi! café?")
+    field.press("Enter")
+    page.get_by_text("no glyph").first.wait_for()  # refused, and said
+    wait_for(lambda: field.input_value() == "APF")  # the field is what the next click draws
+    assert s.screen.studio.text == "APF"
+    page.close()

@@ -75,9 +75,9 @@ SCREENS = {
     "Following the lecture": _class_caption,
     "Following the trace: event 5 of 41": _following_a_trace,
     "#2: left at step 20, 8 step(s), stopped at event 28": _a_branch,
-    "Fit pattern trims the 14 last-drawn cells · Fit robots adds 14 robots": lambda: _drawing_of(24)
-    .view()
-    .fit_preview,
+    "Fit pattern trims the 14 last-drawn cells · Fit robots adds 14 robots": lambda: (
+        _drawing_of(24).view().fit_preview
+    ),
     "Targets: 24 / robots: 10": lambda: _plain(_drawing_of(24).view().counts),
     "First differing decision at event 26, robot 1 (◆): A robot 1 · Compute by A3.off.line-wait → light "
     "off, to stay": _compare,

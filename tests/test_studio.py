@@ -331,3 +331,13 @@ def test_a_fit_that_takes_seconds_is_said_first_and_goes_on_when_asked_again():
     assert "will place 596 robots" in said and "again" in said and len(s.editor.robots) == 4
     said = s.transform("Fit robots")
     assert len(s.editor.robots) == 600
+
+
+def test_no_robots_is_not_called_solvable():
+    s = session()
+    s.set_mode("edit-robots")
+    for p in list(s.editor.robots):
+        s.click(p)  # the cell tool removes each robot
+    assert s.editor.robots == []
+    counts = s.view().counts
+    assert "no robots" in counts and "solvable:" not in counts

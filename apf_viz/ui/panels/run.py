@@ -210,7 +210,7 @@ class RunFolder:
         put(self.event, value=view.event)
         last = f"**Last event:** {view.last_events[0]}" if view.last_events else "**Last event:** —"
         if view.note_here:  # the schedule's author speaks: their words, escaped, never markup
-            last += f"  \n📝 <i>{html.escape(view.note_here)}</i>"
+            last += f"  \n<b>Note:</b> <i>{html.escape(view.note_here)}</i>"
         now = time.monotonic()
         if self.last_event.content != last and (
             not view.playing or now - self._last_event_at >= LAST_EVENT_REFRESH_S
