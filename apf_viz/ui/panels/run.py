@@ -320,9 +320,9 @@ class HistoryFolder:
             ))  # fmt: skip
             self.timeline.on_update(ctx.from_browser(lambda e: s.seek(self.timeline.value)))
             cycle = ctx.driving(gui.add_button(
-                "Undo the last cycle", hint="back before the last actor's Look: its whole Look-Compute-Move"
+                "Rewind the last cycle", hint="back before the last actor's Look: its whole Look-Compute-Move"
             ))  # fmt: skip
-            cycle.on_click(ctx.guard(lambda e: s.back_cycle(), "Undo the last cycle"))
+            cycle.on_click(ctx.guard(lambda e: s.back_cycle(), "Rewind the last cycle"))
             self.branches = ctx.driving(gui.add_dropdown(
                 "Branches", ("—",), initial_value="—", visible=False,
                 hint="every line of steps a step from the past left: where it left, how it ends",
