@@ -11,7 +11,7 @@ from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, positive, problem
 
 NAME = "check"
 HELP = "explore every schedule of a small start (model checking)"
-OUTPUTS = ("counterexample",)
+OUTPUTS = ("counterexample", "schedule_out")
 WANTED = ("collision", "escape", "deadlock", "livelock")  # explore/explorer.py's WANTED (a test holds them)
 """The options naming files this command writes (never one of its inputs)."""
 
@@ -50,6 +50,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="look for this kind of failure only: the others end their run and the search goes on past "
         "them (verdict 'absent', exit 0, when none exists in any schedule)",
     )
+    p.add_argument(
+        "--worst",
+        choices=("moves", "events"),
+        help="the most moves (events) any schedule and flips can force before FORMED, exactly, or why "
+        "there is no maximum; --schedule-out writes a schedule that forces it",
+    )
+    p.add_argument("--schedule-out", type=Path, help="with --worst: write the schedule that forces it here")
     p.add_argument("--json", action="store_true", help="print the verdict as one JSON object")
     p.add_argument("--force", action="store_true", help="explore an unsolvable start anyway")
     p.add_argument("--counterexample", type=Path, help="write a failing schedule here as a trace file")
@@ -60,6 +67,8 @@ def run(args: argparse.Namespace) -> int:
 
     robots, points, targets, algorithm = problem(args, args.counterexample)
     flips = all_flips(len(points)) if args.flips == "all" else [tuple(robots.flips(args.seed))]
+    if args.worst:
+        return _worst(args, points, targets, algorithm, flips)
     result, y_up = check(
         algorithm,
         points,
@@ -108,3 +117,49 @@ def run(args: argparse.Namespace) -> int:
             f"{'; counterexample: ' + written if written else ''}"
         )
     return {"verified": 0, "absent": 0, "budget": 4}.get(result.verdict, 1)
+
+
+def _worst(args: argparse.Namespace, points, targets, algorithm, flips) -> int:
+    """``check --worst``: the maximum, its schedule written and replayed to the same count."""
+    from apf_viz.core.budget import paper_D
+    from apf_viz.core.files import write_atomic
+    from apf_viz.core.formats import InputError
+    from apf_viz.explore.worst import worst, worst_schedule_text
+
+    if args.want:
+        raise InputError("--worst and --want ask different questions: give one")
+    found = worst(
+        algorithm, points, targets, flips, args.worst,
+        scheduler=args.scheduler, max_states=args.max_states,
+        reduction=not args.no_reduction, light_semantics=args.light_semantics,
+    )  # fmt: skip
+    written = None
+    replayed = None
+    if found.verdict == "worst":
+        text, moves, events = worst_schedule_text(
+            algorithm, points, targets, found, args.scheduler, args.light_semantics
+        )
+        replayed = moves if args.worst == "moves" else events
+        if replayed != found.value:  # never hide it: the maximum is a claim the replay checks
+            raise AssertionError(f"the worst schedule replays to {replayed} {args.worst}, not {found.value}")
+        if args.schedule_out:
+            write_atomic(args.schedule_out, text)
+            written = str(args.schedule_out)
+    k, d = len(points), paper_D(points, targets)
+    if args.json:
+        print(json.dumps({
+            "verdict": found.verdict, "measure": found.measure, "worst": found.value, "k": k, "D": d,
+            "per_kD": round(found.value / (k * d), 4) if found.value is not None else None,
+            "states": found.states, "seconds": round(found.seconds, 3), "detail": found.detail,
+            "y_up": list(found.y_up), "schedule": written,
+        }))  # fmt: skip
+    elif found.value is not None:
+        print(
+            f"worst {found.measure}: {found.value:,} (k·D = {k * d}: {found.value / (k * d):.3f} per k·D), "
+            f"over {found.states:,} states, every {args.scheduler.upper()} schedule and "
+            f"{len(flips)} flip assignment(s); replayed to {replayed:,}"
+            + (f"; schedule: {written}" if written else "")
+        )
+    else:
+        print(f"{found.verdict}: {found.states:,} states, {found.seconds:.2f} s; {found.detail}")
+    return {"worst": 0, "budget": 4}.get(found.verdict, 1)

@@ -21,6 +21,7 @@ import time
 from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from itertools import combinations
 from typing import Literal
 
 from apf_viz.core.algorithm import Algorithm
@@ -87,10 +88,14 @@ class Explorer:
         reduction: bool = False,
         decisions: Decisions | None = None,
         want: Wanted | None = None,
+        eligible_only: bool = False,
     ) -> None:
         self.algorithm = algorithm
         self.want = want
+        # Only the activations a scheduler that skips no-ops makes (explore/worst.py counts events so).
+        self.eligible_only = eligible_only
         self.passed: dict[str, int] = {}  # with ``want``: the failures of other kinds passed over
+        self.graph: Graph | None = None  # once :meth:`run` has searched the whole space
         self.robots = [as_point(p) for p in robots]
         self.pattern = tuple(as_point(p) for p in pattern)
         self.y_up = tuple(y_up)
@@ -119,7 +124,7 @@ class Explorer:
             light_semantics == "lc-atomic",
             # Partial-order reduction (docs/VERIFICATION.md): only under ASYNC, where one event is one
             # robot's.
-            reduction and scheduler == "async" and want is None,  # the reduction's argument is for "all"
+            reduction and scheduler == "async" and want is None,  # its argument is for the whole verdict
             # Shared by the searches of one start under several flips (explore/check.py), or this one's own.
             decisions if decisions is not None else Decisions(),
             box,
@@ -147,6 +152,7 @@ class Explorer:
         graph = self._search(t0)
         if isinstance(graph, Result):
             return graph  # a collision, an escape, or the state budget
+        self.graph = graph  # every state searched and its edges: explore/worst.py reads them
         n = len(graph.states)
         quiet = [self.space.quiescent(s) for s in graph.states]
         for i, s in enumerate(graph.states):
@@ -184,24 +190,43 @@ class Explorer:
         seconds = time.perf_counter() - t0
         return Result("absent", len(graph.states), graph.transitions, seconds, detail=detail)
 
-    def _successors_past_violations(
+    def _careful_successors(
         self, st: State, origin: Point, out: list[tuple[State, Point]]
     ) -> tuple[tuple[tuple[int, ...], ...], Violation | None]:
-        """Every edge (``want``): a violation of another kind is counted and leads nowhere; the first
-        of the kind wanted is returned, with the edges before it."""
+        """Each edge on its own: only the eligible robots' with ``eligible_only``; with ``want``, a
+        violation of another kind is counted and leads nowhere. Returns the edges' labels and the
+        violation that stops the search (the edges before it are in ``out``), if any."""
         space = self.space
         groups: list[tuple[int, ...]] = []
-        for g in space.every_group():
+        for g in self._candidates(st):
             try:
                 out.append(space.edge(st, origin, g))
             except Violation as v:
                 kind = "collision" if str(v).startswith("collision") else "escape"
-                if kind == self.want:
+                if self.want is None or kind == self.want:
                     return tuple(groups), v
                 self.passed[kind] = self.passed.get(kind, 0) + 1
                 continue
             groups.append(g)
         return tuple(groups), None
+
+    def _candidates(self, st: State) -> tuple[tuple[int, ...], ...]:
+        """The robots that may act on each edge out of ``st``."""
+        space = self.space
+        if not self.eligible_only:
+            return space.every_group()
+        movers = space.eligible(st)
+        if space.scheduler == "async":
+            if space.reduction:
+                r = space.invisible(st)
+                if r is not None and r in movers:  # alone, as the reduction explores it (an ample set)
+                    return (space.singles[r],)
+            return tuple(space.singles[r] for r in movers)
+        if not movers:
+            return ()
+        if space.scheduler == "fsync":
+            return (tuple(movers),)
+        return tuple(c for n in range(1, len(movers) + 1) for c in combinations(movers, n))
 
     def _search(self, t0: float) -> Result | Graph:
         """Every state reachable from the start, breadth first, or the Result that stopped the search (a
@@ -218,8 +243,8 @@ class Explorer:
             i += 1
             nexts: list[tuple[State, Point]] = []
             violation = None
-            if self.want is not None:
-                groups, violation = self._successors_past_violations(states[i], origins[i], nexts)
+            if self.want is not None or self.eligible_only:
+                groups, violation = self._careful_successors(states[i], origins[i], nexts)
             else:
                 try:
                     groups = successors(states[i], origins[i], nexts)

@@ -205,6 +205,23 @@ class StateSpace:
             self._quiet[cfg] = quiet
         return quiet
 
+    def eligible(self, st: State) -> list[int]:
+        """The robots whose next event can change anything (the engine's ``eligible``): every robot that
+        has Looked or Computed, and every idle one whose decision on its view now is not "same light,
+        stay". Activating another is a whole cycle that changes nothing, which a scheduler that skips
+        no-ops never makes."""
+        k, light, stays = self.k, self.memo.light, self.memo.stays
+        cfg = st[: 3 * k]
+        out = []
+        for r in range(k):
+            if st[3 * k + r]:
+                out.append(r)
+                continue
+            d = self.decide(cfg, r)
+            if not stays[d] or light[d] != st[2 * k + r]:
+                out.append(r)
+        return out
+
     def invisible(self, st: State) -> int | None:
         """The first robot whose next event is invisible: a Compute that keeps its light, or a Move that
         stays. Such an event reads nothing another robot writes and writes nothing another robot reads
