@@ -42,3 +42,22 @@ def run(
 
 def fired(rules: list[str], text: str) -> int:
     return sum(1 for r in rules if text in r)
+
+
+def compare_on_the_collision_counterexample(session, twin: str = "apf-opaque-grid-literal"):
+    """The collision counterexample's start, pattern and adversary (as a schedule) loaded into
+    ``session``, with ``twin`` beside it in Compare; played to the end."""
+    from pathlib import Path
+
+    from apf_viz.core.formats import load_trace
+    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+
+    demos = Path(__file__).resolve().parent.parent / "demo_patterns"
+    session.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
+    session.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
+    _, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
+    session.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
+    session.compare_with(twin)
+    while session.step():
+        pass
+    return session

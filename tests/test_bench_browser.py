@@ -12,6 +12,7 @@ from apf_viz.ui.app import App, demo_session, free_port
 from tests.test_ui_browser import (
     _choose,
     _drag,
+    blank_drawing,
     open_folder,
     open_page,
     projector_page,
@@ -40,10 +41,11 @@ def _click_steps(page, app: App, n: int) -> None:
 
 def _enter(page, app: App, starts: str) -> None:
     """Pick the branch whose label says ``starts`` in the Branches list, and Enter branch."""
+    before = app.session.run.following_what
     page.get_by_role("combobox", name="Branches").click()
     page.get_by_role("option").filter(has_text=starts).first.click()
     page.get_by_role("button", name="Enter branch").click()
-    wait_for(lambda: app.session.run.following_what.startswith("branch #"))
+    wait_for(lambda: app.session.run.following_what not in (before, "the trace"))  # entered: a new line
 
 
 def test_branch_return_branch_again_and_both_branches_are_re_entered(browser, app):
@@ -101,14 +103,7 @@ def test_the_eraser_flood_fill_live_mirror_and_drag_painting_are_each_one_gestur
     """At 1024×768: an outline filled by one click, a row erased by one drag, a cell drawn with its
     mirror image by one click, a row painted by one drag; each taken back by one Ctrl+Z."""
     s = app.session
-    page, _, _ = projector_page(browser, app)
-    open_folder(page, "Edit")
-    _choose(page, "Mode", "Edit pattern")
-    wait_for(lambda: s.mode == "edit-pattern")
-    page.get_by_role("button", name="Clear pattern").click()
-    wait_for(lambda: s.editor.pattern == [])
-    _choose(page, "Tool", "outline")
-    wait_for(lambda: s.screen.studio.tool == "outline")
+    page, _, _ = blank_drawing(browser, app, "outline")
     page.mouse.click(*screen_of(app, page, (9, 0)))
     wait_for(lambda: s.screen.studio.anchor == (9, 0))
     page.mouse.click(*screen_of(app, page, (14, 4)))
@@ -153,13 +148,7 @@ def test_save_in_edit_robots_saves_the_pattern_drawn(browser, app, tmp_path):
 
     s = app.session
     s.use_library(PatternLibrary(tmp_path / "library"))
-    page, _, _ = projector_page(browser, app)
-    open_folder(page, "Edit")
-    _choose(page, "Mode", "Edit pattern")
-    wait_for(lambda: s.mode == "edit-pattern")
-    page.get_by_role("button", name="Clear pattern").click()
-    _choose(page, "Tool", "box")
-    wait_for(lambda: s.screen.studio.tool == "box")
+    page, _, _ = blank_drawing(browser, app, "box")
     time.sleep(0.5)
     _drag(page, app, (9, 0), (14, 3))
     wait_for(lambda: len(s.editor.pattern) == 24)

@@ -7,10 +7,9 @@ import re
 from pathlib import Path
 
 from apf_viz.core import shapes
-from apf_viz.core.formats import load_trace
-from apf_viz.core.schedule import schedule_of_trace, schedule_text
 from apf_viz.ui.app import demo_session
 from apf_viz.workbench.session import Session
+from tests.apf_helpers import compare_on_the_collision_counterexample
 
 ROOT = Path(__file__).resolve().parent.parent
 DEMOS = ROOT / "demo_patterns"
@@ -54,14 +53,7 @@ def _drawing_of(cells: int) -> Session:
 
 
 def _compare() -> str:
-    s = demo_session()
-    s.load_robots("line.json", (DEMOS / "starts" / "vertical-line-4.json").read_bytes())
-    s.load_pattern("tee.json", (DEMOS / "tee-4.json").read_bytes())
-    _, events = load_trace(DEMOS / "traces" / "literal-collision-4.jsonl")
-    s.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
-    s.compare_with("apf-opaque-grid-literal")
-    while s.step():
-        pass
+    s = compare_on_the_collision_counterexample(demo_session())
     return _plain(s.view().compare_text)
 
 

@@ -1206,6 +1206,21 @@ def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app)
     page.close()
 
 
+def blank_drawing(browser, app: App, tool: str):
+    """A 1024×768 page in Edit pattern with the pattern cleared and ``tool`` chosen: (the page, its
+    client id, its screen)."""
+    s = app.session
+    page, cid, screen = projector_page(browser, app)
+    open_folder(page, "Edit")
+    _choose(page, "Mode", "Edit pattern")
+    wait_for(lambda: s.mode == "edit-pattern")
+    page.get_by_role("button", name="Clear pattern").click()
+    wait_for(lambda: s.editor.pattern == [])
+    _choose(page, "Tool", tool)
+    wait_for(lambda: s.screen.studio.tool == tool)
+    return page, cid, screen
+
+
 def _choose(page, label: str, option: str) -> None:
     page.get_by_role("combobox", name=label).click()
     page.get_by_role("option", name=option, exact=True).click()
@@ -1230,14 +1245,7 @@ def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
     """At 1024×768: a 6×4 box by one drag, a Shift-drag erase, "HI" in two actions, undo ×2, then a
     pattern of the robots' size played to FORMED with every robot on a drawn target."""
     s = app.session
-    page, cid, screen = projector_page(browser, app)
-    open_folder(page, "Edit")
-    _choose(page, "Mode", "Edit pattern")
-    wait_for(lambda: s.mode == "edit-pattern")
-    page.get_by_role("button", name="Clear pattern").click()
-    wait_for(lambda: s.editor.pattern == [])
-    _choose(page, "Tool", "box")
-    wait_for(lambda: s.screen.studio.tool == "box")
+    page, cid, screen = blank_drawing(browser, app, "box")
     time.sleep(0.5)
     _drag(page, app, (9, 0), (14, 3))  # beside the robots, in view
     wait_for(lambda: len(s.editor.pattern) == 24)

@@ -194,18 +194,9 @@ def test_a_collision_is_explained_by_the_movers_stale_decision():
 
 
 def test_go_to_divergence_lands_on_the_first_event_the_two_runs_differ():
-    from apf_viz.core.formats import load_trace
-    from apf_viz.core.schedule import schedule_of_trace, schedule_text
+    from tests.apf_helpers import compare_on_the_collision_counterexample
 
-    demos = Path(__file__).parent.parent / "demo_patterns"
-    s = demo_session()
-    s.load_robots("line.json", (demos / "starts" / "vertical-line-4.json").read_bytes())
-    s.load_pattern("tee.json", (demos / "tee-4.json").read_bytes())
-    _, events = load_trace(demos / "traces" / "literal-collision-4.jsonl")
-    s.load_schedule("cex.jsonl", schedule_text(4, schedule_of_trace(events, False)).encode())
-    s.compare_with("apf-opaque-grid-literal")
-    while s.step():
-        pass
+    s = compare_on_the_collision_counterexample(demo_session())
     at, what, robot, then = s.view().divergence
     assert then  # played on: the move that followed the decision, in both runs
     s.seek_event(at)
