@@ -181,6 +181,8 @@ def test_notifications_stand_over_the_panel_never_over_the_run(browser, app):
     panel_left = canvas["x"] + canvas["width"]
     assert box is not None and box["x"] >= panel_left - 5, (box, panel_left)
     shot(page, "notification-corner")
+    note.locator(".mantine-Notification-closeButton").click()  # clicks go through it, but for its ×
+    note.wait_for(state="detached")
     page.close()
 
 

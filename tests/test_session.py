@@ -828,3 +828,19 @@ def test_every_downloaded_trace_is_the_run_with_its_verdict():
         assert header.options["verdict"] == s.engine.state.outcome and len(events) == s.engine.state.events
     finally:
         out.unlink(missing_ok=True)
+
+
+def test_step_at_the_end_of_a_followed_branch_says_so_and_a_canvas_edit_is_said():
+    s = session(scheduler="async", seed=3)
+    for _ in range(10):
+        s.step()
+    s.seek(5)
+    s.set_scheduler("fsync")
+    s.step()  # every robot at once: a branch
+    s.return_to_set_aside()
+    while s.step():
+        pass
+    assert "ends here" in s.why_not_step() and "Branch here" in s.why_not_step()
+    s.set_mode("edit-pattern")
+    said = s.click((40, 40))
+    assert said == "added target (40, 40)" == s.screen.studio.said  # the line under the tool

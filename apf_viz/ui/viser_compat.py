@@ -160,11 +160,12 @@ PLAYER_TIME_FIELD_JS = """function () {
 # ---------------------------------------------------------------- where notifications stand
 # CSS for the page: viser's notifications (Mantine's) in the bottom-right corner, over the panel (or, in
 # presentation mode, the caption's end), the panel's width at 1024 px, so that they never cover the run;
-# and clicked through, so that none hides a button under it (they close themselves).
+# and clicked through, so that none hides a button under it (they close themselves; the × still closes).
 NOTICES_BESIDE_THE_RUN = (
     "<style>.mantine-Notifications-root{position:fixed!important;top:auto!important;left:auto!important;"
     "right:12px!important;bottom:12px!important;max-width:360px}"
-    ".mantine-Notification-root{pointer-events:none!important;opacity:0.94}</style>"
+    ".mantine-Notification-root{pointer-events:none!important;opacity:0.94}"
+    ".mantine-Notification-closeButton{pointer-events:auto!important}</style>"
 )
 
 

@@ -56,6 +56,7 @@ class Studio:
         self.selection = Selection()
         self._caution: tuple[str, int, int] | None = None  # a slow fit asked once: (name, robots, cells)
         self._stroke: tuple[bool, Point] | None = None  # a drag in progress: (erasing, its last cell)
+        self.said = ""  # what the last edit did, for the line under the tool
 
     def choose(self, tool: str) -> None:
         if tool not in TOOLS:

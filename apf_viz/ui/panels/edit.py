@@ -39,7 +39,7 @@ class EditFolder:
             )
             self.text.on_update(ctx.from_browser(self._on_text, "Text"))
             self.tool_hint = gui.add_markdown("")
-            self.said = gui.add_markdown("")  # what the last edit did: in the panel, not over the run
+            self.said = gui.add_markdown("")  # what the last edit did (Studio.said): not over the run
             self.mirror = gui.add_dropdown(
                 "Mirror", tuple(MIRRORS), initial_value="off", hint="copy every cell drawn across the middle"
             )
@@ -83,7 +83,7 @@ class EditFolder:
         def said(event) -> None:
             words = fn(event)
             if isinstance(words, str):
-                put(self.said, content=f"<small>↳ {html.escape(words)}</small>" if words else "")
+                self.ctx.session.screen.studio.said = words
 
         return said
 
@@ -182,6 +182,8 @@ class EditFolder:
         if self.mirror.value != studio.mirror:
             self.mirror.value = studio.mirror
         put(self.fit_preview, content=f"<small>{view.fit_preview}</small>" if view.fit_preview else "")
+        words = studio.said if view.mode != "run" else ""
+        put(self.said, content=f"<small>↳ {html.escape(words)}</small>" if words else "")
         options = ("—", *self.ctx.session.saved)
         if tuple(self.saved.options) != options:
             self.saved.options = options

@@ -39,7 +39,9 @@ class EditCommands(SessionCore):
             if self.mode != "run":
                 if not drives:
                     raise InputError("the presenter is drawing: a class page follows the drawing")
-                return self.screen.studio.click(self.editor, self.mode, cell)
+                studio = self.screen.studio
+                studio.said = studio.click(self.editor, self.mode, cell)
+                return studio.said
             r = self.robot_at(cell)
             state = self.browser(browser)
             if r is None:
@@ -174,8 +176,10 @@ class EditCommands(SessionCore):
                 return ""
             _on_grid(cell)
             if phase == "start":
-                return studio.stroke_begin(self.editor, self.mode, cell, studio.tool == "eraser")
-            return studio.stroke_to(self.editor, self.mode, cell)
+                studio.said = studio.stroke_begin(self.editor, self.mode, cell, studio.tool == "eraser")
+            else:
+                studio.said = studio.stroke_to(self.editor, self.mode, cell) or studio.said
+            return studio.said
 
     def selection_command(self, name: str) -> str:
         """Copy, Cut, Delete or Deselect the studio's selection."""

@@ -68,6 +68,11 @@ class RunCommands(SessionCore):
                 if not twin.finished:  # Manual: no scheduler to go on with
                     said = f"the run is over ({self.engine.outcome}); in Manual the run beside it stays"
             return said
+        if self.run.following:  # at the end of the recorded steps, the run not over
+            return (
+                f"{self.run.following_what} ends here (its recorded steps are done): Branch here lets "
+                "the scheduler go on from this event"
+            )
         if self.scheduler_name in BY_HAND:
             return "Manual: click a robot to run its next phase"
         return "nothing could run"
