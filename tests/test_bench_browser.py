@@ -246,3 +246,25 @@ def test_a_refused_text_leaves_the_field_as_the_studio_holds_it(browser, app):
     wait_for(lambda: field.input_value() == "APF")  # the field is what the next click draws
     assert s.screen.studio.text == "APF"
     page.close()
+
+
+def test_j_shows_the_class_address_and_its_qr_code_on_the_projector(browser, app):
+    import urllib.parse
+
+    import segno
+
+    page, _, _ = projector_page(browser, app)
+    page.wait_for_function("document.activeElement === document.body")
+    page.keyboard.press("j")
+    address = page.locator("[data-apf=class-address]")
+    address.wait_for()
+    assert address.inner_text() == app.addresses[1]  # the class page's address, whole
+    src = page.locator("[data-apf=class-qr]").get_attribute("src")
+    want = segno.make(app.addresses[1], micro=False, error="m")
+    assert src == want.svg_data_uri(scale=10, border=2)  # a QR code of exactly that address
+    assert "this machine only" in page.locator(".mantine-Modal-body").inner_text()  # served on loopback
+    assert urllib.parse.urlparse(app.addresses[1]).hostname == "127.0.0.1"
+    shot(page, "join-from-the-wall")
+    page.get_by_role("button", name="Close").click()
+    address.wait_for(state="detached")
+    page.close()

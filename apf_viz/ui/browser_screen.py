@@ -47,6 +47,8 @@ class Host(Protocol):
     def frame_client(self, client) -> None: ...
     def frame_all(self) -> None: ...
     def point_at(self, client, screen: tuple[float, float]) -> tuple[float, float] | None: ...
+    @property
+    def addresses(self) -> tuple[str, str]: ...
 
 
 class BrowserScreen:
@@ -77,6 +79,7 @@ class BrowserScreen:
             verifier=app.verifier,
             frame_all=app.frame_all,
             point_at=app.point_at,
+            class_address=lambda: app.addresses[1],
             claim_presenter=(lambda code: app.claim_presenter(client.client_id, code))
             if app.by_code
             else None,

@@ -19,6 +19,7 @@ from apf_viz.ui.panels.compare import CompareFolder
 from apf_viz.ui.panels.context import PanelContext, SharedVerifier, tell
 from apf_viz.ui.panels.edit import MODE_LABELS, MODES, EditFolder
 from apf_viz.ui.panels.files import FilesFolder, load_demo
+from apf_viz.ui.panels.join import Join
 from apf_viz.ui.panels.legend import LegendFolder
 from apf_viz.ui.panels.moves import MovesFolder
 from apf_viz.ui.panels.paper import PaperFolder
@@ -82,6 +83,7 @@ class Panels:
         verifier: SharedVerifier | None = None,
         frame_all: Callable[[], None] = lambda: None,
         point_at: Callable | None = None,
+        class_address: Callable[[], str] | None = None,
         claim_presenter: Claim | None = None,
     ) -> None:
         self.session = session
@@ -91,9 +93,12 @@ class Panels:
         self.ctx.client = owner if browser is not None else None
         if point_at is not None:
             self.ctx.point_at = point_at
+        if class_address is not None:
+            self.ctx.class_address = class_address
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
-        self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation]
+        self.join = Join(owner.gui, self.ctx)
+        self.folders += [Shortcuts(owner.gui, self.ctx), self.presentation, self.join]
         self.folders.append(PresenterCode(owner.gui, self.ctx, claim_presenter))
         self._slow_refreshed = -PLAYING_REFRESH_S  # when the slow folders last refreshed (monotonic s)
         self._driving_shown = (True, True)  # the driving controls (and the shared run's alone) shown

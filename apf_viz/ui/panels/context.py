@@ -111,6 +111,7 @@ class PanelContext:
     client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
     # The grid point under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     point_at: Callable[[object, tuple[float, float]], tuple[float, float] | None] = lambda client, point: None
+    class_address: Callable[[], str] = lambda: ""  # the address the class's laptops open (ui/roles.py)
     driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
     shared_handles: list = field(default_factory=list)  # shown only where it drives the shared run
     # Try it yourself (ui/own_runs.py): a class page branches a run of its own, and comes back; the App

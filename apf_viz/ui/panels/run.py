@@ -44,7 +44,8 @@ RELEASE_FOCUS = (
 
 KEYS_DRIVING = (
     "<small>Keys: Enter step · Backspace back · Space play/pause · PgDn/PgUp next/previous "
-    "stage · M next move · F frame the run · P presentation mode (Ctrl+K lists them). In a focused field "
+    "stage · M next move · F frame the run · P presentation mode · J the class address (Ctrl+K lists "
+    "them). In a focused field "
     "or slider, keys act on it alone; Esc gives them back</small>"
 )
 KEYS_FOLLOWING = (

@@ -24,7 +24,7 @@ _QUIET = "color:#555"
 # What the page is, and its keys (the panel that would list them is collapsed): shown with the details.
 KEYS = {
     "presenting": "<b>Presenting</b> · P the panel · PageDown / PageUp next / previous stop · Enter step · "
-    "Space play · I details · Esc gives the keys back from a field · Ctrl+K every key",
+    "Space play · I details · J the class address · Esc gives the keys back from a field · Ctrl+K every key",
     "following": "<b>Following the lecture</b>: the presenter's keys drive the run · P the panel · F frame "
     "the run · I details · Try it yourself (in the panel) for a run of your own",
     "class-drives": "<b>The presenter lets the class drive</b> · P the panel · Enter step · Space play · "

@@ -1,0 +1,41 @@
+"""Join from the wall: J (or the Run folder's `Class address`) opens, on this page, the class address in
+large text with its QR code (workbench/join.py), for a room to join from the projector."""
+
+from __future__ import annotations
+
+from apf_viz.ui.panels.context import PanelContext
+from apf_viz.workbench.join import join_html
+from apf_viz.workbench.view_model import SessionView
+
+JOIN_KEY = "J"
+
+
+class Join:
+    """The class address on this page, in a window of its own until closed (Escape or Close)."""
+
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.gui, self.ctx = gui, ctx
+        command = gui.add_command(
+            "Class address",
+            description="the address the class's laptops open, large, with its QR code",
+            hotkey=JOIN_KEY,
+        )
+        command.on_trigger(lambda event: self.show())
+        self._modal = None
+
+    def show(self) -> None:
+        """Open it (again: a window closed by its own × is opened anew)."""
+        self.close()
+        address = self.ctx.class_address()
+        with self.gui.add_modal("Join this class") as modal:
+            self.gui.add_html(join_html(address))
+            self.gui.add_button("Close").on_click(lambda event: self.close())
+        self._modal = modal
+
+    def close(self) -> None:
+        if self._modal is not None:
+            self._modal.close()
+            self._modal = None
+
+    def refresh(self, view: SessionView) -> None:
+        """Nothing follows the run here."""
