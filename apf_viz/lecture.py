@@ -137,6 +137,8 @@ class Stop(BaseModel):
     select: int | None = Field(default=None, ge=0, le=100_000)
     compare: str | None = Field(default=None, max_length=200)
     expect: Expect | None = None
+    # The projector shows the class address and its QR code while at this stop (J does at any time).
+    class_address: bool = False
 
     @model_validator(mode="after")
     def _known_scenario(self) -> Stop:

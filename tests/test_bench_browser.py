@@ -268,3 +268,27 @@ def test_j_shows_the_class_address_and_its_qr_code_on_the_projector(browser, app
     page.get_by_role("button", name="Close").click()
     address.wait_for(state="detached")
     page.close()
+
+
+def test_a_lecture_stop_shows_the_class_address_until_the_lecture_moves_on(browser, app):
+    import json
+
+    lecture = {
+        "format": "apf-viz-lecture",
+        "version": 1,
+        "title": "Join, then watch",
+        "stops": [
+            {"title": "Open your laptops", "scenario": "Heart from 10 robots", "say": "Join the class.",
+             "class_address": True},
+            {"title": "Ten robots", "until": {"event": 3}, "say": "Three events."},
+        ],
+    }  # fmt: skip
+    app.session.load_lecture("join.json", json.dumps(lecture).encode())
+    page = open_page(browser, app, {"width": 1024, "height": 768})
+    address = page.locator("[data-apf=class-address]")
+    address.wait_for()  # the first stop asks for it: shown on the presenter's page
+    assert address.inner_text() == app.addresses[1]
+    app.session.next_stop()
+    app.request_render()
+    address.wait_for(state="detached")  # the lecture moved on: closed
+    page.close()

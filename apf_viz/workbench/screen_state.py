@@ -74,6 +74,7 @@ class LectureStop:
     event: int  # the event at which the stop was reached
     next_title: str | None = None  # the next stop's title (None: the last stop)
     mark: RunMark | None = None  # where the stop left the run
+    class_address: bool = False  # the presenter's page shows the class address while at this stop
 
 
 @dataclass

@@ -1,5 +1,6 @@
-"""Join from the wall: J (or the Run folder's `Class address`) opens, on this page, the class address in
-large text with its QR code (workbench/join.py), for a room to join from the projector."""
+"""Join from the wall: J (Ctrl+K: `Class address`) opens, on this page, the class address in large text
+with its QR code (workbench/join.py), for a room to join from the projector; so does a lecture's stop
+that asks for it (``"class_address": true``), on the presenter's page, until the lecture leaves it."""
 
 from __future__ import annotations
 
@@ -22,6 +23,8 @@ class Join:
         )
         command.on_trigger(lambda event: self.show())
         self._modal = None
+        self._stop: tuple | None = None  # the lecture stop last seen: (lecture, index, event)
+        self._by_stop = False  # the window was opened by a stop, and closes when the lecture moves on
 
     def show(self) -> None:
         """Open it (again: a window closed by its own × is opened anew)."""
@@ -36,6 +39,19 @@ class Join:
         if self._modal is not None:
             self._modal.close()
             self._modal = None
+        self._by_stop = False
 
     def refresh(self, view: SessionView) -> None:
-        """Nothing follows the run here."""
+        """A lecture reaching a stop that asks for the class address shows it on the presenter's page;
+        leaving that stop closes it."""
+        session = self.ctx.session
+        stop = session.screen.lecture
+        key = (stop.lecture, stop.index, stop.event) if stop is not None else None
+        if key == self._stop:
+            return
+        self._stop = key
+        if stop is not None and stop.class_address and session.is_presenter(self.ctx.browser):
+            self.show()
+            self._by_stop = True
+        elif self._by_stop:
+            self.close()

@@ -53,7 +53,7 @@ class LectureCommands(RunCommands, FileCommands):
         following = stops[reached.index + 1].title if reached.index + 1 < len(stops) else None
         self.screen.lecture = LectureStop(
             lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event,
-            following, lecturer.mark,
+            following, lecturer.mark, stop.class_address,
         )  # fmt: skip
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"
