@@ -12,7 +12,7 @@ from apf_viz.core.files import write_atomic
 from apf_viz.core.formats import trace_text
 from apf_viz.core.grid import Point
 from apf_viz.core.run import trace_header
-from apf_viz.explore.explorer import Decisions, Explorer, Result, Wanted
+from apf_viz.explore.explorer import Decisions, Explorer, Result, Wanted, absent_detail
 
 
 def check(
@@ -51,8 +51,11 @@ def check(
         total_transitions += r.transitions
         seconds += r.seconds
         r.states, r.transitions, r.seconds = total_states, total_transitions, seconds
-        if last is not None and r.verdict == "absent" and last.verdict == "absent":
-            r.detail = _passed_together(last.detail, r.detail)
+        if want is not None and last is not None and r.verdict == "absent" and last.verdict == "absent":
+            r.passed = {
+                kind: r.passed.get(kind, 0) + last.passed.get(kind, 0) for kind in r.passed | last.passed
+            }
+            r.detail = absent_detail(want, r.passed)
         last = r
         if r.verdict not in ("verified", "absent"):
             return r, tuple(y_up)
@@ -100,20 +103,6 @@ def explore(
     if reduction and scheduler == "async" and r.verdict not in ("verified", "budget"):
         r = _shortest(r, search(False))
     return r
-
-
-def _passed_together(before: str, now: str) -> str:
-    """Two flip assignments' "absent" details as one: the failures passed over, added up."""
-    counts: dict[str, int] = {}
-    for detail in (before, now):
-        _, _, passed = detail.partition("; passed over: ")
-        for part in filter(None, passed.split(", ")):
-            n, kind = part.split(" ", 1)
-            counts[kind] = counts.get(kind, 0) + int(n.replace(",", ""))
-    head = now.partition("; passed over: ")[0]
-    if not counts:
-        return head
-    return head + "; passed over: " + ", ".join(f"{n:,} {kind}" for kind, n in sorted(counts.items()))
 
 
 def _shortest(reduced: Result, full: Result) -> Result:

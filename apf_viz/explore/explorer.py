@@ -45,6 +45,7 @@ class Result:
     schedule: list[tuple[int, ...]] = field(default_factory=list)  # robots per step, from the start
     loop_start: int | None = None  # for a livelock: the step index where the repeated part begins
     detail: str = ""
+    passed: dict[str, int] = field(default_factory=dict)  # ``want``: failures of other kinds passed over
 
 
 @dataclass
@@ -183,12 +184,12 @@ class Explorer:
 
     def _absent(self, graph: Graph, t0: float) -> Result:
         """No failure of the kind wanted anywhere in the space searched (within the box)."""
-        passed = ", ".join(f"{n:,} {kind}(s)" for kind, n in sorted(self.passed.items()))
-        detail = f"no {self.want} in any schedule (every state within the box searched)"
-        if passed:
-            detail += f"; passed over: {passed}"
+        assert self.want is not None
         seconds = time.perf_counter() - t0
-        return Result("absent", len(graph.states), graph.transitions, seconds, detail=detail)
+        detail = absent_detail(self.want, self.passed)
+        return Result(
+            "absent", len(graph.states), graph.transitions, seconds, detail=detail, passed=self.passed
+        )
 
     def _careful_successors(
         self, st: State, origin: Point, out: list[tuple[State, Point]]
@@ -214,7 +215,7 @@ class Explorer:
         """The robots that may act on each edge out of ``st``."""
         space = self.space
         if not self.eligible_only:
-            return space.every_group()
+            return space.labels
         movers = space.eligible(st)
         if space.scheduler == "async":
             if space.reduction:
@@ -309,6 +310,14 @@ class Explorer:
             path += steps
         steps, here = _bfs(here, members, graph, None, target=entry)
         return path + steps
+
+
+def absent_detail(want: str, passed: dict[str, int]) -> str:
+    """What an "absent" verdict says: none of the kind wanted, and the other failures passed over."""
+    detail = f"no {want} in any schedule (every state within the box searched)"
+    if passed:
+        detail += "; passed over: " + ", ".join(f"{n:,} {kind}(s)" for kind, n in sorted(passed.items()))
+    return detail
 
 
 def _bfs(src, members, graph: Graph, want, target=None):

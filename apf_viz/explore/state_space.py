@@ -269,10 +269,6 @@ class StateSpace:
             return self.event(st, origin, group[0])
         return self._round(st, origin, group)
 
-    def every_group(self) -> tuple[tuple[int, ...], ...]:
-        """The robots acting on each edge out of any state, unreduced."""
-        return self.singles if self.scheduler == "async" else self.groups
-
     def event(self, st: State, origin: Point, r: int) -> tuple[State, Point]:
         """Robot r's next event under ASYNC: a Look, a Compute or a Move. (A state is copied to a list,
         changed and frozen: faster than splicing tuples.)"""

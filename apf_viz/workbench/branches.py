@@ -61,10 +61,6 @@ class Branches:
     def __iter__(self) -> Iterator[Branch]:
         return iter(self._kept)
 
-    @property
-    def newest(self) -> Branch | None:
-        return self._kept[-1] if self._kept else None
-
     def keep(self, at: int, records: list[StepRecord], ends: str) -> Branch | None:
         """The run's line was cut at step ``at``: its tail ``records`` becomes a branch, and the branches
         that hung off the run's line after ``at`` hang off that tail now."""

@@ -46,7 +46,6 @@ class Twin:
         self._alone_after: tuple[int, int, int] | None = None
         # (history generations, steps compared, events in them, the divergence found): scanned once.
         self._divergence: tuple[tuple[int, int], int, int, Divergence | None] = ((-1, -1), 0, 0, None)
-        self._divergence_step = 0  # the step in which the divergence found lies
 
     def follow(self, run: Engine, config: RunConfig) -> Engine:
         """The twin at the run's step (rebuilt when the run's configuration changed)."""
@@ -96,17 +95,19 @@ class Twin:
                 events += 1
                 if _differs(a, b):
                     found = Divergence(events, f"{describe(a)} | {describe(b)}", a.robot)
-                    self._divergence_step = checked
                     break
             checked += 1
         self._divergence = (key, checked, events, found)
         if found is None or found.event > run.state.events:
             return None
-        return found._replace(consequence=self._consequence(run, twin, found.robot))
+        # The scan stopped after the step the divergence lies in.
+        return found._replace(consequence=self._consequence(run, twin, found.robot, checked - 1))
 
-    def _consequence(self, run: Engine, twin: Engine, robot: int) -> str:
-        """The Move of ``robot`` after the differing Compute, in each run, once both have made it."""
-        moves = [_next_move(engine, self._divergence_step, robot) for engine in (run, twin)]
+    @staticmethod
+    def _consequence(run: Engine, twin: Engine, robot: int, step: int) -> str:
+        """The Move of ``robot`` after the differing Compute (in step ``step``), in each run, once both
+        have made it."""
+        moves = [_next_move(engine, step, robot) for engine in (run, twin)]
         if any(m is None for m in moves):
             return ""
         return " | ".join(describe(m) for m in moves if m is not None)

@@ -15,7 +15,7 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
 from apf_viz.core.portrayal import Configuration, stage_of
 from apf_viz.core.schedulers import BY_HAND, make_scheduler, step_rng
-from apf_viz.workbench.branches import Branch, Branches, ending
+from apf_viz.workbench.branches import Branches, ending
 from apf_viz.workbench.move_series import MoveSeries
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.stage_log import StageLog
@@ -225,11 +225,6 @@ class RunController:
         if (generation, length) != (h.generation, h.length) or outcome is None:
             return {}
         return {"verdict": outcome, "detail": words.lower()}
-
-    @property
-    def set_aside(self) -> Branch | None:
-        """The newest branch kept (Return to set-aside branch enters it)."""
-        return self.branches.newest
 
     def return_to_set_aside(self, number: int | None = None) -> None:
         """Enter a kept branch (the newest by default): replay its line from where it leaves the run's,

@@ -30,11 +30,7 @@ class EditCommands(SessionCore):
         robot there for that browser (and in Manual runs its next phase). Returns what happened; a click
         outside the supported grid is refused (InputError)."""
         with self.lock:
-            if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
-                raise InputError(
-                    f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
-                    f"(|x|, |y| ≤ {COORD_LIMIT:,})"
-                )
+            _on_grid(cell)
             drives = self.may_drive(browser)
             if self.mode != "run":
                 if not drives:
@@ -203,4 +199,7 @@ class EditCommands(SessionCore):
 def _on_grid(cell: Point) -> None:
     """Refuse a cell outside the grid this tool supports (a browser may send any point)."""
     if abs(cell[0]) > COORD_LIMIT or abs(cell[1]) > COORD_LIMIT:
-        raise InputError(f"{cell} is outside the grid this tool supports (|x|, |y| ≤ {COORD_LIMIT:,})")
+        raise InputError(
+            f"({short_int(cell[0])}, {short_int(cell[1])}) is outside the grid this tool supports "
+            f"(|x|, |y| ≤ {COORD_LIMIT:,})"
+        )
