@@ -255,20 +255,12 @@ def test_a_run_shown_in_a_notebook_cell_plays_in_a_browser_from_disk(browser, tm
     import numpy as np
     from PIL import Image
 
+    from tests.test_ui_browser import offline_context  # here: that module needs playwright
+
     r = apf_viz.run("sym-call-7", "cup-7", seed=3)
     page_file = tmp_path / "notebook.html"
     page_file.write_text(f"<!doctype html><html><body><h1>Out[1]:</h1>{r.show()._repr_html_()}</body></html>")
-    context = browser.new_context(viewport={"width": 1024, "height": 768})
-    refused: list[str] = []
-
-    def route(request_route):
-        if request_route.request.url.startswith(("file:", "about:", "data:", "blob:")):
-            request_route.continue_()
-        else:
-            refused.append(request_route.request.url)
-            request_route.abort()
-
-    context.route("**/*", route)
+    context, refused = offline_context(browser, ("file:", "about:", "data:", "blob:"))
     page = context.new_page()
     try:
         page.goto(page_file.as_uri())

@@ -22,7 +22,7 @@ from apf_viz.ui.app import App, demo_session, free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
 from apf_viz.workbench.view_model.caption import TITLE_PX, WORDS_PX
-from tests.test_ui_browser import OUT, _canvas, inside_canvas, settled, wait_for
+from tests.test_ui_browser import OUT, _canvas, inside_canvas, offline_context, settled, wait_for
 
 playwright = pytest.importorskip("playwright.sync_api")
 pytestmark = pytest.mark.browser
@@ -369,17 +369,7 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
     out = tmp_path / "lecture.html"
     assert main(["export", "--lecture", "where-the-paper-breaks", "--out", str(out)]) == 0
     stops = lectures()["Where the paper breaks under ASYNC"].stops
-    context = browser.new_context(viewport={"width": 1024, "height": 768})
-    refused: list[str] = []
-
-    def route(r):
-        if r.request.url.startswith("file:"):
-            r.continue_()
-        else:
-            refused.append(r.request.url)
-            r.abort()
-
-    context.route("**/*", route)
+    context, refused = offline_context(browser)
     page = context.new_page()
     try:
         page.goto(out.as_uri())

@@ -1206,6 +1206,23 @@ def test_export_lecture_downloads_every_stop_as_a_slide_and_a_page(browser, app)
     page.close()
 
 
+def offline_context(browser, allowed: tuple[str, ...] = ("file:",)):
+    """A 1024×768 browser context that loads only URLs starting with ``allowed`` (a page read from
+    disk, with no network): (the context, the list of URLs it refused)."""
+    context = browser.new_context(viewport={"width": 1024, "height": 768})
+    refused: list[str] = []
+
+    def route(request_route):
+        if request_route.request.url.startswith(allowed):
+            request_route.continue_()
+        else:
+            refused.append(request_route.request.url)
+            request_route.abort()
+
+    context.route("**/*", route)
+    return context, refused
+
+
 def blank_drawing(browser, app: App, tool: str):
     """A 1024×768 page in Edit pattern with the pattern cleared and ``tool`` chosen: (the page, its
     client id, its screen)."""
