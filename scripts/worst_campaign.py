@@ -4,6 +4,7 @@ against the most any automatic scheduler reaches over seeds 0–19. Prints progr
 prints the tally so far.
 
     python scripts/worst_campaign.py --starts 100 --seed 11
+    python scripts/worst_campaign.py --shipped      # docs/ADVERSARY.md's table: three shipped starts
 """
 
 from __future__ import annotations
@@ -37,13 +38,46 @@ def built_ins_most(algorithm, start, pattern, y_up) -> dict[str, int]:
     return most
 
 
+SHIPPED = (("one-on-L1-3", "corner-3"), ("vertical-line-4", "tee-4"), ("robots-on-K-5", "hook-5"))
+
+
+def shipped_table(algorithm) -> None:
+    """docs/ADVERSARY.md's table: for each shipped start (the robots file's flips, seed 0), the exact
+    worst moves and events, the built-ins' most, the states searched and the time of both searches."""
+    from apf_viz.core.budget import paper_D
+    from apf_viz.core.formats import load_pattern, load_robots
+    from apf_viz.demos import shipped_file
+
+    for robots_name, pattern_name in SHIPPED:
+        robots = load_robots(shipped_file(robots_name, "robots"))
+        start = [tuple(p) for p in robots.robots]
+        pattern = [tuple(p) for p in load_pattern(shipped_file(pattern_name, "pattern")).points]
+        y_up = tuple(robots.flips(0))
+        kd = len(start) * paper_D(start, pattern)
+        most = built_ins_most(algorithm, start, pattern, y_up)
+        cells = []
+        t0 = time.perf_counter()
+        for measure in MEASURES:
+            found = worst(algorithm, start, pattern, [y_up], measure)
+            value = found.value if found.value is not None else 0
+            cells.append(f"{value} ({value / kd:.2f}) | {most[measure]}")
+        print(
+            f"| {robots_name} + {pattern_name} | {len(start)} | {kd} | {' | '.join(cells)} | "
+            f"{found.states:,} | {time.perf_counter() - t0:.1f} s |"
+        )
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--starts", type=int, default=100)
     parser.add_argument("--seed", type=int, default=11)
     parser.add_argument("--max-states", type=int, default=300_000)
+    parser.add_argument("--shipped", action="store_true", help="the table for three shipped starts")
     args = parser.parse_args()
     algorithm = get_algorithm("apf-opaque-grid")
+    if args.shipped:
+        shipped_table(algorithm)
+        return 0
     rng = random.Random(args.seed)
     compared = {m: 0 for m in MEASURES}
     beaten = {m: 0 for m in MEASURES}
