@@ -46,12 +46,19 @@ def shipped_table(algorithm) -> None:
     worst moves and events, the built-ins' most, the states searched and the time of both searches."""
     from apf_viz.core.budget import paper_D
     from apf_viz.core.formats import load_pattern, load_robots
+    from apf_viz.core.grid import as_point
     from apf_viz.demos import shipped_file
 
+    def shipped(name: str, kind: str):
+        path = shipped_file(name, kind)
+        if path is None:
+            raise SystemExit(f"no shipped {kind} file {name!r}")
+        return path
+
     for robots_name, pattern_name in SHIPPED:
-        robots = load_robots(shipped_file(robots_name, "robots"))
-        start = [tuple(p) for p in robots.robots]
-        pattern = [tuple(p) for p in load_pattern(shipped_file(pattern_name, "pattern")).points]
+        robots = load_robots(shipped(robots_name, "robots"))
+        start = [as_point(p) for p in robots.robots]
+        pattern = [as_point(p) for p in load_pattern(shipped(pattern_name, "pattern")).points]
         y_up = tuple(robots.flips(0))
         kd = len(start) * paper_D(start, pattern)
         most = built_ins_most(algorithm, start, pattern, y_up)
