@@ -125,6 +125,41 @@ def panel_words(text: str) -> str | None:
     return m.group(0) if m else None
 
 
+QuestionKind = Literal["robot", "cell", "light", "outcome"]
+# The outcomes a room may answer; "escape" (a robot walks away for ever) is offered though a run that is
+# checked never ends in it: the run answers only what it shows within its cap.
+QUESTION_OUTCOMES = ("formed", "collision", "stuck", "escape")
+_ASKED = {
+    "robot": "Which robot moves next?",
+    "cell": "Where does robot {robot} move next?",
+    "light": "Which light does robot {robot} turn on next?",
+    "outcome": "How does this run end?",
+}
+
+
+class Question(BaseModel):
+    """A question a stop asks the room. Its answer is never written by the author: it is what the run
+    does from the stop under the lecture's scheduler and seed (workbench/question.py). ``robot``: which
+    robot a ``cell`` or ``light`` question is about (and only theirs)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    kind: QuestionKind
+    robot: int | None = Field(default=None, ge=0, le=100_000)
+    text: str | None = Field(default=None, min_length=1, max_length=160)  # else the kind's own words
+
+    @model_validator(mode="after")
+    def _robot_where_asked(self) -> Question:
+        if self.kind in ("cell", "light") and self.robot is None:
+            raise ValueError(f'a {self.kind} question names its robot ("robot": 3)')
+        if self.kind in ("robot", "outcome") and self.robot is not None:
+            raise ValueError(f"a {self.kind} question is about the whole run: give no robot")
+        return self
+
+    def words(self) -> str:
+        """What the room is asked."""
+        return self.text or _ASKED[self.kind].format(robot=self.robot)
+
+
 class Stop(BaseModel):
     """One stop: where (a Demo scenario, else the run as the previous stop left it), until when, what
     to select or compare, and the words (a few sentences; the paper's symbols as ``L_1``, ``H_L^O``)."""
@@ -139,6 +174,7 @@ class Stop(BaseModel):
     expect: Expect | None = None
     # The projector shows the class address and its QR code while at this stop (J does at any time).
     class_address: bool = False
+    ask: Question | None = None  # a question to the room, answered by the run (docs/LECTURES.md)
 
     @model_validator(mode="after")
     def _known_scenario(self) -> Stop:

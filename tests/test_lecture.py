@@ -179,7 +179,7 @@ def test_after_play_or_a_step_past_a_stop_the_caption_says_where_the_run_is():
     s.back()
     _, title, words = s.view().lecture
     assert title.startswith("Stepped back from stop 3") and "PageUp: back to stop 3" in words
-    s.seek(s.engine.history.length)  # back on the stop's own step: its words again
+    s.seek(s.lecturer.mark.step)  # back on the stop's own step (its question recorded the run past it)
     assert s.view().lecture[2] == lectures()["The algorithm in 12 stops"].stops[2].say
 
 

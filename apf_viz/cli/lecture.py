@@ -42,6 +42,9 @@ def run(args: argparse.Namespace) -> int:
         for broken in reached.broken:
             print(f"      {broken}")
         print(f"      shows: {reached.shown}")
+        if stop.ask is not None and reached.answer is not None:
+            a = reached.answer
+            print(f"      asks: {stop.ask.words()} — the run answers {a.words()} (at event {a.event})")
         failed += not reached.holds
     held = len(lecture.stops) - failed
     print(f"{held} of {len(lecture.stops)} stops reached, their claims true", flush=True)

@@ -15,6 +15,7 @@ import warnings
 import viser
 
 from apf_viz.core.engine import Engine
+from apf_viz.core.formats import InputError
 from apf_viz.ui import broadcast, viser_compat
 from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
 from apf_viz.ui.network import check_listen, reachable_host
@@ -22,6 +23,7 @@ from apf_viz.ui.network import free_port as free_port  # where tests and benchma
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
+from apf_viz.ui.panels.question import answer_key
 from apf_viz.ui.roles import Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
@@ -242,6 +244,13 @@ class App:
         session = page.session if page is not None else self.session
         renderer = page.renderer if page is not None else self.renderer
         cell = renderer.cell_of_ray(event.ray_origin, event.ray_direction)
+        if cell is not None and page is not None and page.own is None and page.state.role == "class":
+            try:  # a click answers a question that asks for a robot or a cell
+                said = self.session.answer_by_click(answer_key(event.client.client_id), cell)
+                if said:
+                    tell(event.client, "Question", said)
+            except InputError as err:
+                tell(event.client, "Question", str(err), error=True)
         if cell is not None:
             try:
                 session.click(cell, event.client.client_id if event.client is not None else None)

@@ -21,6 +21,7 @@ from apf_viz.lecture import (
     frameless_coordinates,
     panel_words,
 )
+from apf_viz.workbench.question import Answer, answer
 from apf_viz.workbench.screen_state import RunMark, SharedScreen
 from apf_viz.workbench.view_model import SessionView, stage_of
 from apf_viz.workbench.view_model.run_source import RunSource
@@ -61,6 +62,7 @@ class Reached:
     note: str = ""
     broken: tuple[str, ...] = ()  # the stop's claims that do not hold there, each in words
     shown: str = ""  # what the screen shows there, in the words a claim uses (to write claims from)
+    answer: Answer | None = None  # the answer the run gives to the stop's question
 
     @property
     def holds(self) -> bool:
@@ -142,7 +144,12 @@ class Lecturer:
         if stop.select is not None:
             s.selected = stop.select if stop.select < s.engine.k else None
         view = s.view()
-        return Reached(index, met, s.engine.state.events, note, broken_claims(stop, view), shown(view))
+        broken = broken_claims(stop, view)
+        answered = answer(s, stop.ask) if stop.ask is not None and met else None
+        if isinstance(answered, str):
+            broken += (f"its question “{stop.ask.words()}” has no answer: {answered}",)  # type: ignore[union-attr]
+            answered = None
+        return Reached(index, met, s.engine.state.events, note, broken, shown(view), answered)
 
     def _run_until(self, until: Until) -> tuple[bool, str]:
         s = self.session

@@ -33,6 +33,7 @@ class RunController:
         # The only algorithms a name from a trace may choose: built-ins and what the command line loaded.
         self.plugins: Mapping[str, Factory] = dict(plugins or {})
         self._playing = False
+        self._stop_at: int | None = None  # Play stops at this step (a question's reveal plays to it)
         self._speed = 10.0
         self._rebuild(config)
 
@@ -279,7 +280,12 @@ class RunController:
     # ------------------------------------------------------------------ playing
     def play(self) -> None:
         with self.lock:
-            self._playing = not self.engine.finished
+            self._playing, self._stop_at = not self.engine.finished, None
+
+    def play_to(self, step: int) -> None:
+        """Play, and stop at ``step`` (a question's answer: workbench/poll.py)."""
+        with self.lock:
+            self._playing, self._stop_at = not self.engine.finished, step
 
     def pause(self) -> None:
         with self.lock:
@@ -290,6 +296,7 @@ class RunController:
         Play plays that one (the session steps it)."""
         with self.lock:
             self._playing = not self._playing and (beside or not self.engine.finished)
+            self._stop_at = None
 
     def set_speed(self, speed: float) -> None:
         """Steps per second while playing, clamped to 1 .. MAX_SPEED (a browser may send anything)."""
@@ -305,6 +312,11 @@ class RunController:
         with self.lock:
             if not self._playing:
                 return 0
+            if self._stop_at is not None:
+                allowance = min(allowance, self._stop_at - self.engine.step_index)
+                if allowance <= 0:
+                    self._playing, self._stop_at = False, None
+                    return 0
             scheduler = self.config.scheduler
             if allowance >= 3 and not self.following and make_scheduler(scheduler).forced_when_alone:
                 taken = self.engine.walk(allowance)  # Manual is never forced: the person chooses

@@ -12,6 +12,7 @@ from typing import Literal
 from apf_viz.core.engine import Engine
 from apf_viz.workbench.compare import Twin
 from apf_viz.workbench.editor import Editor
+from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.studio import Studio
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
@@ -33,6 +34,7 @@ class SharedScreen:
     trails: int = 0  # draw each robot's last this-many moves (0: none)
     studio: Studio = field(default_factory=Studio)  # Edit: the tool, its size and text, a gesture begun
     lecture: LectureStop | None = None  # a guided lecture's stop, as it was reached
+    poll: Poll | None = None  # its question to the room, and the room's answers
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from apf_viz.ui.panels.moves import MovesFolder
 from apf_viz.ui.panels.paper import PaperFolder
 from apf_viz.ui.panels.presentation import Presentation
 from apf_viz.ui.panels.presenter_code import Claim, PresenterCode
+from apf_viz.ui.panels.question import QuestionFolder
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
@@ -38,6 +39,7 @@ __all__ = ["MODES", "MODE_LABELS", "Panels", "SharedVerifier", "tell"]
 # full, the selected robot and Why fit together on a 1024×768 projector's first screen — then the history,
 # the legend, and the folders a lecture rarely needs, collapsed.
 FOLDERS = (
+    QuestionFolder,  # shown first (its folder's order), and only while a stop asks the class something
     RunFolder,
     SelectedFolder,
     WhyFolder,

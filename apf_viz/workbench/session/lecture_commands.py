@@ -6,6 +6,8 @@ from apf_viz.core.formats import InputError
 from apf_viz.lecture import Lecture
 from apf_viz.workbench import loader
 from apf_viz.workbench.lecturer import Lecturer, Reached
+from apf_viz.workbench.poll import Poll
+from apf_viz.workbench.question import cell_choice
 from apf_viz.workbench.screen_state import LectureStop
 from apf_viz.workbench.session.core import shared_only
 from apf_viz.workbench.session.file_commands import FileCommands
@@ -22,7 +24,7 @@ class LectureCommands(RunCommands, FileCommands):
     def start_lecture(self, lecture: Lecture | None) -> str:
         """Follow ``lecture`` (None: stop following one) from its first stop."""
         self.lecturer = Lecturer(self, lecture) if lecture is not None else None
-        self.screen.lecture = None
+        self.screen.lecture = self.screen.poll = None
         return self.next_stop() if lecture is not None else "no lecture: PageDown stops at the run's stages"
 
     @shared_only
@@ -55,8 +57,67 @@ class LectureCommands(RunCommands, FileCommands):
             lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event,
             following, lecturer.mark, stop.class_address,
         )  # fmt: skip
+        answer = reached.answer
+        self.screen.poll = (
+            Poll(answer, self.engine.k, tuple(self.engine.algorithm.lights)) if answer else None
+        )
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"
+
+    # ------------------------------------------------------------------ a stop's question
+    def answer_question(self, who: str, choice: str) -> str:
+        """Page ``who`` answers the stop's question (again: its answer changes); for that page only."""
+        with self.lock:
+            if self.screen.poll is None:
+                raise InputError("no question is asked now")
+            return self.screen.poll.give(who, choice)
+
+    def answer_by_click(self, who: str, cell: tuple[int, int]) -> str | None:
+        """A class page clicked ``cell`` while a question that a click answers is asked: the robot on it
+        (which robot moves next) or the cell itself (where it moves); None if the click answers nothing."""
+        with self.lock:
+            poll = self.screen.poll
+            if poll is None or poll.revealed or poll.kind not in ("robot", "cell"):
+                return None
+            if poll.kind == "cell":
+                return poll.give(who, cell_choice(*cell))
+            on = [i for i, p in enumerate(self.engine.current_points()) if tuple(p) == tuple(cell)]
+            return poll.give(who, str(on[0])) if on else None
+
+    @shared_only
+    def toggle_spread(self) -> str:
+        """Show or hide, on the presenter's caption, how the room answered (a bar per choice)."""
+        with self.lock:
+            poll = self.screen.poll
+            if poll is None:
+                return "no question is asked now"
+            poll.spread_shown = not poll.spread_shown
+            return f"the room's answers {'shown' if poll.spread_shown else 'hidden'}: {poll.count} answered"
+
+    @shared_only
+    def reveal(self) -> str:
+        """The answer: the run plays from the stop to where it shows it (pressed again while it plays:
+        there at once), and the answer is marked."""
+        with self.lock:
+            poll = self.screen.poll
+            if poll is None:
+                return "no question is asked now"
+            poll.revealed = True
+            stop = self.screen.lecture
+            step = poll.answer.step
+            e = self.engine
+            on_history = stop is not None and stop.mark is not None and stop.mark.on_history(e)
+            if on_history and e.history.length >= step:
+                if e.step_index < step and not self.run.playing:
+                    self.run.play_to(step)
+                else:
+                    self.run.seek(step)
+            if poll.kind != "outcome":
+                self.presenter.selected = poll.answer.question.robot
+                if poll.kind == "robot":
+                    self.presenter.selected = int(min(poll.answer.right, key=int))
+            right = poll.right_count
+            return f"the run's answer: {poll.answer.words()}; {right} of {poll.count} answered it"
 
     def set_numbers(self, on: bool) -> None:
         with self.lock:

@@ -11,6 +11,7 @@ import html
 from typing import TYPE_CHECKING
 
 from apf_viz.workbench.view_model.legend import symbol_html
+from apf_viz.workbench.view_model.poll_caption import REVEAL_KEY, SPREAD_KEY, poll_html
 
 if TYPE_CHECKING:
     from apf_viz.workbench.view_model.views import SessionView
@@ -24,7 +25,9 @@ _QUIET = "color:#555"
 # What the page is, and its keys (the panel that would list them is collapsed): shown with the details.
 KEYS = {
     "presenting": "<b>Presenting</b> · P the panel · PageDown / PageUp next / previous stop · Enter step · "
-    "Space play · I details · J the class address · Esc gives the keys back from a field · Ctrl+K every key",
+    "Space play · I details · J the class address · "
+    + f"{SPREAD_KEY} a question's answers · {REVEAL_KEY} its reveal · "
+    + "Esc gives the keys back from a field · Ctrl+K every key",
     "following": "<b>Following the lecture</b>: the presenter's keys drive the run · P the panel · F frame "
     "the run · I details · Try it yourself (in the panel) for a run of your own",
     "class-drives": "<b>The presenter lets the class drive</b> · P the panel · Enter step · Space play · "
@@ -52,11 +55,16 @@ def _words(view: SessionView, page: str) -> str:
     hint = f"{DETAILS_KEY}: details"
     if view.lecture is not None:
         where, title, say = view.lecture
+        asked = poll_html(view.poll, page == "presenting")
+        # The bars take the words' room: the room has heard them by the time it sees how it answered.
+        words = (
+            ""
+            if view.poll is not None and view.poll.bars
+            else f'<div data-apf="say">{symbol_html(say)}</div>'
+        )
         return (
             f'<div style="{_QUIET}">{html.escape(where)} · {hint}</div>'
-            f"{_title(symbol_html(title))}"
-            f'<div data-apf="say">{symbol_html(say)}</div>'
-            f"{_status(view)}"
+            f"{_title(symbol_html(title))}{words}{asked}{_status(view)}"
         )
     return (
         f'<div style="{_QUIET}">{_PAGE_NAMES.get(page, page)} · {hint}, and the keys</div>'

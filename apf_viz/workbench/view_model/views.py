@@ -11,6 +11,7 @@ from apf_viz.core.grid import Point
 from apf_viz.core.portrayal import Explanation, LightStyle, Mark, Overlays
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 from apf_viz.workbench.compare import Divergence
+from apf_viz.workbench.poll import PollView
 from apf_viz.workbench.screen_state import Mode
 
 
@@ -122,6 +123,7 @@ class SessionView:
     paper_text: str = ""
     lecture: tuple[str, str, str] | None = None  # a guided lecture's stop: (where, title, words)
     lecture_title: str = ""  # the guided lecture being followed ("": none)
+    poll: PollView | None = None  # the stop's question to the room: how many answered, the spread
     trace_line: str = ""  # following a trace or schedule: where, and what its header says
     aside_line: str = ""  # a branch set recorded steps aside
     follows_presenter: bool = False  # this browser shows the presenter's selection

@@ -1,0 +1,105 @@
+"""A lecture stop's question (workbench/poll.py). On a class page, the Question folder, first in its
+panel: the question, this page's answer (a choice, or a cell typed or clicked on the canvas), changed at
+will until the reveal, then the run's answer and whether this page gave it; nobody else's answer is ever
+sent to it. On the presenter's page, two keys: B shows the room's answers on the caption, R reveals."""
+
+from __future__ import annotations
+
+from apf_viz.ui.panels.context import PanelContext, put
+from apf_viz.workbench.poll import Poll
+from apf_viz.workbench.question import choice_words
+from apf_viz.workbench.session import Session
+from apf_viz.workbench.view_model import SessionView
+from apf_viz.workbench.view_model.poll_caption import REVEAL_KEY, SPREAD_KEY
+
+NONE = "—"
+
+
+def shared_session(ctx: PanelContext) -> Session:
+    """The shared run's session, which holds the question, also for a page trying a run of its own."""
+    return getattr(ctx.session, "shared", ctx.session)
+
+
+def answer_key(browser: object) -> str:
+    """The key a page's answer is held under: its browser's (ui/app.py gives a page that reloads the key it
+    had, when viser tells the page's address)."""
+    return str(browser)
+
+
+class QuestionFolder:
+    def __init__(self, gui, ctx: PanelContext) -> None:
+        self.ctx = ctx
+        self.folder = gui.add_folder("Question", order=-1.0, visible=False)
+        with self.folder:
+            self.text = gui.add_markdown("")
+            self.choice = gui.add_dropdown("Your answer", (NONE,), initial_value=NONE)
+            self.cell = gui.add_text(
+                "Your cell", initial_value="", hint="x, y on the grid; or click the cell"
+            )
+            self.give_cell = gui.add_button("Answer this cell")
+        self.choice.on_update(ctx.from_browser(self._chosen, "Question", mine=True))
+        self.give_cell.on_click(ctx.guard(lambda e: self._give(self.cell.value), "Question", mine=True))
+        self._words: dict[str, str] = {}  # a choice's words on the dropdown -> the choice
+        self._kind: tuple | None = None  # the poll the controls were last laid out for
+        for label, key, text, act in (
+            ("The room's answers", SPREAD_KEY, "show or hide how the class answered the stop's question",
+             lambda s: s.toggle_spread()),
+            ("Reveal the answer", REVEAL_KEY, "play the run to the question's answer, and mark it",
+             lambda s: s.reveal()),
+        ):  # fmt: skip
+            command = gui.add_command(label, description=text, hotkey=key)
+            command.on_trigger(ctx.guard(self._presenter_only(act), "Question", mine=True))
+
+    def _presenter_only(self, act):
+        def run(event) -> str:
+            shared = shared_session(self.ctx)
+            if not shared.is_presenter(self.ctx.browser):
+                return "the presenter shows the answers and reveals them"
+            return act(shared)
+
+        return run
+
+    def _chosen(self, event) -> str | None:
+        value = self.choice.value
+        return None if value == NONE else self._give(self._words.get(value, value))
+
+    def _give(self, choice: str) -> str:
+        return shared_session(self.ctx).answer_question(answer_key(self.ctx.browser), choice)
+
+    def refresh(self, view: SessionView) -> None:
+        shared = shared_session(self.ctx)
+        poll = shared.screen.poll
+        shown = poll is not None and not shared.is_presenter(self.ctx.browser)
+        put(self.folder, visible=shown)
+        if not shown or poll is None:
+            return
+        self._lay_out(poll)
+        mine = poll.given(answer_key(self.ctx.browser))
+        said = choice_words(poll.kind, mine) if mine is not None else ""
+        if poll.revealed:
+            right = mine is not None and mine in poll.answer.right
+            verdict = f"You answered {said}: {'right' if right else 'not this time'}." if mine else ""
+            text = f"**{poll.question}**\n\nThe run's answer: **{poll.answer.words()}**. {verdict}"
+        else:
+            how = {"robot": "Click a robot, or choose it", "cell": "Click the cell, or type it"}.get(
+                poll.kind, "Choose"
+            )
+            held = f"Your answer: **{said}** (change it until the reveal)." if mine else "Not answered yet."
+            text = f"**{poll.question}**\n\n{how}. {held}"
+        put(self.text, content=text)
+        put(self.choice, visible=poll.choices is not None and not poll.revealed)
+        put(self.cell, visible=poll.choices is None and not poll.revealed)
+        put(self.give_cell, visible=poll.choices is None and not poll.revealed)
+        if poll.choices is not None:
+            put(self.choice, value=choice_words(poll.kind, mine) if mine is not None else NONE)
+
+    def _lay_out(self, poll: Poll) -> None:
+        """The dropdown's choices, for this question (laid out once a question)."""
+        key = (id(poll), poll.choices)
+        if key == self._kind:
+            return
+        self._kind = key
+        self._words = {choice_words(poll.kind, c): c for c in poll.choices or ()}
+        self.choice.options = (NONE, *self._words)
+        self.choice.value = NONE
+        self.cell.value = ""

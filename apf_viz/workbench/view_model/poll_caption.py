@@ -1,0 +1,67 @@
+"""A stop's question on the caption (workbench/poll.py): the question and how many answered; on the
+presenter's page, on its keys, the room's answers as a bar per choice and the reveal. A class page's
+caption shows the question only: the answers of others are never on it."""
+
+from __future__ import annotations
+
+import html
+
+from apf_viz.workbench.poll import Bar, PollView
+
+SPREAD_KEY = "B"  # the bars: how the room answered
+REVEAL_KEY = "R"
+BAR_PX = 70  # the tallest bar
+MOST_CELLS = 8  # a cell question's bars: the cells most given (the rest counted as one)
+_RIGHT = "#2b8a3e"
+_GIVEN = "#4c6ef5"
+
+
+def poll_html(poll: PollView | None, presenting: bool) -> str:
+    """The question's block of the caption (``""``: no question)."""
+    if poll is None:
+        return ""
+    asked = f"<b>Question:</b> {html.escape(poll.question)}"
+    if poll.answer:
+        told = f" <b>The run's answer: {html.escape(poll.answer)}</b>"
+        if presenting:
+            told += f" · {poll.right} of {poll.count} gave it"
+    elif presenting:
+        told = (
+            f' · <span data-apf="answered">{poll.count} answered</span> · {SPREAD_KEY} the answers · '
+            f"{REVEAL_KEY} reveal"
+        )
+    else:
+        told = " · answer in the panel (P), or click the canvas"
+    bars = bars_html(poll.bars, poll.kind) if presenting else ""
+    return f'<div data-apf="question">{asked}{told}</div>{bars}'
+
+
+def bars_html(bars: tuple[Bar, ...], kind: str) -> str:
+    """A bar per choice, its count above it and its name below; the run's answer green once revealed."""
+    if not bars:
+        return ""
+    if kind == "cell" and len(bars) > MOST_CELLS:
+        rest = sum(b.count for b in bars[MOST_CELLS:] if not b.right)
+        kept = [b for b in bars[:MOST_CELLS]] + [b for b in bars[MOST_CELLS:] if b.right]
+        bars = (*kept, Bar("", "other cells", rest, False))
+    top = max(1, *(b.count for b in bars))
+    columns = "".join(
+        f'<div data-apf="bar" data-choice="{html.escape(b.choice)}" data-count="{b.count}" '
+        f'style="display:flex;flex-direction:column;align-items:center;min-width:44px">'
+        f"<div>{b.count}</div>"
+        f'<div style="width:36px;height:{max(2, round(BAR_PX * b.count / top))}px;'
+        f'background:{_RIGHT if b.right else _GIVEN}"></div>'
+        f'<div style="white-space:nowrap">{"✔ " if b.right else ""}{html.escape(_short(b, kind))}</div></div>'
+        for b in bars
+    )
+    return (
+        f'<div data-apf="spread" style="display:flex;flex-wrap:wrap;align-items:flex-end;gap:4px 10px">'
+        f"{columns}</div>"
+    )
+
+
+def _short(bar: Bar, kind: str) -> str:
+    """A bar's name under it: the robot's number, the cell, the light or outcome."""
+    if kind == "robot":
+        return bar.choice
+    return bar.words.replace(" on the grid", "")

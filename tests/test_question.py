@@ -1,0 +1,199 @@
+"""A lecture stop's question (issue #58): its answer is what the run does from the stop, found again here
+from the run's events by a reading of our own; the room's answers are held one a page, changed until the
+reveal, and the reveal plays the run to the answer."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from apf_viz.cli import main
+from apf_viz.core.formats import InputError
+from apf_viz.lecture import Question, find_lecture, parse_lecture
+from apf_viz.workbench.lecturer import Lecturer
+from apf_viz.workbench.poll import MAX_ANSWERS, Poll
+from apf_viz.workbench.question import answer
+from apf_viz.workbench.session import Session
+
+HEART = "algorithm-in-12-stops"
+
+
+def events_after(session: Session, start: int) -> list:
+    """Every event of the run from step ``start`` on, played to its end."""
+    e = session.engine
+    while session.step():
+        pass
+    return [ev for step in e.history.steps[start:] for ev in step.events]
+
+
+def first_answers(session: Session, start: int, k: int) -> dict[str, set[str]]:
+    """Each question's answer read from the events: the first step with a Move that changes a cell, each
+    robot's first such Move, its first new light, the outcome."""
+    e = session.engine
+    e.seek(start)
+    at = {i: tuple(map(int, p)) for i, p in enumerate(e.positions)}
+    light = {i: e.state.lights[i] for i in range(k)}
+    out: dict[str, set[str]] = {}
+    for step in e.history.steps[start:]:
+        movers = {ev.robot for ev in step.events if ev.phase == "move" and tuple(ev.to) != at[ev.robot]}
+        if movers and "robot" not in out:
+            out["robot"] = {str(r) for r in movers}
+        for ev in step.events:
+            if ev.phase == "move" and tuple(ev.to) != at[ev.robot]:
+                out.setdefault(f"cell{ev.robot}", {f"{ev.to[0]},{ev.to[1]}"})
+                if not ev.collision:
+                    at[ev.robot] = tuple(ev.to)
+            if ev.phase == "compute" and ev.light is not None and ev.light != light[ev.robot]:
+                out.setdefault(f"light{ev.robot}", {ev.light})
+                light[ev.robot] = ev.light
+    return out
+
+
+@pytest.mark.parametrize("name", [HEART, "where-the-paper-breaks"])
+def test_every_answer_is_what_the_run_then_does(name):
+    """At every stop of two shipped lectures, every question of every kind about every robot: the answer
+    the run gives equals what its events show when it is played to its end."""
+    lecture = find_lecture(name)
+    session = Session([(0, 0)], [(0, 0)])
+    lecturer = Lecturer(session, lecture)
+    checked = 0
+    for index in range(len(lecture.stops)):
+        lecturer.go(index)
+        e = session.engine
+        k, start = e.k, e.step_index
+        questions = [Question(kind="robot"), Question(kind="outcome")]
+        questions += [Question(kind=kind, robot=r) for kind in ("cell", "light") for r in range(k)]
+        given = {q: answer(session, q) for q in questions}
+        assert e.step_index == start  # each question leaves the run where the stop left it
+        events_after(session, start)
+        outcome = e.outcome
+        expected = first_answers(session, start, k)
+        for q, got in given.items():
+            key = q.kind + ("" if q.robot is None else str(q.robot))
+            want = {outcome} if q.kind == "outcome" and outcome not in (None, "limit") else expected.get(key)
+            if want is None:
+                assert isinstance(got, str), (index, key, got)
+            else:
+                assert not isinstance(got, str), (index, key, got)
+                assert set(got.right) == want, (index, key)
+                checked += 1
+        lecturer.go(index)  # back where the stop leaves the run
+    assert checked > 10
+
+
+def test_lecture_check_prints_each_questions_answer(capsys):
+    assert main(["lecture", "check", "where-the-paper-breaks"]) == 0
+    out = capsys.readouterr().out
+    assert "asks: Under this schedule, how does the run end? — the run answers collision (at event 41)" in out
+    for name in (HEART, "what-a-robot-cannot-see"):
+        assert main(["lecture", "check", name]) == 0
+        assert "asks: " in capsys.readouterr().out
+    for lecture in map(find_lecture, (HEART, "what-a-robot-cannot-see", "where-the-paper-breaks")):
+        assert any(stop.ask is not None for stop in lecture.stops)
+
+
+@pytest.mark.parametrize(
+    ("stop", "said"),
+    [
+        ({"until": {"outcome": "formed"}, "ask": {"kind": "robot"}}, "the run ended (formed) before it answers"),
+        ({"ask": {"kind": "light", "robot": 12}}, "asks about robot 12, but the run has 10 robots"),
+    ],
+)
+def test_a_question_the_run_cannot_answer_fails_the_check(tmp_path, capsys, stop, said):
+    first = {"title": "start", "say": "words", "scenario": "Heart from 10 robots"}
+    bad = tmp_path / "bad.json"
+    stops = [first, {"title": "asks", "say": "more", **stop}]
+    bad.write_text(json.dumps({"format": "apf-viz-lecture", "version": 1, "title": "t", "stops": stops}))
+    assert main(["lecture", "check", str(bad)]) == 1
+    out = capsys.readouterr().out
+    assert "NOT stop 2" in out and said in out and "has no answer" in out
+
+
+@pytest.mark.parametrize(
+    ("ask", "said"),
+    [
+        ({"kind": "cell"}, "stops[1].ask: a cell question names its robot"),
+        ({"kind": "robot", "robot": 2}, "stops[1].ask: a robot question is about the whole run"),
+        ({"kind": "colour"}, "stops[1].ask.kind"),
+    ],
+)
+def test_a_malformed_question_is_refused_in_one_line(ask, said):
+    first = {"title": "start", "say": "words", "scenario": "Heart from 10 robots"}
+    stops = [first, {"title": "asks", "say": "more", "ask": ask}]
+    with pytest.raises(InputError) as err:
+        parse_lecture(json.dumps({"format": "apf-viz-lecture", "version": 1, "title": "t", "stops": stops}))
+    assert said in str(err.value) and "\n" not in str(err.value)
+
+
+def heart_at_question() -> Session:
+    session = Session([(0, 0)], [(0, 0)])
+    session.start_lecture(find_lecture(HEART))
+    for _ in range(2):
+        session.next_stop()
+    assert session.screen.poll is not None
+    return session
+
+
+def test_answers_are_one_a_page_changed_until_the_reveal():
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None and poll.kind == "robot"
+    right = min(poll.answer.right, key=int)
+    wrong = next(c for c in poll.choices or () if c not in poll.answer.right)
+    session.answer_question("a", wrong)
+    session.answer_question("a", right)  # changed: still one answer
+    session.answer_question("b", right)
+    session.answer_question("c", wrong)
+    assert (poll.count, poll.right_count) == (3, 2)
+    view = session.view().poll
+    assert view is not None and view.bars == () and view.answer == ""  # the spread is not out yet
+    session.toggle_spread()
+    bars = {b.choice: b.count for b in session.view().poll.bars}
+    assert bars[right] == 2 and bars[wrong] == 1 and sum(bars.values()) == 3
+    with pytest.raises(InputError, match="is not an answer"):
+        session.answer_question("d", "robot 99")
+    session.reveal()
+    with pytest.raises(InputError, match="takes no more answers"):
+        session.answer_question("a", wrong)
+    assert session.view().poll.answer == f"robot {right}"
+
+
+def test_the_reveal_plays_the_run_to_the_answer_and_selects_the_mover():
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None
+    start = session.engine.step_index
+    session.reveal()
+    assert session.playing
+    while session.play_steps(3):
+        pass
+    e = session.engine
+    assert e.step_index == poll.answer.step > start and e.state.events == poll.answer.event
+    assert not session.playing
+    assert str(session.presenter.selected) in poll.answer.right
+
+
+def test_a_click_answers_which_robot_and_where():
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None
+    cell = tuple(map(int, session.engine.positions[3]))
+    assert session.answer_by_click("a", cell) is not None and poll.given("a") == "3"
+    assert session.answer_by_click("a", (10_000, 10_000)) is None and poll.given("a") == "3"  # no robot there
+
+
+def test_a_cell_answer_is_read_as_the_grid_reads_it():
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None
+    cells = Poll(poll.answer.__class__(Question(kind="cell", robot=0), frozenset({"2,-1"}), 1, 1), 10, ())
+    assert cells.read(" (2, −1) ") == "2,-1" and cells.read("-3,4") == "-3,4"
+    for bad in ("2", "a, b", "1e3, 2", "10000000000000, 1"):
+        with pytest.raises(InputError):
+            cells.read(bad)
+    for i in range(MAX_ANSWERS):
+        cells.give(str(i), "0,0")
+    with pytest.raises(InputError, match="the most a question takes"):
+        cells.give("one more", "0,0")
+    cells.give("0", "1,1")  # a page that answered may still change its answer
