@@ -96,7 +96,7 @@ def test_lecture_check_prints_each_questions_answer(capsys):
 @pytest.mark.parametrize(
     ("stop", "said"),
     [
-        ({"until": {"outcome": "formed"}, "ask": {"kind": "robot"}}, "the run ended (formed) before it answers"),
+        ({"until": {"outcome": "formed"}, "ask": {"kind": "robot"}}, "ended (formed) before it answers"),
         ({"ask": {"kind": "light", "robot": 12}}, "asks about robot 12, but the run has 10 robots"),
     ],
 )

@@ -51,11 +51,12 @@ class QuestionFolder:
             command.on_trigger(ctx.guard(self._presenter_only(act), "Question", mine=True))
 
     def _presenter_only(self, act):
-        def run(event) -> str:
+        def run(event) -> str | None:
             shared = shared_session(self.ctx)
             if not shared.is_presenter(self.ctx.browser):
                 return "the presenter shows the answers and reveals them"
-            return act(shared)
+            said = act(shared)
+            return None if self.ctx.presenting() else said  # the caption says it; a notice would cover robots
 
         return run
 

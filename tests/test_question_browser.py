@@ -1,0 +1,86 @@
+"""A lecture stop's question in a real browser (Chromium, 1024×768): three class pages answer, two right
+and one wrong, the projector's spread reads 2–1, no class page is sent another's answer, and the reveal
+plays the run to the answer."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+
+import pytest
+
+from apf_viz.ui.app import App, demo_session, free_port
+from tests.test_ui_browser import _choose, drawn_there, open_page, screen_of, shot, wait_for
+
+pytest.importorskip("playwright.sync_api")
+pytestmark = pytest.mark.browser
+PROJECTOR = {"width": 1024, "height": 768}
+LECTURE = {
+    "format": "apf-viz-lecture",
+    "version": 1,
+    "title": "Who moves?",
+    "stops": [
+        {"title": "Ten robots", "scenario": "Heart from 10 robots", "say": "Every light off.",
+         "ask": {"kind": "robot"}},
+        {"title": "Later", "until": {"event": 20}, "say": "On."},
+    ],
+}  # fmt: skip
+
+
+@pytest.fixture
+def app() -> Iterator[App]:
+    a = App(demo_session(), port=free_port(), verbose=False)
+    a.session.load_lecture("who.json", json.dumps(LECTURE).encode())
+    yield a
+    a.stop()
+
+
+def class_page(browser, app: App):
+    before = set(app.screens)
+    page = browser.new_page(viewport=PROJECTOR)
+    page.set_default_timeout(60_000)
+    page.goto(app.addresses[1])
+    page.get_by_label("Event").wait_for()
+    wait_for(lambda: set(app.screens) - before)
+    drawn_there(app, page)
+    return page
+
+
+def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_plays_to_it(browser, app):
+    poll = app.session.screen.poll
+    assert poll is not None and poll.answer.right == {"1"}  # the run: robot 1 moves first
+    projector = open_page(browser, app, PROJECTOR)
+    robot0 = screen_of(app, projector, tuple(map(int, app.session.engine.positions[0])))
+    pages = [class_page(browser, app) for _ in range(3)]
+    for page in pages[:2]:
+        page.get_by_text("Which robot moves next?").first.wait_for()
+        _choose(page, "Your answer", "robot 1")
+    pages[2].mouse.click(*robot0)  # the third answers by a click on robot 0, the canvas as the projector's
+    wait_for(lambda: poll.count == 3)
+    assert sorted(poll.given(k) for k in map(str, app.screens) if poll.given(k)) == ["0", "1", "1"]
+    pages[2].locator("p").filter(has_text="Your answer: robot 0").wait_for()  # the Question folder
+
+    projector.keyboard.press("p")  # presentation mode: the caption on the canvas
+    projector.locator("[data-apf=answered]").filter(has_text="3 answered").wait_for()
+    projector.keyboard.press("b")  # the room's answers
+    bars = projector.locator("[data-apf=bar]")
+    bars.first.wait_for()
+    spread = {b.get_attribute("data-choice"): int(b.get_attribute("data-count")) for b in bars.all()}
+    assert spread["1"] == 2 and spread["0"] == 1 and sum(spread.values()) == 3
+    shot(projector, "question-spread-1024")
+    for page in pages:  # a class page is never sent the others' answers
+        drawn_there(app, page)
+        assert page.locator("[data-apf=bar]").count() == 0 and "answered" not in page.inner_text("body")
+
+    projector.keyboard.press("r")  # the reveal plays the run to the answer
+    wait_for(lambda: app.session.engine.step_index == poll.answer.step and not app.session.playing)
+    projector.get_by_text("The run's answer: robot 1").first.wait_for()
+    projector.get_by_text("2 of 3 gave it").first.wait_for()
+    assert app.session.engine.state.events == poll.answer.event and app.session.presenter.selected == 1
+    right = projector.locator("[data-apf=bar][data-choice='1']")
+    assert "✔" in right.inner_text()
+    shot(projector, "question-revealed-1024")
+    pages[0].locator("p").filter(has_text="You answered robot 1: right").wait_for()
+    pages[2].locator("p").filter(has_text="You answered robot 0: not this time").wait_for()
+    for page in (*pages, projector):
+        page.close()
