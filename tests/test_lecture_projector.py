@@ -360,6 +360,9 @@ def test_play_then_pagedown_lands_where_pagedown_alone_lands(browser):
         stops.close()
 
 
+STARTS_JS = "() => JSON.parse(document.getElementById('apf-stops').textContent).stops.map(s => s.at)"
+
+
 def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_no_network(browser, tmp_path):
     """`apf-viz export --lecture` opened from file:// with every request off the disk refused: paused at
     stop 1, PageDown / PageUp and the arrows go stop to stop (the run and an HTML caption at the
@@ -388,6 +391,8 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
         assert sizes[0] >= TITLE_PX and sizes[1] >= WORDS_PX
         box = page.locator("#apf-caption").bounding_box()
         assert box["height"] <= 0.35 * 768
+        starts = page.evaluate(STARTS_JS)  # each stop's second (a question's reveal adds one of its own)
+        assert starts[:3] == [0.0, 12.0, 18.0]  # stop 1 asks: its reveal's frame follows it
         for key, index in (
             ("PageDown", 1),
             ("PageDown", 2),
@@ -400,7 +405,7 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
                 "t => document.querySelector('#apf-caption [data-apf=title]').innerText === t",
                 arg=_plain(stops[index].title),
             )
-            assert float(time_field.input_value()) == pytest.approx(6.0 * index + 0.1)
+            assert float(time_field.input_value()) == pytest.approx(starts[index] + 0.1)
         page.screenshot(path=str(OUT / "projector-exported-page-stop-2.png"))
         changed = np.abs(_canvas(page) - first).max(axis=2) > 40
         changed[:320, :340] = False  # a headless browser's notification in the corner
@@ -411,6 +416,51 @@ def test_the_exported_lecture_opens_paused_and_goes_stop_to_stop_from_disk_with_
             arg=_plain(stops[2].title),
             timeout=20_000,
         )
+        assert not refused, refused[:3]
+    finally:
+        context.close()
+
+
+def test_the_exported_lecture_asks_its_question_and_reveals_the_answer_from_disk(browser, tmp_path):
+    """The page taken home asks too: at stop 1 of `where-the-paper-breaks` the reader answers (changed
+    once), reveals with R, and the page says the run's answer and goes to where the run shows it, with no
+    server and no network."""
+    from apf_viz.cli import main
+
+    out = tmp_path / "lecture.html"
+    assert main(["export", "--lecture", "where-the-paper-breaks", "--out", str(out)]) == 0
+    context, refused = offline_context(browser)
+    page = context.new_page()
+    try:
+        page.goto(out.as_uri())
+        page.wait_for_function("() => document.title.endsWith('stop 1')")
+        caption = page.locator("#apf-caption")
+        caption.locator("[data-apf=question]").filter(has_text="how does the run end?").wait_for()
+        time_field = page.locator("input.mantine-NumberInput-input")
+        page.wait_for_function("() => document.querySelector('input.mantine-NumberInput-input')")
+        first = _canvas(page)
+        caption.locator("[data-choice=stuck]").click()
+        caption.locator("[data-choice=collision]").click()  # changed before the reveal
+        verdict = caption.locator("[data-apf=verdict]")
+        assert "Your answer: collision" in verdict.inner_text()
+        page.keyboard.press("r")
+        page.wait_for_function(
+            "() => document.querySelector('[data-apf=verdict]').innerText.includes(\"The run's answer\")"
+        )
+        assert (
+            verdict.inner_text() == "The run's answer: collision (event 41). You answered collision: right."
+        )
+        reveal_at = page.evaluate(
+            "() => JSON.parse(document.getElementById('apf-stops').textContent).stops[0].question.reveal_at"
+        )
+        assert float(time_field.input_value()) == pytest.approx(reveal_at + 0.1)
+        time.sleep(1.0)
+        changed = np.abs(_canvas(page) - first).max(axis=2) > 40
+        changed[:320, :340] = False  # a headless browser's notification in the corner
+        assert changed.sum() > 500  # the run as it collides, not as it starts
+        page.screenshot(path=str(OUT / "projector-exported-question-revealed.png"))
+        caption.locator("[data-choice=formed]").click()  # after the reveal, the answer stands
+        assert "You answered collision: right." in verdict.inner_text()
         assert not refused, refused[:3]
     finally:
         context.close()

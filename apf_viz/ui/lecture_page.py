@@ -20,6 +20,20 @@ from apf_viz.workbench.view_model.legend import symbol_html
 
 
 @dataclass(frozen=True)
+class PageQuestion:
+    """A stop's question on the page (workbench/poll.py): the reader answers (a choice, or a cell typed),
+    then reveals: the page shows the run's answer and goes to the recording's second ``reveal_at``, where
+    the run shows it."""
+
+    text: str
+    kind: str
+    choices: tuple[tuple[str, str], ...] | None  # (value, words); None: a cell, typed as x, y
+    right: tuple[str, ...]
+    answer: str  # the run's answer in words
+    reveal_at: float
+
+
+@dataclass(frozen=True)
 class PageStop:
     """A stop on the page: the second it starts at in the recording and its words (plain text)."""
 
@@ -28,6 +42,7 @@ class PageStop:
     title: str
     say: str
     status: str
+    question: PageQuestion | None = None
 
 
 _STYLE = f"""
@@ -42,7 +57,7 @@ _STYLE = f"""
 
 # Drives viser's player: seek by its time field (React reads a value set through the native setter and
 # an input event), follow the time while playing, and take the lecture's keys before the camera does.
-_SCRIPT = """
+_SCRIPT = r"""
 (function () {
   var data = JSON.parse(document.getElementById('apf-stops').textContent);
   var stops = data.stops, index = 0, shown = -1, paced = true;
@@ -54,11 +69,70 @@ _SCRIPT = """
     var s = stops[i];
     box.innerHTML = '<div class="where">' + s.where + ' · PageDown / PageUp: next / previous stop</div>' +
       '<div class="title" data-apf="title">' + s.title + '</div>' +
-      '<div data-apf="say">' + s.say + '</div><div class="status">' + s.status + '</div>' +
+      '<div data-apf="say">' + s.say + '</div>' + asked(i) + '<div class="status">' + s.status + '</div>' +
       (paced ? '' : '<div class="where">' + data.unpaced + '</div>');
     box.scrollTop = 0;
     document.title = data.title + ' · stop ' + (i + 1);
+    told(i);
   }
+  // A stop's question: the reader's answer (changed at will until the reveal), then the run's.
+  var given = {}, revealed = {};
+  function asked(i) {
+    var q = stops[i].question;
+    if (!q) return '';
+    var pick = q.choices ? q.choices.map(function (c) {
+      return '<button data-choice="' + c[0] + '">' + c[1] + '</button>';
+    }).join(' ') : '<input data-apf="cell" placeholder="x, y" size="8"> ' +
+      '<button data-apf="give-cell">Answer</button>';
+    return '<div data-apf="question"><b>Question:</b> ' + q.text + '</div><div data-apf="choices">' + pick +
+      ' <button data-apf="reveal">Reveal (R)</button></div><div data-apf="verdict"></div>';
+  }
+  function words(q, v) {
+    if (!q.choices) return '(' + v.replace(',', ', ') + ') on the grid';
+    for (var j = 0; j < q.choices.length; j++) if (q.choices[j][0] === v) return q.choices[j][1];
+    return v;
+  }
+  function told(i) {
+    var q = stops[i].question, out = box.querySelector('[data-apf=verdict]');
+    if (!q || !out) return;
+    var mine = given[i];
+    if (revealed[i]) {
+      var right = mine !== undefined && q.right.indexOf(mine) >= 0;
+      out.innerHTML = "<b>The run's answer: " + q.answer + '.</b> ' + (mine === undefined ? '' :
+        'You answered ' + words(q, mine) + ': ' + (right ? 'right.' : 'not this time.'));
+    } else {
+      out.innerHTML = mine === undefined ? 'Answer, then Reveal (R).' :
+        'Your answer: <b>' + words(q, mine) + '</b> (change it until you reveal).';
+    }
+  }
+  function give(v) {
+    if (revealed[index]) return;
+    given[index] = v;
+    told(index);
+  }
+  function reveal() {
+    var q = stops[index].question;
+    if (!q) return;
+    revealed[index] = true;
+    told(index);
+    var f = field();
+    if (f) {
+      var setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value').set;
+      setter.call(f, (q.reveal_at + 0.1).toFixed(2));
+      f.dispatchEvent(new Event('input', { bubbles: true }));
+      setTimeout(function () { f.blur(); }, 0);
+    }
+  }
+  box.addEventListener('click', function (e) {
+    var t = e.target;
+    if (t.dataset.choice !== undefined) give(t.dataset.choice);
+    else if (t.dataset.apf === 'reveal') reveal();
+    else if (t.dataset.apf === 'give-cell') {
+      var m = /^\s*\(?\s*(-?\d+)\s*,\s*(-?\d+)\s*\)?\s*$/.exec(box.querySelector('[data-apf=cell]').value);
+      if (m) give(parseInt(m[1], 10) + ',' + parseInt(m[2], 10));
+      else box.querySelector('[data-apf=verdict]').textContent = 'A cell is x, y: e.g. 2, -1';
+    }
+  });
   function seek(i) {
     index = Math.max(0, Math.min(stops.length - 1, i));
     var f = field();
@@ -81,7 +155,14 @@ _SCRIPT = """
   }
   var NEXT = { PageDown: 1, ArrowRight: 1, ArrowDown: 1, PageUp: -1, ArrowLeft: -1, ArrowUp: -1 };
   window.addEventListener('keydown', function (e) {
-    if (!(e.key in NEXT)) return;  // the page has no field to type in but the player's time
+    if (e.target && e.target.dataset && e.target.dataset.apf === 'cell') return;  // a cell being typed
+    if ((e.key === 'r' || e.key === 'R') && stops[index].question) {
+      e.preventDefault();
+      e.stopImmediatePropagation();
+      reveal();
+      return;
+    }
+    if (!(e.key in NEXT)) return;  // the page has no other field to type in but the player's time
     e.preventDefault();
     e.stopImmediatePropagation();
     seek(index + NEXT[e.key]);
@@ -100,6 +181,21 @@ _SCRIPT = """
 """
 
 
+def _question(q: PageQuestion | None) -> dict | None:
+    """A question as the page's script takes it, every word escaped for the caption's HTML."""
+    if q is None:
+        return None
+    esc = html.escape
+    choices = [[esc(v), esc(w)] for v, w in q.choices] if q.choices is not None else None
+    return {
+        "text": esc(q.text),
+        "choices": choices,
+        "right": [esc(r) for r in q.right],
+        "answer": esc(q.answer),
+        "reveal_at": q.reveal_at,
+    }
+
+
 def paced_page(page: str, title: str, stops: list[PageStop], stop_seconds: float) -> str:
     """viser's exported ``page`` with the lecture's caption and keys added."""
     data = {
@@ -108,7 +204,11 @@ def paced_page(page: str, title: str, stops: list[PageStop], stop_seconds: float
         "unpaced": "This page cannot go stop to stop with this viser: it plays each stop for "
         f"{stop_seconds:g} s (Space pauses).",
         "stops": [
-            {**asdict(s), **{k: symbol_html(getattr(s, k)) for k in ("where", "title", "say", "status")}}
+            {
+                **asdict(s),
+                **{k: symbol_html(getattr(s, k)) for k in ("where", "title", "say", "status")},
+                "question": _question(s.question),
+            }
             for s in stops
         ],
     }

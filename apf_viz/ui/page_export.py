@@ -15,11 +15,12 @@ from dataclasses import dataclass
 import viser
 
 from apf_viz.lecture import Lecture
-from apf_viz.ui.lecture_page import PageStop, paced_page
+from apf_viz.ui.lecture_page import PageQuestion, PageStop, paced_page
 from apf_viz.ui.network import free_port
 from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene import SceneRenderer, text_cells
 from apf_viz.ui.scene.compare_pair import ComparePair
+from apf_viz.workbench.question import choice_words
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
@@ -133,9 +134,34 @@ def _record_stops(session: Session, lecture: Lecture, recorder: _Recorder) -> li
         assert view.lecture is not None
         where, title, say = view.lecture
         status = f"{view.stage_line} · event {view.event}"
-        stops.append(PageStop(recorder.clock, where, title, say, status))
+        at = recorder.clock
         recorder.frame(view, [], STOP_SECONDS, session.config)
+        stops.append(PageStop(at, where, title, say, status, _asked(session, recorder)))
     return stops
+
+
+def _asked(session: Session, recorder: _Recorder) -> PageQuestion | None:
+    """A stop's question on the page: its choices, the run's answer, and a frame of the run where it
+    shows the answer (recorded after the stop's own), which the page's reveal goes to."""
+    poll = session.screen.poll
+    if poll is None:
+        return None
+    here = session.engine.step_index
+    session.seek(poll.answer.step)
+    reveal_at = recorder.clock
+    recorder.frame(session.view(), [], STOP_SECONDS, session.config)
+    session.seek(here)  # where the stop left the run: the next stop goes on from there
+    choices = (
+        tuple((c, choice_words(poll.kind, c)) for c in poll.choices) if poll.choices is not None else None
+    )
+    return PageQuestion(
+        poll.question,
+        poll.kind,
+        choices,
+        tuple(sorted(poll.answer.right)),
+        f"{poll.answer.words()} (event {poll.answer.event})",
+        reveal_at,
+    )
 
 
 def export_run(session: Session, title: str) -> Exported:
