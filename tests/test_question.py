@@ -197,3 +197,12 @@ def test_a_cell_answer_is_read_as_the_grid_reads_it():
     with pytest.raises(InputError, match="the most a question takes"):
         cells.give("one more", "0,0")
     cells.give("0", "1,1")  # a page that answered may still change its answer
+
+
+def test_a_seat_is_read_only_from_a_seat_path_with_a_whole_token():
+    from apf_viz.ui.seat import seat_key
+
+    token = "0123456789abcdef" * 2
+    assert seat_key(f"/seat/{token}", 7) == f"seat {token}"
+    for path in (None, "/", f"/present/{token}", f"/seat/{token}x", "/seat/../x", f"/seat/{token.upper()}"):
+        assert seat_key(path, 7) == "page 7"

@@ -5,6 +5,7 @@ plays the run to the answer."""
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Iterator
 
 import pytest
@@ -40,6 +41,7 @@ def class_page(browser, app: App):
     page = browser.new_page(viewport=PROJECTOR)
     page.set_default_timeout(60_000)
     page.goto(app.addresses[1])
+    page.wait_for_url(re.compile(r"\?websocket=ws://[^/]+/seat/[0-9a-f]{32}$"))  # to its seat (ui/seat.py)
     page.get_by_label("Event").wait_for()
     wait_for(lambda: set(app.screens) - before)
     drawn_there(app, page)
@@ -57,8 +59,17 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
         _choose(page, "Your answer", "robot 1")
     pages[2].mouse.click(*robot0)  # the third answers by a click on robot 0, the canvas as the projector's
     wait_for(lambda: poll.count == 3)
-    assert sorted(poll.given(k) for k in map(str, app.screens) if poll.given(k)) == ["0", "1", "1"]
+    keys = [app.seat_of(cid) for cid in app.screens]
+    assert sorted(poll.given(k) for k in keys if poll.given(k)) == ["0", "1", "1"]
+    assert sum(k.startswith("seat ") for k in keys) == 3  # each class page has a seat of its own
     pages[2].locator("p").filter(has_text="Your answer: robot 0").wait_for()  # the Question folder
+    seat = pages[0].url
+    pages[0].reload()  # a page that reloads keeps its seat, and its answer
+    pages[0].get_by_label("Event").wait_for()
+    assert pages[0].url == seat
+    pages[0].locator("p").filter(has_text="Your answer: robot 1").wait_for()
+    wait_for(lambda: len(app.screens) == 4)
+    assert poll.count == 3
 
     projector.keyboard.press("p")  # presentation mode: the caption on the canvas
     projector.locator("[data-apf=answered]").filter(has_text="3 answered").wait_for()

@@ -23,10 +23,10 @@ from apf_viz.ui.network import free_port as free_port  # where tests and benchma
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.panels.question import answer_key
 from apf_viz.ui.roles import Roles
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
+from apf_viz.ui.seat import seat_key
 from apf_viz.workbench.config import SessionConfig, session_from_config
 from apf_viz.workbench.screen_state import Role
 from apf_viz.workbench.session import Session
@@ -149,6 +149,10 @@ class App:
         class page where viser does not say (the presenter code stands in: :meth:`claim_presenter`)."""
         return self.roles.role_of(viser_compat.websocket_path(self.server, client.client_id))
 
+    def seat_of(self, client_id: int) -> str:
+        """The key a page's answers are held under: its seat (ui/seat.py), which a reload keeps."""
+        return seat_key(viser_compat.websocket_path(self.server, client_id), client_id)
+
     @property
     def by_code(self) -> bool:
         """Roles are claimed by the presenter code: this viser does not say which address a page used."""
@@ -246,7 +250,7 @@ class App:
         cell = renderer.cell_of_ray(event.ray_origin, event.ray_direction)
         if cell is not None and page is not None and page.own is None and page.state.role == "class":
             try:  # a click answers a question that asks for a robot or a cell
-                said = self.session.answer_by_click(answer_key(event.client.client_id), cell)
+                said = self.session.answer_by_click(self.seat_of(event.client.client_id), cell)
                 if said:
                     tell(event.client, "Question", said)
             except InputError as err:

@@ -86,6 +86,7 @@ class Panels:
         frame_all: Callable[[], None] = lambda: None,
         point_at: Callable | None = None,
         class_address: Callable[[], str] | None = None,
+        answer_key: Callable[[], str] | None = None,
         claim_presenter: Claim | None = None,
     ) -> None:
         self.session = session
@@ -97,6 +98,8 @@ class Panels:
             self.ctx.point_at = point_at
         if class_address is not None:
             self.ctx.class_address = class_address
+        if answer_key is not None:
+            self.ctx.answer_key = answer_key
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.join = Join(owner.gui, self.ctx)

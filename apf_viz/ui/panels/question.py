@@ -6,6 +6,7 @@ sent to it. On the presenter's page, two keys: B shows the room's answers on the
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put
+from apf_viz.ui.seat import SEAT_JS
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.question import choice_words
 from apf_viz.workbench.session import Session
@@ -20,15 +21,10 @@ def shared_session(ctx: PanelContext) -> Session:
     return getattr(ctx.session, "shared", ctx.session)
 
 
-def answer_key(browser: object) -> str:
-    """The key a page's answer is held under: its browser's (ui/app.py gives a page that reloads the key it
-    had, when viser tells the page's address)."""
-    return str(browser)
-
-
 class QuestionFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
+        gui.add_html(SEAT_JS)  # a class page's answers are kept under its seat, which a reload keeps
         self.folder = gui.add_folder("Question", order=-1.0, visible=False)
         with self.folder:
             self.text = gui.add_markdown("")
@@ -65,7 +61,7 @@ class QuestionFolder:
         return None if value == NONE else self._give(self._words.get(value, value))
 
     def _give(self, choice: str) -> str:
-        return shared_session(self.ctx).answer_question(answer_key(self.ctx.browser), choice)
+        return shared_session(self.ctx).answer_question(self.ctx.answer_key(), choice)
 
     def refresh(self, view: SessionView) -> None:
         shared = shared_session(self.ctx)
@@ -75,7 +71,7 @@ class QuestionFolder:
         if not shown or poll is None:
             return
         self._lay_out(poll)
-        mine = poll.given(answer_key(self.ctx.browser))
+        mine = poll.given(self.ctx.answer_key())
         said = choice_words(poll.kind, mine) if mine is not None else ""
         if poll.revealed:
             right = mine is not None and mine in poll.answer.right
