@@ -24,6 +24,7 @@ from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
 from apf_viz.ui.roles import Roles
+from apf_viz.ui.room import Room
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.seat import seat_key
@@ -125,6 +126,7 @@ class App:
         self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
         self.frames = 0
         self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
+        self.room = Room(session, self._screens, self.seat_of)  # the class pages, for the presenter
         # Class pages brought up to date in turn while playing (:meth:`_due`): pages owed, whose turn next.
         self._class_due, self._class_turn, self._last_due = 0.0, 0, time.monotonic()
         self.server.scene.on_click()(self._on_click)
@@ -193,6 +195,7 @@ class App:
         screen = BrowserScreen(self, client)
         screen.panels.ctx.try_alone = lambda: self.own_runs.try_alone(screen)
         screen.panels.ctx.back_to_lecture = lambda: self.own_runs.back(screen)
+        screen.panels.ctx.room = self.room
         with self._screens_lock:
             self.screens[client.client_id] = screen
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
@@ -204,6 +207,7 @@ class App:
         with self._screens_lock:
             self.screens.pop(client.client_id, None)
         self.session.leave(client.client_id)
+        self.room.left(client.client_id)
 
     def request_render(self) -> None:
         self._dirty.set()
@@ -331,8 +335,9 @@ class App:
         # Labels laid out for the framed page that shows them largest: apart there, apart on every page.
         heights = [h for x in screens if (h := x.text_height()) is not None]
         self.renderer.text_height = max(heights) if heights else None
+        run_view, beside = self.room.beside(run_view)  # a laptop's own run on the projector, beside it
         with self.server.atomic():
-            self.pair.render(run_view, self.session.config)
+            self.pair.render(run_view, self.session.config, beside)
         for screen in due:
             view = views[screen.client.client_id]
             try:

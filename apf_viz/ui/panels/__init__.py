@@ -26,6 +26,7 @@ from apf_viz.ui.panels.paper import PaperFolder
 from apf_viz.ui.panels.presentation import Presentation
 from apf_viz.ui.panels.presenter_code import Claim, PresenterCode
 from apf_viz.ui.panels.question import QuestionFolder
+from apf_viz.ui.panels.room import RoomFolder
 from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
@@ -49,6 +50,7 @@ FOLDERS = (
     AdversaryFolder,
     AlgorithmFolder,
     CompareFolder,
+    RoomFolder,  # the presenter's only
     EditFolder,
     FilesFolder,
     MovesFolder,
@@ -64,7 +66,7 @@ class Folder(Protocol):
 # While playing, the Paper's pseudocode (re-highlighted as the actor changes), the History (timeline, log,
 # stats) and the Moves chart are re-laid out and repainted by the page for each change, about a tenth of
 # a software-rendered page's frame each (docs/PERFORMANCE.md): at most four times a second they follow.
-SLOW_FOLDERS = (PaperFolder, HistoryFolder, MovesFolder)
+SLOW_FOLDERS = (PaperFolder, HistoryFolder, MovesFolder, RoomFolder)
 PLAYING_REFRESH_S = 0.25
 FOLLOWING_FOLDERS = (RunFolder, SelectedFolder)  # what a class page following a played run keeps in step
 FOLLOWING_REFRESH_S = 1.0

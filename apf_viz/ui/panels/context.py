@@ -6,11 +6,15 @@ from __future__ import annotations
 import weakref
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.ui import viser_compat
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.verifier import Status, Verifier
+
+if TYPE_CHECKING:
+    from apf_viz.ui.room import Room
 
 FOLLOWING = (
     "this page follows the lecture: the presenter drives the shared run (select a robot to see what it "
@@ -119,6 +123,7 @@ class PanelContext:
     # sets these (a panel without an App has no own runs).
     try_alone: Callable[[], str] = lambda: "no runs of one's own here"
     back_to_lecture: Callable[[], str] = lambda: "this page follows the lecture"
+    room: Room | None = None  # the class pages, for the presenter's Room folder (ui/room.py)
 
     def drives(self) -> bool:
         """Whether this browser may change the shared run (a presenter page, or the class when the

@@ -20,9 +20,17 @@ class ComparePair:
         self.first = first
         self.second: SceneRenderer | None = None
 
-    def render(self, view: SessionView, config: RunConfig) -> None:
-        """One frame of both; the caller wraps it in the scene's ``atomic()``."""
-        self.first.render(view, compare_title("A", view) if view.compare else None)
+    def render(self, view: SessionView, config: RunConfig, beside: str | None = None) -> None:
+        """One frame of both; the caller wraps it in the scene's ``atomic()``. ``beside``: the second
+        run is a class page's (ui/room.py), titled so, and the first is the lecture's."""
+        if beside is not None:
+            state = view.outcome.upper() if view.outcome else "running"
+            titles: tuple[str | None, str | None] = (f"the lecture's run · {state}", beside)
+        elif view.compare is not None:
+            titles = (compare_title("A", view), compare_title("B", view.compare))
+        else:
+            titles = (None, None)
+        self.first.render(view, titles[0])
         other = view.compare
         if other is None:
             self.clear_second()
@@ -36,7 +44,7 @@ class ComparePair:
         # One camera shows both runs: the second's labels are laid out for the first's zoom.
         self.second.view_cells = a.view_cells if a.view_cells is not None else a.visible_height()
         self.second.text_height = a._text_height()
-        self.second.render(other, compare_title("B", other), beside=a.label_boxes)
+        self.second.render(other, titles[1], beside=a.label_boxes)
         b = self.second.bounds
         x0, y0, x1, y1 = a.bounds
         # Labels run to the right of what they name (numbers, "the leader's frame"): room for them.

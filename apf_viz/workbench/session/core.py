@@ -104,6 +104,7 @@ class SessionCore:
         self._browsers: dict[Hashable, BrowserState] = {}
         self._presenter_of: Hashable | None = None
         self.class_may_drive = False  # the presenter opened the shared run to the class pages
+        self.driver: Hashable | None = None  # the one class page the presenter handed the run to
         self.private = False  # a class page's run of its own (ui/own_runs.py): no files, no lectures
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
@@ -140,6 +141,8 @@ class SessionCore:
     def leave(self, browser: Hashable) -> None:
         with self.lock:
             self._browsers.pop(browser, None)
+            if browser == self.driver:
+                self.driver = None  # the run comes back to the presenter when that page leaves
             if browser == self._presenter_of:
                 self._presenter_of = None  # the next presenter page to connect holds it (a reload)
 
@@ -155,9 +158,26 @@ class SessionCore:
         return self.browser(browser).role
 
     def may_drive(self, browser: Hashable | None) -> bool:
-        """Whether the browser may change the shared run: a presenter page, or any page while the
-        presenter lets the class drive."""
-        return self.browser(browser).role == "presenter" or self.class_may_drive
+        """Whether the browser may change the shared run: a presenter page, any page while the
+        presenter lets the class drive, or the one class page it handed the run to."""
+        state = self.browser(browser)
+        return (
+            state.role == "presenter"
+            or self.class_may_drive
+            or (browser is not None and browser == self.driver)
+        )
+
+    @shared_only
+    def hand_run_to(self, page: Hashable | None, browser: Hashable | None = None) -> str:
+        """Let one class page (``page``) drive the shared run beside the presenter; None: take it back
+        (a presenter page's choice only)."""
+        if self.role(browser) != "presenter":
+            raise InputError("only a presenter page hands the run to a class page")
+        with self.lock:
+            if page is not None and self._browsers.get(page) is None:
+                raise InputError("that page has left")
+            self.driver = page
+        return "the presenter drives the run alone" if page is None else "that page may drive the run too"
 
     @shared_only
     def set_class_may_drive(self, on: bool, browser: Hashable | None = None) -> str:
