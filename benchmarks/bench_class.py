@@ -137,10 +137,33 @@ def _measure(app: App, projector, student, start_record: str) -> tuple[float, fl
     return a, b, sent
 
 
-def lecture_hall(n: int, args: list[str], start_record: str, own: bool = False) -> None:
+QUESTION = {
+    "format": "apf-viz-lecture",
+    "version": 1,
+    "title": "Who moves?",
+    "stops": [
+        {
+            "title": "Ten robots",
+            "scenario": "Heart from 10 robots",
+            "say": "Every light off.",
+            "ask": {"kind": "robot"},
+        }
+    ],
+}
+
+
+def lecture_hall(
+    n: int, args: list[str], start_record: str, own: bool = False, answering: int | None = None
+) -> None:
     """The projector alone, then beside n class pages: each with a robot selected, or (``own``) each
-    trying a run of its own, playing at the fastest an own run may."""
+    trying a run of its own, playing at the fastest an own run may; or (``answering``: that many of the
+    n) a stop's question answered by every one of those pages, the others each trying a run of its own,
+    and then how long the projector takes to show one answer more."""
     app = App(demo_session(), port=free_port(), verbose=False)
+    if answering is not None:
+        import json
+
+        app.session.load_lecture("who.json", json.dumps(QUESTION).encode())
     presenter_url, class_url = app.addresses
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=args)
@@ -167,6 +190,11 @@ def lecture_hall(n: int, args: list[str], start_record: str, own: bool = False) 
             app.session.pause()
             app.session.reset()  # each own run branches at the start: it plays the whole window
         for i, cid in enumerate(sorted(light)):
+            if answering is not None:  # the first answer, the rest try runs of their own
+                own = i >= answering
+                if not own:
+                    app.session.answer_question(app.seat_of(cid), str(i % len(robots)))
+                    continue
             if own:  # Try it yourself, then Play at the fastest an own run may
                 screen = app.screens[cid]
                 app.own_runs.try_alone(screen)
@@ -187,12 +215,16 @@ def lecture_hall(n: int, args: list[str], start_record: str, own: bool = False) 
         server_cpu = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
         share = full[0] / alone[0] if alone[0] else float("nan")
         what = "each playing its own run" if own else "each a robot selected"
+        if answering is not None:
+            what = f"{answering} answered the question, {n - answering} each playing its own run"
         print(
             f"| 2 + {n} class pages ({what}) | {full[0]:.1f} ({share:.2f} of alone) | "
             f"{full[1]:.1f} | {full[2]:.1f} |"
         )
         connected = len(app.screens)
         held = time.perf_counter() - wall0
+        if answering is not None:
+            _spread_latency(app, projector)
         rss_with = _rss_mb()
         pages.stop()
         received = pages.received / max(1, n)
@@ -214,6 +246,32 @@ def lecture_hall(n: int, args: list[str], start_record: str, own: bool = False) 
         )
         browser.close()
     app.stop()
+
+
+def _spread_latency(app: App, projector) -> None:
+    """The projector presenting, the room's answers shown (B): from one answer more (a page answering)
+    to the projector's caption counting it, five times."""
+    projector.keyboard.press("p")
+    projector.locator("[data-apf=answered]").wait_for(timeout=60_000)
+    projector.keyboard.press("b")
+    projector.locator("[data-apf=bar]").first.wait_for(timeout=60_000)
+    poll = app.session.screen.poll
+    assert poll is not None
+    waits = []
+    for i in range(5):
+        count = poll.count + 1
+        t0 = time.perf_counter()
+        app.session.answer_question(f"bench page {i}", "1")
+        app.request_render()
+        projector.wait_for_function(
+            "n => (document.querySelector('[data-apf=answered]') || {}).innerText === n + ' answered'",
+            arg=count,
+            timeout=30_000,
+        )
+        waits.append(time.perf_counter() - t0)
+    print(
+        f"(one answer more to the projector's caption counting it: {', '.join(f'{w:.2f}' for w in waits)} s)"
+    )
 
 
 def _rss_mb() -> float:

@@ -27,6 +27,8 @@
   robot); each page's scene updates/s in both, and the projector's share of its rate alone;
 - with ``--own N``: the same, each of the N class pages trying a run of its own and playing it at the
   fastest an own run may; and the server's memory before, with and after the class;
+- with ``--room A,O``: the same with A class pages that each answered a lecture stop's question and O
+  each playing a run of its own; then how long the presenting projector takes to count one answer more;
 - with ``--churn N``: N pages that connect and read nothing (laptops asleep) while the run plays, then
   vanish without a goodbye (their process killed), three times: the server's memory after each round;
 - with ``--wake N [--asleep S]``: N pages that read nothing for S seconds (default 60) while the run
@@ -35,7 +37,7 @@
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
 python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60;
 python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --wake 20;
-python benchmarks/bench_ui.py --own 24
+python benchmarks/bench_ui.py --own 24; python benchmarks/bench_ui.py --room 60,20
 """
 
 from __future__ import annotations
@@ -117,10 +119,21 @@ def main() -> None:
     ap.add_argument("--window", default="1400x900", help="WIDTHxHEIGHT (a projector: 1024x768)")
     ap.add_argument("--class", dest="pages", type=int, default=None, help="N lightweight class pages")
     ap.add_argument("--own", type=int, default=None, help="N class pages each playing a run of its own")
+    ap.add_argument(
+        "--room",
+        default=None,
+        help="A,O: A class pages that answered a stop's question, O trying runs of their own",
+    )
     ap.add_argument("--churn", type=int, default=None, help="N pages connected, asleep, then killed")
     ap.add_argument("--wake", type=int, default=None, help="N pages asleep while the run plays, then awake")
     ap.add_argument("--asleep", type=float, default=60.0, help="with --wake: seconds asleep")
     args = ap.parse_args()
+    if args.room is not None:
+        from bench_class import lecture_hall
+
+        answering, own = (int(x) for x in args.room.split(","))
+        lecture_hall(answering + own, ARGS, START_RECORD, answering=answering)
+        return
     if args.pages is not None or args.own is not None:
         from bench_class import lecture_hall
 

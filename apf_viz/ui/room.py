@@ -58,7 +58,9 @@ class Room:
     def laptop(self, screen: BrowserScreen) -> int:
         """Its number: its seat's (kept when it reloads), else its connection's, the lowest free."""
         cid = screen.client.client_id
-        seat = self._keys.setdefault(cid, self._seat_of(cid))
+        seat = self._keys.get(cid)
+        if seat is None:
+            seat = self._keys[cid] = self._seat_of(cid)
         number = self._numbers.get(seat)
         if number is None:
             used = set(self._numbers.values())
@@ -82,14 +84,15 @@ class Room:
         poll = self.session.screen.poll
         out = []
         for screen in self._class_pages():
-            engine = screen.session.engine
+            own = screen.own is not None
+            engine = screen.session.engine  # a page that follows shows the lecture's run: not its own
             cid = screen.client.client_id
             out.append(
                 RoomPage(
                     self.laptop(screen),
-                    screen.own is not None,
-                    engine.state.events,
-                    engine.outcome or "running",
+                    own,
+                    engine.state.events if own else 0,
+                    (engine.outcome or "running") if own else "running",
                     self.session.driver == cid,
                     screen is shown,
                     poll is not None and poll.given(self._seat_of(cid)) is not None,

@@ -5,16 +5,24 @@ down; the shared run handed to one laptop and taken back."""
 
 from __future__ import annotations
 
+import threading
+import time
+
 from apf_viz.core.formats import InputError
 from apf_viz.ui.panels.context import PanelContext, put
 from apf_viz.workbench.view_model import SessionView
 
 NOBODY = "—"
+# The list is redrawn at most this often: a class's own runs change it every frame they play, and the
+# presenter's page would lay out a long list again each time (its updates of the run come first).
+LIST_EVERY_S = 1.0
 
 
 class RoomFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
+        self._listed = -LIST_EVERY_S  # when the list was last made (monotonic s)
+        self._pending = False  # a frame is asked for when the list may be made again
         self.folder = gui.add_folder("Room", expand_by_default=False, visible=False)
         with self.folder:
             self.list = gui.add_markdown("")
@@ -43,6 +51,10 @@ class RoomFolder:
             raise InputError("choose a laptop first")
         return int(value.split()[-1])
 
+    def _due(self) -> None:
+        self._pending = False
+        self.ctx.changed()
+
     def refresh(self, view: SessionView) -> None:
         room = self.ctx.room
         mine = (
@@ -53,6 +65,15 @@ class RoomFolder:
         put(self.folder, visible=mine)
         if not mine or room is None:
             return
+        now = time.monotonic()
+        if now - self._listed < LIST_EVERY_S:
+            if not self._pending:  # a frame when the wait is over, if none comes meanwhile
+                self._pending = True
+                timer = threading.Timer(LIST_EVERY_S - (now - self._listed), self._due)
+                timer.daemon = True
+                timer.start()
+            return
+        self._listed = now
         pages = room.pages()
         lines = [f"- {page.words()}" for page in pages]
         own = sum(page.own for page in pages)
