@@ -17,7 +17,7 @@ import viser
 from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError
 from apf_viz.ui import broadcast, viser_compat
-from apf_viz.ui.browser_screen import CLASS_HZ, BrowserScreen, inside
+from apf_viz.ui.browser_screen import CLASS_HZ, CLASS_REFRESHES, BrowserScreen, inside
 from apf_viz.ui.network import check_listen, reachable_host
 from apf_viz.ui.network import free_port as free_port  # where tests and benchmarks find it
 from apf_viz.ui.own_runs import OwnRuns
@@ -351,14 +351,16 @@ class App:
 
     def _due(self, screens: list[BrowserScreen]) -> list[BrowserScreen]:
         """The pages whose panel and selection are brought up to date in this frame: every page, but
-        while the run plays the class pages :data:`CLASS_HZ` times a second each, in turn (a share of
-        them in each frame, so the work of a frame does not grow with the class beyond that share)."""
+        while the run plays the class pages :data:`CLASS_HZ` times a second each, in turn, at most
+        :data:`CLASS_REFRESHES` in all (a share of them in each frame, so the work of a frame does not
+        grow with the class)."""
         now = time.monotonic()
         since, self._last_due = min(0.25, now - self._last_due), now
         if not self.session.playing:
             return screens
         pages = [x for x in screens if x.state.role == "class"]
-        self._class_due = min(len(pages), self._class_due + len(pages) * CLASS_HZ * since)
+        rate = min(len(pages) * CLASS_HZ, CLASS_REFRESHES)  # refreshes a second, the class in all
+        self._class_due = min(len(pages), self._class_due + rate * since)
         take = int(self._class_due)
         self._class_due -= take
         start = self._class_turn % max(1, len(pages))

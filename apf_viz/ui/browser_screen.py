@@ -27,6 +27,10 @@ from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
 
 CLASS_HZ = 12.0
+CLASS_REFRESHES = 360.0
+"""How many class pages' panels and selections are brought up to date a second while the run plays, in
+all: a class of up to 30 gets :data:`CLASS_HZ` each; a larger one shares this (60 pages: 6 a second
+each), so the projector's frames do not pay for the size of the class."""
 """How often a class page's panel and selection are brought up to date while the run plays (the canvas
 every page shares is drawn every frame, for all at once)."""
 
