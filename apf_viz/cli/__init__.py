@@ -18,6 +18,7 @@ from types import ModuleType
 
 from apf_viz import interrupted_while_starting
 from apf_viz.cli import (
+    adversary,
     check,
     demos,
     docs,
@@ -59,6 +60,7 @@ COMMANDS: tuple[ModuleType, ...] = (
     random_pattern,
     pattern,
     check,
+    adversary,
     lecture,
     figure,
     export,

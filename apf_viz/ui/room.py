@@ -7,16 +7,30 @@ from __future__ import annotations
 
 import itertools
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 from apf_viz.core.formats import InputError
+from apf_viz.workbench.screen_state import BrowserState
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
 
-if TYPE_CHECKING:
-    from apf_viz.ui.browser_screen import BrowserScreen
+
+class BrowserScreen(Protocol):
+    """What the room reads of a connected page (ui/browser_screen.py)."""
+
+    @property
+    def client(self) -> Any: ...  # its viser client
+
+    @property
+    def own(self) -> object | None: ...  # its own run's renderer, if it tries one
+
+    @property
+    def state(self) -> BrowserState: ...
+
+    @property
+    def session(self) -> Session: ...
 
 
 @dataclass(frozen=True)
@@ -46,7 +60,7 @@ class Room:
     """The app's class pages, as the presenter's Room folder lists and acts on them."""
 
     def __init__(
-        self, session: Session, screens: Callable[[], list[BrowserScreen]], seat_of: Callable[[int], str]
+        self, session: Session, screens: Callable[[], Sequence[BrowserScreen]], seat_of: Callable[[int], str]
     ) -> None:
         self.session = session
         self._screens = screens

@@ -1,0 +1,129 @@
+"""``apf-viz adversary``: search for a costly schedule on a start of any size (explore/adversary.py)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, cluster, positive, problem, seed
+from apf_viz.sweeps.driver import duration
+
+NAME = "adversary"
+HELP = "search for the costliest schedule an adversary can find (any k): beats the built-in schedulers"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--robots", required=True, type=Path, help="start file (its flips, else from --seed)")
+    p.add_argument("--pattern", required=True, type=Path, help="pattern file with one point per robot")
+    p.add_argument(
+        "--maximize", choices=("moves", "events"), default="moves", help="what the adversary wants"
+    )
+    p.add_argument(
+        "--budget", type=positive, default=2_000, help="schedules tried, the built-ins' 20 seeds first"
+    )
+    p.add_argument(
+        "--seed", type=seed, default=0, help="the search's seed (and the flips', if the file has none)"
+    )
+    p.add_argument(
+        "--schedule-out", type=Path, help="write the costliest schedule found here (replay plays it)"
+    )
+    p.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help=ALGORITHM_HELP)
+    p.add_argument(
+        "--light-semantics", default="compute", choices=["compute", "lc-atomic"], help=SEMANTICS_HELP
+    )
+    p.add_argument(
+        "--cluster", type=cluster, help="address of a running Dask scheduler: each batch is tried there"
+    )
+    p.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    p.add_argument("--force", action="store_true", help=argparse.SUPPRESS)
+
+
+def run(args: argparse.Namespace) -> int:
+    """The search, with progress and an ETA on stderr; Ctrl+C keeps the best so far (written, if asked)."""
+    from apf_viz.algorithms import get_algorithm
+    from apf_viz.core.budget import paper_D
+    from apf_viz.core.files import write_atomic
+    from apf_viz.core.formats import InputError
+    from apf_viz.explore.adversary import Problem, best_schedule_text, evaluate, search
+
+    robots, points, targets, _ = problem(args, args.schedule_out)
+    try:
+        get_algorithm(args.algorithm)
+    except ValueError:
+        raise InputError(
+            f"--algorithm {args.algorithm}: the searched adversary takes a built-in algorithm"
+        ) from None
+    p = Problem(
+        args.algorithm, tuple(points), tuple(targets), tuple(robots.flips(args.seed)), args.maximize,
+        args.light_semantics,
+    )  # fmt: skip
+    evaluator, close = evaluate, lambda: None
+    if args.cluster:
+        evaluator, close = _on_cluster(args.cluster)
+    try:
+        state = search(p, args.budget, args.seed, evaluator, _reporter(args.budget, args.json))
+    finally:
+        close()
+    written = None
+    if args.schedule_out:
+        write_atomic(args.schedule_out, best_schedule_text(state))
+        written = str(args.schedule_out)
+    k, d = len(points), paper_D(points, targets)
+    best, bar = state.best.value or 0, state.bar.value or 0
+    if args.json:
+        print(json.dumps({
+            "maximize": args.maximize, "found": best, "built_ins": bar, "beats": state.beats,
+            "k": k, "D": d, "per_kD": round(best / (k * d), 4), "built_ins_per_kD": round(bar / (k * d), 4),
+            "evaluations": state.evaluations, "seconds": round(state.seconds, 2),
+            "per_second": round(state.evaluations / max(state.seconds, 1e-9), 2),
+            "how": state.best.source, "schedule": written,
+        }))  # fmt: skip
+    else:
+        verdict = "beats" if state.beats else "does not beat"
+        print(
+            f"found {best:,} {args.maximize} ({best / (k * d):.3f} per k·D, k·D = {k * d}); the built-in "
+            f"schedulers' most over seeds 0–19: {bar:,} ({bar / (k * d):.3f}): the search {verdict} them; "
+            f"{state.evaluations:,} schedules in {duration(state.seconds)}; the best: {state.best.source}"
+            + (f"; schedule: {written}" if written else "")
+        )
+    return 0
+
+
+def _reporter(budget: int, quiet: bool):
+    """Progress on stderr about every second: tried, best, rate and ETA."""
+    import sys
+
+    last = [0.0]
+
+    def report(state) -> None:
+        now = time.monotonic()
+        if quiet or now - last[0] < 1.0:
+            return
+        last[0] = now
+        rate = state.evaluations / max(state.seconds, 1e-9)
+        eta = (budget - state.evaluations) / max(rate, 1e-9)
+        print(
+            f"\r{state.evaluations:,}/{budget:,} schedules · best {state.best.value:,} "
+            f"(built-ins {state.bar.value:,}) · {rate:.1f}/s · ETA {duration(eta)}   ",
+            end="", file=sys.stderr, flush=True,
+        )  # fmt: skip
+
+    return report
+
+
+def _on_cluster(address: str):
+    """An evaluator that tries each batch on the Dask cluster at ``address``, one candidate a task, and
+    the way to close it."""
+    from apf_viz.explore.adversary import evaluate
+    from apf_viz.sweeps.driver import dask_client
+
+    client, _ = dask_client(address, None)
+
+    def evaluator(problem, prefix, batch):
+        futures = client.map(lambda c, pr=prefix: evaluate(problem, pr, [c])[0], list(batch), pure=False)
+        return client.gather(futures)
+
+    return evaluator, client.close
