@@ -115,15 +115,15 @@ def _reporter(budget: int, quiet: bool):
 
 
 def _on_cluster(address: str):
-    """An evaluator that tries each batch on the Dask cluster at ``address``, one candidate a task, and
-    the way to close it."""
+    """An evaluator that tries each batch on the Dask cluster at ``address``, a schedule a task, and the
+    way to close it."""
     from apf_viz.explore.adversary import evaluate
     from apf_viz.sweeps.driver import dask_client
 
     client, _ = dask_client(address, None)
 
-    def evaluator(problem, prefix, batch):
-        futures = client.map(lambda c, pr=prefix: evaluate(problem, pr, [c])[0], list(batch), pure=False)
+    def evaluator(problem, jobs):
+        futures = client.map(lambda job: evaluate(problem, [job])[0], list(jobs), pure=False)
         return client.gather(futures)
 
     return evaluator, client.close

@@ -1,28 +1,34 @@
 """The searched adversary (``apf-viz adversary``): a costly schedule for a start of any size, where the
 exact worst (explore/worst.py) is out of reach.
 
-The search is a hill-climb over schedules. It starts from the best the built-in schedulers do (every
-automatic scheduler, seeds 0–19: the bar it must beat), and tries, batch after batch, a variant of the
-best schedule so far: the same first *p* steps, then (sometimes) one robot the adversary wakes out of
-turn, then a built-in scheduler with a fresh seed to the end. A variant that costs more (moves or
-events, to FORMED) becomes the best. The cut *p* is drawn towards the start (``p = L·u²``): what an
-adversary gains, it gains by steering the leader election early (docs/ADVERSARY.md).
+Most steps of this algorithm leave one robot anything to do: the adversary's choices are few, and they
+are where two or more robots could act. The search is best-first over those choices. It starts from
+every automatic built-in scheduler over seeds 0–19 (their best is the bar it must beat), keeps the
+:data:`KEPT` costliest schedules seen, and tries each choice they made differently — the same first
+steps, another robot woken there (or, at a synchronous round, the round without one of its robots),
+then the same scheduler and seed to the end — the costliest schedule's choices first, its earliest
+first; every schedule tried that is costly enough is varied in turn, so a change that costs nothing
+at once may lead to one that does. A share of the tries are fresh starts (a built-in scheduler with a
+new seed).
 
 Every candidate is a run of the real engine, so no result exceeds what an adversary can force: where
 ``check --worst`` answers, the search never reports more (tests/test_adversary.py). The best is
 written as a plain schedule file only after it is replayed from that file to the same count.
 
-A batch's candidates are drawn from the search's seed and the best so far alone, and the best of a
-batch is taken by its cost, ties to the first: the result is the same whether a batch runs here, one
-after the other, or on a Dask cluster (``--cluster``)."""
+What is tried next depends on the search's seed and the results so far alone, never on which
+worker finished first: the result is the same whether a batch runs here, one schedule after the other,
+or on a Dask cluster (``--cluster``)."""
 
 from __future__ import annotations
 
+import heapq
 import random
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
+
+import numpy as np
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.core.budget import run_budget
@@ -36,7 +42,8 @@ from apf_viz.core.schedulers import AUTOMATIC, make_scheduler, step_rng
 Measure = Literal["moves", "events"]
 BUILT_IN_SEEDS = range(20)
 BATCH = 8  # candidates drawn and tried together (a cluster's workers take them at once)
-KICK_SHARE = 0.5  # of the candidates wake one robot out of turn at the cut
+KEPT = 16  # schedules the search varies: the costliest seen
+FRESH_SHARE = 0.2  # of the candidates, those that start afresh (a built-in scheduler, a new seed)
 
 
 @dataclass(frozen=True)
@@ -62,26 +69,44 @@ class Problem:
 
 @dataclass(frozen=True)
 class Candidate:
-    """A variant of the best schedule: its first ``cut`` steps, ``kick`` woken out of turn (None: no
-    one), then ``scheduler`` with ``seed`` to the end."""
+    """A variant of the best schedule: its first ``cut`` steps, then another choice there — robot
+    ``kick`` woken instead (ASYNC), or, where the best began a synchronous round, that round without
+    robot ``kick`` (``drop``) — then ``scheduler`` with ``seed`` to the end."""
 
     cut: int
     kick: int | None
     scheduler: str
     seed: int
+    drop: tuple[int, ...] = ()  # the round the best began at the cut (with ``kick`` left out of it)
+
+    def first(self, round_now: int) -> StepRecord | None:
+        """The step taken at the cut instead of the best's."""
+        if self.kick is None:
+            return None
+        if self.drop:
+            return StepRecord(tuple(r for r in self.drop if r != self.kick), round=round_now + 1)
+        return StepRecord((self.kick,))
 
     def describe(self) -> str:
-        kick = f", robot {self.kick} woken out of turn" if self.kick is not None else ""
+        kick = ""
+        if self.kick is not None:
+            kick = (
+                f", robot {self.kick} left out of that round"
+                if self.drop
+                else f", robot {self.kick} woken instead"
+            )
         return f"the best's first {self.cut} steps{kick}, then {self.scheduler} seed {self.seed}"
 
 
 @dataclass(frozen=True)
 class Tried:
-    """A schedule tried: its cost (None: it did not form), its steps, and how it was made."""
+    """A schedule tried: its cost (None: it did not form), its steps, how it was made, and the scheduler
+    and seed that ran its end (a variant of it goes on the same way, unless it draws another)."""
 
     value: int | None
     records: tuple[StepRecord, ...]
     source: str
+    policy: tuple[str, int] = ("async", 0)
 
 
 def measure(engine: Engine, what: Measure) -> int | None:
@@ -97,13 +122,15 @@ def run_to_end(problem: Problem, prefix: Sequence[StepRecord], candidate: Candid
         if e.finished:
             break
         e.apply(record)
-    if candidate.kick is not None and not e.finished and e.eligible()[candidate.kick]:
-        e.apply(StepRecord((candidate.kick,)))
+    first = candidate.first(e.state.round)
+    if first is not None and not e.finished and e.eligible()[list(first.robots)].all():
+        e.apply(first)
     scheduler = make_scheduler(candidate.scheduler)
     while not e.finished:
         e.apply(scheduler.choose(e, step_rng(candidate.seed, e.step_index)))
     records = tuple(step.record for step in e.history.steps)
-    return Tried(measure(e, problem.maximize), records, candidate.describe())
+    policy = (candidate.scheduler, candidate.seed)
+    return Tried(measure(e, problem.maximize), records, candidate.describe(), policy)
 
 
 def built_in(problem: Problem, scheduler: str, seed: int) -> Tried:
@@ -111,20 +138,34 @@ def built_in(problem: Problem, scheduler: str, seed: int) -> Tried:
     return run_to_end(problem, (), Candidate(0, None, scheduler, seed))
 
 
-def evaluate(problem: Problem, prefix: Sequence[StepRecord], batch: Sequence[Candidate]) -> list[Tried]:
-    return [run_to_end(problem, prefix, c) for c in batch]
+def line_starts(records: Sequence[StepRecord]) -> list[int]:
+    """The steps where a line of the schedule begins: every ASYNC step, a synchronous round's first."""
+    return [i for i, r in enumerate(records) if r.round is None or i == 0 or records[i - 1].round != r.round]
 
 
-def draw(rng: random.Random, best: Sequence[StepRecord], k: int) -> list[Candidate]:
-    """A batch of variants of ``best``, from ``rng`` alone. A cut falls where a line of the schedule
-    begins (never inside a synchronous round), drawn towards the start."""
-    starts = [i for i, r in enumerate(best) if r.round is None or i == 0 or best[i - 1].round != r.round]
+def decisions(problem: Problem, best: Tried) -> list[Candidate]:
+    """Every choice the best schedule made where it had another: at each line's start, each other robot
+    that could act there (most steps of this algorithm leave one robot anything to do), woken instead
+    and the best's scheduler and seed to the end."""
+    e = problem.engine()
+    starts = set(line_starts(best.records))
     out = []
-    for _ in range(BATCH):
-        cut = starts[min(len(starts) - 1, int(len(starts) * rng.random() ** 2))] if starts else 0
-        kick = rng.randrange(k) if rng.random() < KICK_SHARE else None
-        out.append(Candidate(cut, kick, rng.choice(AUTOMATIC), rng.randrange(2**31)))
+    for i, record in enumerate(best.records):
+        if i in starts and not e.finished:
+            if record.round is not None and len(record.robots) > 1:  # the round, one robot fewer
+                out += [Candidate(i, r, *best.policy, drop=tuple(record.robots)) for r in record.robots]
+            out += [
+                Candidate(i, int(r), *best.policy)
+                for r in np.flatnonzero(e.eligible()).tolist()
+                if (r,) != tuple(record.robots)
+            ]
+        e.apply(record)
     return out
+
+
+def draw(rng: random.Random) -> Candidate:
+    """A fresh start: a built-in scheduler and a seed drawn afresh, from the start."""
+    return Candidate(0, None, rng.choice(AUTOMATIC), rng.randrange(2**31))
 
 
 @dataclass
@@ -143,7 +184,46 @@ class Search:
         return (self.best.value or 0) > (self.bar.value or 0)
 
 
-Evaluator = Callable[[Problem, Sequence[StepRecord], Sequence[Candidate]], list[Tried]]
+Job = tuple[Sequence[StepRecord], Candidate]  # a candidate and the schedule it varies
+Evaluator = Callable[[Problem, Sequence[Job]], list[Tried]]
+
+
+def evaluate(problem: Problem, jobs: Sequence[Job]) -> list[Tried]:
+    return [run_to_end(problem, prefix, candidate) for prefix, candidate in jobs]
+
+
+class Frontier:
+    """The schedules worth varying: the :data:`KEPT` costliest seen (each once), and the choices of
+    each not yet tried, the costliest schedule's first, its earliest choices first."""
+
+    def __init__(self, problem: Problem) -> None:
+        self.problem = problem
+        self.kept: list[Tried] = []
+        self._seen: set[int] = set()
+        # A heap: the costliest schedule's choices first, of equal costs the newest schedule's, its
+        # choices in order (the earliest first).
+        self._todo: list[tuple[int, int, int, Tried, Candidate]] = []
+        self._order = 0
+
+    def offer(self, tried: Tried) -> None:
+        """A schedule tried: kept, and its choices queued, if it is among the costliest and new."""
+        key = hash(tried.records)
+        if tried.value is None or key in self._seen:
+            return
+        if len(self.kept) >= KEPT and tried.value < (self.kept[-1].value or 0):
+            return
+        self._seen.add(key)
+        # Stable: a new schedule goes before those of its cost, so a plateau of equal costs is walked.
+        self.kept = sorted([tried, *self.kept], key=lambda t: -(t.value or 0))[:KEPT]
+        self._order += 1
+        for n, candidate in enumerate(decisions(self.problem, tried)):
+            heapq.heappush(self._todo, (-(tried.value or 0), -self._order, n, tried, candidate))
+
+    def take(self) -> Job | None:
+        if not self._todo:
+            return None
+        _, _, _, tried, candidate = heapq.heappop(self._todo)
+        return tried.records, candidate
 
 
 def search(
@@ -154,27 +234,34 @@ def search(
     progress: Callable[[Search], None] = lambda s: None,
     seeds: Sequence[int] = BUILT_IN_SEEDS,
 ) -> Search:
-    """Up to ``budget`` schedules tried (the built-ins' runs first), the best kept. KeyboardInterrupt
-    ends it early: the search so far is returned (the caller writes the best found)."""
+    """Up to ``budget`` schedules tried (the built-ins' runs first), the costliest kept: a best-first
+    search over the choices the costliest schedules made (:class:`Frontier`), with now and then a fresh
+    start. KeyboardInterrupt ends it early: the search so far is returned (the caller writes its best)."""
     t0 = time.perf_counter()
-    firsts = [Candidate(0, None, name, s) for name in AUTOMATIC for s in seeds]
-    tried = evaluator(problem, (), firsts)
+    firsts: list[Job] = [((), Candidate(0, None, name, s)) for name in AUTOMATIC for s in seeds]
+    tried = evaluator(problem, firsts)
     formed = [t for t in tried if t.value is not None]
     if not formed:
         raise ValueError("no built-in scheduler forms the pattern from this start: nothing to beat")
     bar = max(formed, key=lambda t: t.value or 0)
     state = Search(problem, bar, bar, len(tried))
+    frontier = Frontier(problem)
+    for t in tried:
+        frontier.offer(t)
     rng = random.Random(seed)
-    k = len(problem.robots)
     try:
         while state.evaluations < budget:
-            batch = draw(rng, state.best.records, k)[: budget - state.evaluations]
-            results = evaluator(problem, state.best.records, batch)
-            state.evaluations += len(batch)
-            top = max(range(len(results)), key=lambda i: (results[i].value or -1, -i))
-            if (results[top].value or -1) > (state.best.value or -1):
-                state.best = results[top]
-                state.improvements.append((state.evaluations, results[top].value or 0))
+            jobs: list[Job] = []
+            for _ in range(min(BATCH, budget - state.evaluations)):
+                job = frontier.take() if rng.random() >= FRESH_SHARE else None
+                jobs.append(job if job is not None else ((), draw(rng)))
+            results = evaluator(problem, jobs)
+            state.evaluations += len(jobs)
+            for result in results:
+                if (result.value or -1) > (state.best.value or -1):
+                    state.best = result
+                    state.improvements.append((state.evaluations, result.value or 0))
+                frontier.offer(result)
             state.seconds = time.perf_counter() - t0
             progress(state)
     except KeyboardInterrupt:

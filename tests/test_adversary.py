@@ -1,0 +1,95 @@
+"""The searched adversary (issue #59, explore/adversary.py): every schedule it reports is a run of the
+real engine that replays from its file to the same cost; it never reports more than the exact worst
+where ``check --worst`` answers; it starts from the built-ins' best, so it never reports less; and the
+same seed gives the same result however its batches are run."""
+
+from __future__ import annotations
+
+import json
+import random
+
+import pytest
+
+from apf_viz.algorithms import get_algorithm
+from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.cli import main
+from apf_viz.core.schedulers import AUTOMATIC
+from apf_viz.explore.adversary import Problem, best_schedule_text, built_in, evaluate, search
+from apf_viz.explore.worst import worst
+from apf_viz.sweeps.cells import generated_start
+
+ALGORITHM = "apf-opaque-grid"
+
+
+def small_starts(n: int, seed: int) -> list[Problem]:
+    rng = random.Random(seed)
+    out = []
+    while len(out) < n:
+        k = rng.choice((3, 4))
+        start, pattern = random_solvable_start(k, rng), random_pattern(k, rng)
+        y_up = tuple(rng.random() < 0.5 for _ in range(k))
+        out.append(Problem(ALGORITHM, tuple(start), tuple(pattern), y_up, rng.choice(("moves", "events"))))
+    return out
+
+
+@pytest.mark.parametrize("problem", small_starts(6, 5), ids=lambda p: f"k{len(p.robots)}-{p.maximize}")
+def test_the_search_never_reports_more_than_the_exact_worst_nor_less_than_the_built_ins(problem):
+    found = search(problem, budget=160, seed=1, seeds=range(4))
+    exact = worst(get_algorithm(ALGORITHM), list(problem.robots), list(problem.pattern), [problem.y_up],
+                  problem.maximize, max_states=300_000)  # fmt: skip
+    assert exact.value is not None, exact.detail
+    bar = max(built_in(problem, name, s).value or 0 for name in AUTOMATIC for s in range(4))
+    assert found.bar.value == bar <= (found.best.value or 0) <= exact.value
+
+
+def test_the_schedule_found_replays_to_its_cost_from_its_file(tmp_path, capsys):
+    robots, pattern, y_up = generated_start(10, 1)
+    problem = Problem(ALGORITHM, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves")
+    found = search(problem, budget=60, seed=0, seeds=range(4))
+    text = best_schedule_text(found)  # replayed from the text to its cost, or refused
+    (tmp_path / "s.jsonl").write_text(text)
+    (tmp_path / "r.json").write_text(json.dumps({"robots": [list(p) for p in robots], "y_up": list(y_up)}))
+    (tmp_path / "p.json").write_text(json.dumps({"points": [list(p) for p in pattern]}))
+    assert main(["run", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json"),
+                 "--schedule", str(tmp_path / "s.jsonl"), "--json"]) == 0  # fmt: skip
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert summary["outcome"] == "formed" and summary["moves"] == found.best.value
+
+
+def test_the_same_seed_gives_the_same_result_whatever_order_a_batch_is_run_in():
+    robots, pattern, y_up = generated_start(8, 2)
+    problem = Problem(ALGORITHM, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "events")
+
+    def backwards(p, jobs):  # as a cluster may finish them: in another order, put back in place
+        return list(reversed(evaluate(p, list(reversed(jobs)))))
+
+    a = search(problem, budget=60, seed=3, seeds=range(4))
+    b = search(problem, budget=60, seed=3, seeds=range(4), evaluator=backwards)
+    assert (a.best.value, a.best.records, a.improvements) == (b.best.value, b.best.records, b.improvements)
+
+
+def test_ctrl_c_keeps_the_best_so_far():
+    robots, pattern, y_up = generated_start(6, 4)
+    problem = Problem(ALGORITHM, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves")
+    calls = []
+
+    def interrupted(p, jobs):
+        calls.append(len(jobs))
+        if len(calls) > 2:
+            raise KeyboardInterrupt
+        return evaluate(p, jobs)
+
+    found = search(problem, budget=1_000, seed=0, seeds=range(2), evaluator=interrupted)
+    assert found.evaluations == sum(calls[:2]) and found.best.value is not None
+    assert best_schedule_text(found)  # the best so far is still a schedule that replays
+
+
+def test_the_command_says_what_it_found_and_writes_a_schedule_that_replays(tmp_path, capsys):
+    out = tmp_path / "worst-found.jsonl"
+    assert main(["adversary", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--budget", "120",
+                 "--schedule-out", str(out), "--json"]) == 0  # fmt: skip
+    said = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert said["found"] >= said["built_ins"] > 0 and said["evaluations"] == 120 and out.exists()
+    assert main(["run", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--schedule", str(out),
+                 "--json"]) == 0  # fmt: skip
+    assert json.loads(capsys.readouterr().out.strip().splitlines()[-1])["moves"] == said["found"]
