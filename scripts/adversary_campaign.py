@@ -36,9 +36,10 @@ def main() -> int:
                 found = search(problem, args.budget, seed=0)
                 total += 1
                 beaten += found.beats
+                mark = " BEATS" if found.beats else ""
                 print(
                     f"k={k} seed {s}: built-ins {found.bar.value}, search {found.best.value} "
-                    f"({found.evaluations} schedules, {found.seconds:.1f} s){' BEATS' if found.beats else ''}",
+                    f"({found.evaluations} schedules, {found.seconds:.1f} s){mark}",
                     flush=True,
                 )
     except KeyboardInterrupt:
