@@ -206,3 +206,14 @@ def test_a_seat_is_read_only_from_a_seat_path_with_a_whole_token():
     assert seat_key(f"/seat/{token}", 7) == f"seat {token}"
     for path in (None, "/", f"/present/{token}", f"/seat/{token}x", "/seat/../x", f"/seat/{token.upper()}"):
         assert seat_key(path, 7) == "page 7"
+
+
+def test_a_stop_visited_again_keeps_the_rooms_answers():
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None
+    session.answer_question("a", "1")
+    session.next_stop()
+    assert session.screen.poll is None  # stop 4 asks nothing
+    session.previous_stop()
+    assert session.screen.poll is poll and poll.given("a") == "1"  # PageUp back: nobody answers twice

@@ -18,6 +18,7 @@ from apf_viz.workbench.compare import Twin
 from apf_viz.workbench.editor import Editor, draft_of
 from apf_viz.workbench.lecturer import Lecturer
 from apf_viz.workbench.library import PatternLibrary
+from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.run_controller import RunController
 from apf_viz.workbench.screen_state import BrowserState, Role, SharedScreen
@@ -107,6 +108,8 @@ class SessionCore:
         self.driver: Hashable | None = None  # the one class page the presenter handed the run to
         self.private = False  # a class page's run of its own (ui/own_runs.py): no files, no lectures
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
+        # Each asked stop's answers, by (lecture, stop): a stop visited again keeps the room's answers.
+        self.polls: dict[tuple[str, int], Poll] = {}
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
         self.saved = self.library.names()  # their names, read once and after each save
         # A pattern's name, by its cells (sorted): the name it was saved or loaded under, for a download.

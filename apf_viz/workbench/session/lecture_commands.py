@@ -57,12 +57,22 @@ class LectureCommands(RunCommands, FileCommands):
             lecturer.lecture.title, reached.index, len(stops), stop.title, stop.say, reached.event,
             following, lecturer.mark, stop.class_address,
         )  # fmt: skip
-        answer = reached.answer
-        self.screen.poll = (
-            Poll(answer, self.engine.k, tuple(self.engine.algorithm.lights)) if answer else None
-        )
+        self.screen.poll = self._poll_at(lecturer.lecture.title, reached)
         said = f"stop {reached.index + 1}: {stop.title} (event {reached.event})"
         return said if reached.met else f"{said}; not reached: {reached.note}"
+
+    def _poll_at(self, lecture: str, reached: Reached) -> Poll | None:
+        """The stop's question: the room's answers of an earlier visit kept (PageUp, then PageDown back
+        to it: nobody answers twice), unless the run's answer there changed."""
+        answer = reached.answer
+        if answer is None:
+            return None
+        kept = self.polls.get((lecture, reached.index))
+        if kept is not None and (kept.answer.right, kept.answer.step) == (answer.right, answer.step):
+            return kept
+        poll = Poll(answer, self.engine.k, tuple(self.engine.algorithm.lights))
+        self.polls[(lecture, reached.index)] = poll
+        return poll
 
     # ------------------------------------------------------------------ a stop's question
     def answer_question(self, who: str, choice: str) -> str:
