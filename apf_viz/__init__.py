@@ -1,17 +1,14 @@
 """apf-viz: an interactive workbench for asynchronous opaque luminous robots on the infinite grid."""
 
-# contextlib, os and sys are loaded by Python's own start: before the handler below, only signal is new.
+# contextlib, os and sys are loaded by Python's own start: before the handler below, only signal is new
+# (typing, which takes a while, is imported after it).
 import contextlib
 import os
 import signal
 import sys
-from typing import TYPE_CHECKING
 
 __version__ = "0.1.0"
 __all__ = ["Run", "Shown", "Verdict", "__version__", "check", "run", "sweep"]
-
-if TYPE_CHECKING:
-    from apf_viz.api import Run, Shown, Verdict, check, run, sweep
 
 
 def __getattr__(name: str) -> object:
@@ -37,3 +34,8 @@ _STARTING = sys.argv[:1] == ["-m"] or os.path.basename(sys.argv[0] if sys.argv e
 if _STARTING:
     with contextlib.suppress(ValueError):  # imported from a thread other than the main one: nothing to do
         signal.signal(signal.SIGINT, interrupted_while_starting)
+
+from typing import TYPE_CHECKING  # noqa: E402  (after the handler: a Ctrl+C during it is one line)
+
+if TYPE_CHECKING:
+    from apf_viz.api import Run, Shown, Verdict, check, run, sweep

@@ -40,6 +40,23 @@ _PHASE_CODE = {p: i for i, p in enumerate(PHASES)}
 MAX_SCHEDULE_BYTES = 200_000_000
 
 
+class Found(BaseModel):
+    """What ``apf-viz adversary`` says of the schedule it wrote: it maximised ``maximize`` and reached
+    ``value``, against the built-in schedulers' ``built_ins`` over seeds 0–19 (explore/adversary.py)."""
+
+    model_config = ConfigDict(extra="forbid")
+    maximize: Literal["moves", "events"]
+    value: StrictInt = Field(ge=0)
+    built_ins: StrictInt = Field(ge=0)
+    tried: StrictInt = Field(ge=0, description="schedules the search tried")
+
+    def words(self) -> str:
+        return (
+            f"the worst found by apf-viz adversary: {self.value:,} {self.maximize} "
+            f"(the built-in schedulers' most: {self.built_ins:,}; {self.tried:,} schedules tried)"
+        )
+
+
 class ScheduleHeader(BaseModel):
     """Version 2 records the whole adversary: who acts (the lines) and each robot's y-axis (``y_up``),
     and the light semantics the schedule was recorded under. Version 1 had only ``robots``."""
@@ -50,6 +67,7 @@ class ScheduleHeader(BaseModel):
     robots: StrictInt = Field(ge=1, description="how many robots the schedule is for")
     y_up: list[StrictBool] | None = None
     light_semantics: Literal["compute", "lc-atomic"] | None = None
+    found: Found | None = None  # written by apf-viz adversary
 
     @model_validator(mode="after")
     def _check(self) -> ScheduleHeader:
@@ -92,7 +110,7 @@ class Schedule:
     or an activation of a robot that does not exist, refused when followed: the run up to it is kept)
     as ``-1 - i``, the i-th of ``_others`` (an index as large as 10^23 would not fit the array)."""
 
-    __slots__ = ("_codes", "_numbers", "_others", "k", "light_semantics", "notes", "y_up")
+    __slots__ = ("_codes", "_numbers", "_others", "found", "k", "light_semantics", "notes", "y_up")
 
     def __init__(
         self, k: int, y_up: Sequence[bool] | None = None, light_semantics: LightSemantics | None = None
@@ -104,6 +122,7 @@ class Schedule:
         self._codes = array("q")
         self._others: list[Line] = []
         self.notes: dict[int, str] = {}  # line number → the note written on that line
+        self.found: Found | None = None  # the searched adversary's words on it, if it wrote it
 
     def add(self, number: int, line: Line) -> None:
         if line.note:
@@ -174,6 +193,7 @@ def parse_schedule_lines(numbered: Iterable[tuple[int, str]], where: str = "sche
     _other_format(data, where)
     header = _validate(ScheduleHeader, data, f"{where}:{n0}")
     schedule = Schedule(header.robots, header.y_up, header.light_semantics)
+    schedule.found = header.found
     for n, raw in lines:
         _parse_line(raw, f"{where}:{n}", schedule, n)
     return schedule
@@ -192,13 +212,17 @@ def schedule_text(
     lines: Iterable[Line],
     y_up: Sequence[bool] | None = None,
     light_semantics: str | None = None,
+    found: Found | None = None,
 ) -> str:
-    """A schedule file; ``y_up`` and ``light_semantics`` make it the whole adversary (version 2)."""
+    """A schedule file; ``y_up`` and ``light_semantics`` make it the whole adversary (version 2);
+    ``found``: the searched adversary's words on it."""
     header: dict = {"format": SCHEDULE_FORMAT, "version": SCHEDULE_VERSION, "robots": k}
     if y_up is not None:
         header["y_up"] = [bool(u) for u in y_up]
     if light_semantics is not None:
         header["light_semantics"] = light_semantics
+    if found is not None:
+        header["found"] = found.model_dump()
     body = (json.dumps(line.model_dump(exclude_none=True)) for line in lines)
     return "\n".join([json.dumps(header), *body]) + "\n"
 

@@ -36,7 +36,7 @@ from apf_viz.core.engine import Engine
 from apf_viz.core.engine_core import LightSemantics
 from apf_viz.core.grid import Point
 from apf_viz.core.history import StepRecord
-from apf_viz.core.schedule import follow, parse_schedule, schedule_of_steps, schedule_text
+from apf_viz.core.schedule import Found, follow, parse_schedule, schedule_of_steps, schedule_text
 from apf_viz.core.schedulers import AUTOMATIC, make_scheduler, step_rng
 
 Measure = Literal["moves", "events"]
@@ -277,7 +277,13 @@ def best_schedule_text(state: Search) -> str:
     e = p.engine()
     for record in state.best.records:
         e.apply(record)
-    text = schedule_text(len(p.robots), schedule_of_steps(e.history.steps), p.y_up, p.light_semantics)
+    found = Found(
+        maximize=p.maximize,
+        value=state.best.value or 0,
+        built_ins=state.bar.value or 0,
+        tried=state.evaluations,
+    )
+    text = schedule_text(len(p.robots), schedule_of_steps(e.history.steps), p.y_up, p.light_semantics, found)
     replayed = p.engine()
     for _ in follow(replayed, parse_schedule(text)):
         pass

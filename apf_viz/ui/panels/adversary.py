@@ -44,6 +44,15 @@ class AdversaryFolder:
                 ctx.from_browser(lambda e: s.set_click_advances(self.click.value == "advance"))
             )
             self.next_phase = gui.add_markdown("")
+            # A schedule apf-viz adversary wrote: played from the start, its cost against the built-ins'.
+            found = ctx.driving(
+                gui.add_upload_button(
+                    "Load the worst found", mime_type="*/*", hint="a schedule apf-viz adversary wrote"
+                ),
+                shared=True,
+            )
+            found.on_upload(self._load_found)
+            self.found = gui.add_markdown("")
             self._verify_controls(gui)
 
     def _verify_controls(self, gui) -> None:
@@ -56,6 +65,10 @@ class AdversaryFolder:
         self.cancel_verify = gui.add_button("Cancel verification", visible=False)
         self.cancel_verify.on_click(self.ctx.guard(lambda e: self.ctx.verifier.cancel(), "Verify"))
         self.verify_status = gui.add_markdown("")
+
+    def _load_found(self, event) -> None:
+        f = event.target.value
+        self.ctx.guard(lambda e: self.ctx.session.load_schedule(f.name, f.content), "Worst found")(event)
 
     def _on_all_activations(self, event) -> None:
         keep = bool(self.all_activations.value)
@@ -95,3 +108,15 @@ class AdversaryFolder:
         if self.scheduler.value != scheduler_label(view.scheduler):
             self.scheduler.value = scheduler_label(view.scheduler)
         put(self.next_phase, content=view.next_phases)
+        put(self.found, content=found_words(view))
+
+
+def found_words(view: SessionView) -> str:
+    """A worst found being played: what the search says of it, and the run's moves per k·D so far."""
+    if "the worst found" not in view.trace_note:
+        return ""
+    state = (view.outcome or "running").upper()
+    return (
+        f"**{view.trace_note[0].upper()}{view.trace_note[1:]}.** Now: {view.moves:,} moves, "
+        f"**moves/(k·D) = {view.moves_per_kD:.3f}**, {state} at event {view.event:,}."
+    )

@@ -153,7 +153,8 @@ class FileCommands(SessionCore):
             except ScheduleError as e:
                 notes.append(f"{e}; the run follows the schedule up to there")
             self._drafts_follow(config)
-            self.run.adopt(config, engine, engine.state.events, what=f"the schedule {filename}")
+            found = {"found": schedule.found.words()} if schedule.found is not None else None
+            self.run.adopt(config, engine, engine.state.events, found, what=f"the schedule {filename}")
             self.run.step_notes = written
             self.scenario_note = ""
             self.mode = "run"

@@ -282,7 +282,7 @@ def trace_note(options: Mapping[str, object]) -> str:
     if not detail and isinstance(problems, list) and problems:
         detail = str(problems[0])
     gap = options.get("shows_gap")
-    parts = []
+    parts = [str(options["found"])] if options.get("found") else []
     if gap:
         parts.append(f"shows gap {gap} (the variant without its resolution)")
     if verdict:
