@@ -93,3 +93,19 @@ def test_the_command_says_what_it_found_and_writes_a_schedule_that_replays(tmp_p
     assert main(["run", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--schedule", str(out),
                  "--json"]) == 0  # fmt: skip
     assert json.loads(capsys.readouterr().out.strip().splitlines()[-1])["moves"] == said["found"]
+
+
+def test_on_a_dask_cluster_the_search_finds_what_it_finds_here(capsys):
+    """`--cluster`: each batch's schedules tried by the workers of a real Dask scheduler (two worker
+    processes), the result the same as here, for the same seed."""
+    from dask.distributed import LocalCluster
+
+    args = ["adversary", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--maximize", "events",
+            "--budget", "60", "--seed", "4", "--json"]  # fmt: skip
+    assert main(args) == 0
+    here = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        assert main([*args, "--cluster", cluster.scheduler_address]) == 0
+    there = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    keep = ("found", "built_ins", "evaluations", "how")
+    assert {k: here[k] for k in keep} == {k: there[k] for k in keep}
