@@ -29,3 +29,13 @@ def browser():
         b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
         yield b
         b.close()
+
+
+@pytest.fixture
+def demo_app():
+    """A visualiser on the Demo heart, on a free port, stopped after the test (a browser test's server)."""
+    from apf_viz.ui.app import App, demo_session, free_port
+
+    a = App(demo_session(), port=free_port(), verbose=False)
+    yield a
+    a.stop()

@@ -5,13 +5,12 @@ says of it and the run's moves/(k·D) on screen, equal to what the search found.
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
 
 import pytest
 
 from apf_viz.cli import main
 from apf_viz.core.budget import paper_D
-from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.app import App
 from tests.test_ui_browser import open_page, shot, wait_for
 
 pytest.importorskip("playwright.sync_api")
@@ -19,10 +18,8 @@ pytestmark = pytest.mark.browser
 
 
 @pytest.fixture
-def app() -> Iterator[App]:
-    a = App(demo_session(), port=free_port(), verbose=False)
-    yield a
-    a.stop()
+def app(demo_app: App) -> App:
+    return demo_app
 
 
 def test_the_worst_found_for_the_heart_plays_from_the_adversary_panel(browser, app, tmp_path, capsys):

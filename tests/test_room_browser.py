@@ -4,11 +4,9 @@ projector, anonymised, and takes it down; it hands the shared run to one laptop 
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import pytest
 
-from apf_viz.ui.app import App, demo_session, free_port
+from apf_viz.ui.app import App
 from tests.test_question_browser import PROJECTOR, class_page
 from tests.test_ui_browser import _choose, open_folder, open_page, shot, wait_for
 
@@ -17,10 +15,8 @@ pytestmark = pytest.mark.browser
 
 
 @pytest.fixture
-def app() -> Iterator[App]:
-    a = App(demo_session(), port=free_port(), verbose=False)
-    yield a
-    a.stop()
+def app(demo_app: App) -> App:
+    return demo_app
 
 
 def titles(renderer) -> list[str]:
