@@ -35,6 +35,7 @@ def test_the_worst_found_for_the_heart_plays_from_the_adversary_panel(browser, a
     words = f"The worst found by apf-viz adversary: {said['found']:,} moves"
     page.get_by_text(words).first.wait_for()
     page.keyboard.press("Escape")
+    app.session.set_speed(1_000)  # the Speed slider's top: the run, not the test, is what is watched
     page.keyboard.press("Space")  # Play: the schedule to its end
     wait_for(lambda: app.session.engine.outcome == "formed", timeout=120)
     e = app.session.engine
