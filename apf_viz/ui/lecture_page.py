@@ -116,12 +116,7 @@ _SCRIPT = r"""
     revealed[index] = true;
     told(index);
     var f = field();
-    if (f) {
-      var setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value').set;
-      setter.call(f, (q.reveal_at + 0.1).toFixed(2));
-      f.dispatchEvent(new Event('input', { bubbles: true }));
-      setTimeout(function () { f.blur(); }, 0);
-    }
+    if (f) playAt(f, q.reveal_at);
   }
   box.addEventListener('click', function (e) {
     var t = e.target;
@@ -133,14 +128,17 @@ _SCRIPT = r"""
       else box.querySelector('[data-apf=verdict]').textContent = 'A cell is x, y: e.g. 2, -1';
     }
   });
+  function playAt(f, seconds) {  // the player's time field set to that second of the recording
+    var setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value').set;
+    setter.call(f, (seconds + 0.1).toFixed(2));
+    f.dispatchEvent(new Event('input', { bubbles: true }));
+    setTimeout(function () { f.blur(); }, 0);  // the keys stay the lecture's, not the field's
+  }
   function seek(i) {
     index = Math.max(0, Math.min(stops.length - 1, i));
     var f = field();
     if (!f) { paced = false; shown = -1; show(index); return; }
-    var setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value').set;
-    setter.call(f, (stops[index].at + 0.1).toFixed(2));
-    f.dispatchEvent(new Event('input', { bubbles: true }));
-    setTimeout(function () { f.blur(); }, 0);  // the keys stay the lecture's, not the field's
+    playAt(f, stops[index].at);
     show(index);
   }
   function follow() {

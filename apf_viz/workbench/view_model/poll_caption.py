@@ -42,7 +42,7 @@ def bars_html(bars: tuple[Bar, ...], kind: str) -> str:
         return ""
     if kind == "cell" and len(bars) > MOST_CELLS:
         rest = sum(b.count for b in bars[MOST_CELLS:] if not b.right)
-        kept = [b for b in bars[:MOST_CELLS]] + [b for b in bars[MOST_CELLS:] if b.right]
+        kept = [*bars[:MOST_CELLS], *(b for b in bars[MOST_CELLS:] if b.right)]
         bars = (*kept, Bar("", "other cells", rest, False))
     top = max(1, *(b.count for b in bars))
     columns = "".join(
