@@ -1236,9 +1236,23 @@ def blank_drawing(browser, app: App, tool: str):
     return page, cid, screen
 
 
-def _choose(page, label: str, option: str) -> None:
-    page.get_by_role("combobox", name=label).click()
-    page.get_by_role("option", name=option, exact=True).click()
+def _choose(page, label: str, option: str, tries: int = 4) -> None:
+    """Choose ``option`` in the dropdown ``label`` until the page shows it chosen: on a loaded machine (the
+    whole suite, four workers on two cores) an option was clicked while its list was still opening, and the
+    choice never happened."""
+    box = page.get_by_role("combobox", name=label)
+    for _ in range(tries):
+        box.click()
+        item = page.get_by_role("option", name=option, exact=True)
+        item.wait_for(state="visible")
+        item.click()
+        end = time.time() + 10
+        while time.time() < end:
+            if box.input_value() == option:
+                return
+            time.sleep(0.1)
+        page.keyboard.press("Escape")
+    raise AssertionError(f"the dropdown {label!r} never showed {option!r}")
 
 
 def chosen(page, label: str, option: str, done, tries: int = 3) -> None:
