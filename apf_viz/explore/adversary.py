@@ -38,12 +38,14 @@ from apf_viz.core.grid import Point
 from apf_viz.core.history import StepRecord
 from apf_viz.core.schedule import Found, follow, parse_schedule, schedule_of_steps, schedule_text
 from apf_viz.core.schedulers import AUTOMATIC, make_scheduler, step_rng
+from apf_viz.explore.beam import Beamed, beam
 
 Measure = Literal["moves", "events"]
 BUILT_IN_SEEDS = range(20)
 BATCH = 8  # candidates drawn and tried together (a cluster's workers take them at once)
 KEPT = 16  # schedules the search varies: the costliest seen
 FRESH_SHARE = 0.2  # of the candidates, those that start afresh (a built-in scheduler, a new seed)
+WIDTH = 64  # the beam's (explore/beam.py): on generated starts of k ≤ 30 no layer was wider
 
 
 @dataclass(frozen=True)
@@ -163,6 +165,26 @@ def decisions(problem: Problem, best: Tried) -> list[Candidate]:
     return out
 
 
+def beamed(problem: Problem, width: int, seed: int) -> tuple[Tried, Beamed]:
+    """The beam's costliest path (explore/beam.py) as a run of the real engine; a path that does not
+    end formed there (none has, so far) is no schedule: its cost is None."""
+    e = problem.engine()
+    found = beam(
+        problem.algorithm, problem.robots, problem.pattern, problem.y_up, problem.maximize, width, seed,
+        problem.light_semantics, max_layers=e.max_events or 10_000_000,
+    )  # fmt: skip
+    for group in found.schedule:
+        if e.finished:
+            break
+        e.step(group)
+    source = (
+        f"a beam of width {width} over the adversary's choices ({found.states:,} states, "
+        f"{found.layers:,} events deep{', cut' if found.cut else ', never cut: every path'})"
+    )
+    records = tuple(step.record for step in e.history.steps)
+    return Tried(measure(e, problem.maximize) if e.finished else None, records, source), found
+
+
 def draw(rng: random.Random) -> Candidate:
     """A fresh start: a built-in scheduler and a seed drawn afresh, from the start."""
     return Candidate(0, None, rng.choice(AUTOMATIC), rng.randrange(2**31))
@@ -176,6 +198,7 @@ class Search:
     bar: Tried
     best: Tried
     evaluations: int = 0
+    beam: Beamed | None = None  # the beam's effort, when one ran
     improvements: list[tuple[int, int]] = field(default_factory=list)  # (evaluation, value)
     seconds: float = 0.0
 
@@ -233,6 +256,7 @@ def search(
     evaluator: Evaluator = evaluate,
     progress: Callable[[Search], None] = lambda s: None,
     seeds: Sequence[int] = BUILT_IN_SEEDS,
+    width: int = WIDTH,
 ) -> Search:
     """Up to ``budget`` schedules tried (the built-ins' runs first), the costliest kept: a best-first
     search over the choices the costliest schedules made (:class:`Frontier`), with now and then a fresh
@@ -250,6 +274,13 @@ def search(
         frontier.offer(t)
     rng = random.Random(seed)
     try:
+        if width > 0 and state.evaluations < budget:
+            found, state.beam = beamed(problem, width, seed)
+            state.evaluations += 1
+            _better(state, found)
+            frontier.offer(found)
+            state.seconds = time.perf_counter() - t0
+            progress(state)
         while state.evaluations < budget:
             jobs: list[Job] = []
             for _ in range(min(BATCH, budget - state.evaluations)):
@@ -258,9 +289,7 @@ def search(
             results = evaluator(problem, jobs)
             state.evaluations += len(jobs)
             for result in results:
-                if (result.value or -1) > (state.best.value or -1):
-                    state.best = result
-                    state.improvements.append((state.evaluations, result.value or 0))
+                _better(state, result)
                 frontier.offer(result)
             state.seconds = time.perf_counter() - t0
             progress(state)
@@ -268,6 +297,12 @@ def search(
         pass
     state.seconds = time.perf_counter() - t0
     return state
+
+
+def _better(state: Search, result: Tried) -> None:
+    if (result.value or -1) > (state.best.value or -1):
+        state.best = result
+        state.improvements.append((state.evaluations, result.value or 0))
 
 
 def best_schedule_text(state: Search) -> str:

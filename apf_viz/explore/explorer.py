@@ -191,6 +191,13 @@ class Explorer:
             "absent", len(graph.states), graph.transitions, seconds, detail=detail, passed=self.passed
         )
 
+    def eligible_edges(
+        self, st: State, origin: Point, out: list[tuple[State, Point]]
+    ) -> tuple[tuple[tuple[int, ...], ...], Violation | None]:
+        """The edges out of ``st`` a scheduler that skips no-ops may take, each on its own (see
+        :meth:`_careful_successors`): for a search of its own over this space (explore/beam.py)."""
+        return self._careful_successors(st, origin, out)
+
     def _careful_successors(
         self, st: State, origin: Point, out: list[tuple[State, Point]]
     ) -> tuple[tuple[tuple[int, ...], ...], Violation | None]:

@@ -17,6 +17,7 @@ search keeps it beside the state, for the box and the messages.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from itertools import combinations
 from math import gcd
@@ -132,11 +133,6 @@ class StateSpace:
         # Each state's edges are labelled by one of these shared tuples (no tuple per edge).
         self.singles = tuple((r,) for r in range(self.k))
         self.alone = tuple((s,) for s in self.singles)
-        self.groups = (
-            (tuple(range(self.k)),)
-            if scheduler == "fsync"
-            else tuple(c for n in range(1, self.k + 1) for c in combinations(range(self.k), n))
-        )
 
     # ------------------------------------------------------------------ reading a state
     def initial(self, robots: Sequence[Point]) -> tuple[State, Point]:
@@ -177,6 +173,13 @@ class StateSpace:
         if d is None:
             d = self.memo.by_view[view] = self.memo.intern(self.algorithm.decide(view, self.pattern))
         return d
+
+    def forget(self) -> None:
+        """Drop what is remembered per configuration (the decisions' table, which states refer to,
+        stays): a search that walks far from where it began keeps its memory bounded."""
+        self.memo.by_configuration.clear()
+        self.memo.by_view.clear()
+        self._quiet.clear()
 
     def quiescent(self, st: State) -> bool:
         """No robot can change anything: every held decision and every decision on the current view
@@ -236,6 +239,15 @@ class StateSpace:
                 if (light[d] == st[2 * k + r]) if c & 1 else stays[d]:
                     return r
         return None
+
+    @functools.cached_property
+    def groups(self) -> tuple[tuple[int, ...], ...]:
+        """The groups a round may take: all robots (FSYNC) or every non-empty subset (SSYNC). Made only
+        when a round is explored: under ASYNC there are none, and 2^k subsets of k = 30 robots would not
+        fit in memory."""
+        if self.scheduler == "fsync":
+            return (tuple(range(self.k)),)
+        return tuple(c for n in range(1, self.k + 1) for c in combinations(range(self.k), n))
 
     @property
     def labels(self) -> tuple:

@@ -22,6 +22,7 @@ from typing import Literal
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.grid import Point
 from apf_viz.explore.explorer import Decisions, Explorer, Graph, Result, _sccs
+from apf_viz.explore.state_space import State, StateSpace
 
 Measure = Literal["moves", "events"]
 MEASURES: tuple[Measure, ...] = ("moves", "events")
@@ -44,32 +45,30 @@ class Worst:
 
 
 def weights(explorer: Explorer, graph: Graph, measure: Measure) -> list[list[int]]:
-    """Each edge's weight: the robots it moves (read from the decisions, not from the states: a state
-    is kept up to translation, so two states' points need not share an origin), or the events it makes
-    (a round: Look, Compute and Move of each robot in it; an lc-atomic Look brings its Compute)."""
+    """Each edge's weight (:func:`edge_weight`), per state, per edge."""
     space = explorer.space
+    return [
+        [edge_weight(space, graph.states[i], graph.labels[i][p], measure) for p in range(len(targets))]
+        for i, targets in enumerate(graph.edges)
+    ]
+
+
+def edge_weight(space: StateSpace, st: State, group: tuple[int, ...], measure: Measure) -> int:
+    """What the edge out of ``st`` on which ``group`` acts costs: the robots it moves (read from the
+    decisions, not from the states: a state is kept up to translation, so two states' points need not
+    share an origin), or the events it makes (a round: Look, Compute and Move of each robot in it; an
+    lc-atomic Look brings its Compute)."""
     k = space.k
     moves_of = space.memo.moves
-    out = []
-    for i, targets in enumerate(graph.edges):
-        st = graph.states[i]
-        row = []
-        for p in range(len(targets)):
-            group = graph.labels[i][p]
-            if measure == "moves" and space.scheduler == "async":
-                code = st[3 * k + group[0]]  # a Move: its robot has Computed (an even code past 0)
-                moving = code and not code & 1 and moves_of[space.y_up[group[0]]][(code - 1) >> 1]
-                row.append(1 if moving else 0)
-            elif measure == "moves":  # a round: each robot moves as it decides on the state's view
-                cfg = st[: 3 * k]
-                row.append(sum(1 for r in group if moves_of[space.y_up[r]][space.decide(cfg, r)]))
-            elif space.scheduler == "async":
-                look = st[3 * k + group[0]] == 0
-                row.append(2 if look and space.lc_atomic else 1)
-            else:
-                row.append(3 * len(group))
-        out.append(row)
-    return out
+    if measure == "moves" and space.scheduler == "async":
+        code = st[3 * k + group[0]]  # a Move: its robot has Computed (an even code past 0)
+        return 1 if code and not code & 1 and moves_of[space.y_up[group[0]]][(code - 1) >> 1] else 0
+    if measure == "moves":  # a round: each robot moves as it decides on the state's view
+        cfg = st[: 3 * k]
+        return sum(1 for r in group if moves_of[space.y_up[r]][space.decide(cfg, r)])
+    if space.scheduler == "async":
+        return 2 if st[3 * k + group[0]] == 0 and space.lc_atomic else 1
+    return 3 * len(group)
 
 
 def longest(

@@ -1,0 +1,116 @@
+"""A beam over the adversary's choices: the exact worst's state graph (explore/worst.py), searched a
+layer at a time and cut to a width, for starts whose whole graph is out of reach.
+
+The states are the explorer's (positions up to translation, lights, what each robot holds), its edges
+the events a scheduler that skips no-ops may make, under ASYNC with the partial-order reduction
+(docs/VERIFICATION.md): the same space on which ``check --worst`` finds the exact maximum. Layer d holds
+the states d events from the start, each with the most moves (events) of any path found to it; the next
+layer is their successors, and where it holds more than ``width`` states, ``width`` of them drawn at
+random (seeded) are kept. A state none of whose robots can change anything ends its path: the costliest
+such path is the answer, replayed in the real engine.
+
+Why drawn at random rather than the costliest kept: a state that has made more moves by the same event
+is, more often than not, one whose robots went straight to their places, and the runs that cost most
+are the slow ones (on a k = 5 start whose exact worst is 60 moves, a beam keeping the costliest 64 found
+46, one keeping 64 at random found 60). Where no layer is wider than ``width`` the beam is the whole
+graph and its answer is the exact worst."""
+
+from __future__ import annotations
+
+import random
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from apf_viz.algorithms import get_algorithm
+from apf_viz.explore.explorer import Explorer
+from apf_viz.explore.state_space import State
+from apf_viz.explore.worst import Measure, edge_weight
+
+MEMO_LIMIT = 400_000  # configurations whose decisions are remembered before the memo starts afresh
+
+
+@dataclass
+class Beamed:
+    """What the beam found: the costliest path's value (None: no path it kept reached a quiet state),
+    its schedule (robots per event), and its effort. ``cut``: a layer was cut to the width, or the paths
+    to ``max_layers`` events, so the answer may be less than the exact worst. ``skipped``: edges that
+    collide or leave the box, which no formed run takes."""
+
+    value: int | None
+    schedule: list[tuple[int, ...]]
+    layers: int
+    states: int
+    cut: bool
+    skipped: int
+    seconds: float
+
+
+Layer = dict[State, tuple[int, tuple[int, int], int]]  # state → (cost so far, origin, its node)
+
+
+def beam(
+    algorithm: str,
+    robots,
+    pattern,
+    y_up,
+    measure: Measure,
+    width: int,
+    seed: int = 0,
+    light_semantics: str = "compute",
+    progress: Callable[[int, int], None] = lambda layers, states: None,
+    max_layers: int = 10_000_000,
+) -> Beamed:
+    """The beam of ``width`` from the start (see the module's words). ``progress(layers, states)`` is
+    called every 100 layers; no path is followed past ``max_layers`` events. KeyboardInterrupt is the
+    caller's: nothing is kept of a beam cut short."""
+    t0 = time.perf_counter()
+    explorer = Explorer(
+        get_algorithm(algorithm), robots, pattern, y_up, scheduler="async", reduction=True,
+        eligible_only=True, light_semantics=light_semantics,  # type: ignore[arg-type]
+    )  # fmt: skip
+    space = explorer.space
+    rng = random.Random(seed)
+    start, origin = space.initial(explorer.robots)
+    nodes: list[tuple[int, tuple[int, ...]]] = [(-1, ())]  # (parent node, robots acting): the paths
+    layer: Layer = {start: (0, origin, 0)}
+    best, best_node = None, 0
+    layers = states = skipped = 0
+    cut = False
+    while layer:
+        if layers >= max_layers:  # a cycle the adversary may go round (a run's event budget, as the engine's)
+            cut = True
+            break
+        following: Layer = {}
+        for st, (cost, at, node) in layer.items():
+            if space.quiescent(st):
+                if best is None or cost > best:
+                    best, best_node = cost, node
+                continue
+            states += 1
+            out: list[tuple[State, tuple[int, int]]] = []
+            groups, violation = explorer.eligible_edges(st, at, out)
+            skipped += violation is not None
+            for group, (nxt, there) in zip(groups, out, strict=True):
+                value = cost + edge_weight(space, st, group, measure)
+                held = following.get(nxt)
+                if held is None or value > held[0]:
+                    nodes.append((node, group))
+                    following[nxt] = (value, there, len(nodes) - 1)
+        if len(following) > width:
+            cut = True
+            kept = rng.sample(list(following), width)
+            following = {s: following[s] for s in kept}
+        layer = following
+        layers += 1
+        if layers % 100 == 0:
+            progress(layers, states)
+        if len(space.memo.by_configuration) > MEMO_LIMIT:  # a cache: the decisions' table stays
+            space.forget()
+    schedule: list[tuple[int, ...]] = []
+    node = best_node
+    while node > 0:
+        node, group = nodes[node]
+        schedule.append(group)
+    schedule.reverse()
+    return Beamed(best, schedule, layers, states, cut, skipped, time.perf_counter() - t0)
