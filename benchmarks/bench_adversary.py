@@ -1,6 +1,7 @@
-"""The searched adversary's throughput (apf-viz adversary, explore/adversary.py): schedules tried a
-second, each a whole run of the engine to FORMED, on generated starts (``sweeps.cells.generated_start``)
-of k = 10 and k = 30, one core; and what the search found there against the built-ins at that budget.
+"""The searched adversary's throughput (apf-viz adversary, explore/adversary.py) on generated starts
+(``sweeps.cells.generated_start``) of k = 10 and k = 30, one core: the beam's time and states a second
+over the adversary's choices (explore/beam.py), then schedules tried a second (each a whole run of the
+engine to FORMED); and what the search found against the built-ins at that budget.
 Run: python benchmarks/bench_adversary.py [--ks 10,30] [--budget 160]"""
 
 from __future__ import annotations
@@ -17,18 +18,24 @@ def main() -> None:
     ap.add_argument("--budget", type=int, default=160)
     ap.add_argument("--seed", type=int, default=1, help="the generated start's")
     args = ap.parse_args()
-    print("| k | schedules tried | seconds | schedules/s | built-ins' most moves | found |")
-    print("|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| k | beam: seconds, states/s | schedules tried | seconds | schedules/s | built-ins' most | found |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|---:|")
     for k in (int(x) for x in args.ks.split(",")):
         robots, pattern, y_up = generated_start(k, args.seed)
         problem = Problem(
             "apf-opaque-grid", tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves"
         )
         found = search(problem, args.budget, seed=0)
-        rate = found.evaluations / found.seconds
+        b = found.beam
+        assert b is not None
+        runs = found.evaluations - 1  # the beam is one
+        spent = found.seconds - b.seconds
+        rate = runs / spent
         print(
-            f"| {k} | {found.evaluations} | {found.seconds:.1f} | {rate:.1f} | {found.bar.value} | "
-            f"{found.best.value} |",
+            f"| {k} | {b.seconds:.1f}, {b.states / b.seconds:,.0f} | {runs} | {spent:.1f} "
+            f"| {rate:.1f} | {found.bar.value} | {found.best.value} |",
             flush=True,
         )
 

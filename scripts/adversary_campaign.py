@@ -3,7 +3,7 @@ starts (``sweeps.cells.generated_start``: random robots and pattern in a box, ra
 k and seed, the built-ins' most over seeds 0–19 and what the search found at a budget. Prints a line a
 start, with progress; Ctrl+C prints the tally so far.
 
-    python scripts/adversary_campaign.py --ks 5,10,15 --seeds 1-5 --budget 300 --maximize moves
+    python scripts/adversary_campaign.py --ks 5,10,20 --seeds 1-5 --budget 101 --exact
 """
 
 from __future__ import annotations
@@ -11,7 +11,9 @@ from __future__ import annotations
 import argparse
 import time
 
+from apf_viz.algorithms import get_algorithm
 from apf_viz.explore.adversary import Problem, search
+from apf_viz.explore.worst import worst
 from apf_viz.sweeps.cells import generated_start, parse_range
 
 
@@ -21,6 +23,8 @@ def main() -> int:
     ap.add_argument("--seeds", default="1-5")
     ap.add_argument("--budget", type=int, default=300)
     ap.add_argument("--maximize", choices=("moves", "events"), default="moves")
+    ap.add_argument("--width", type=int, default=64, help="the beam's width (0: no beam)")
+    ap.add_argument("--exact", action="store_true", help="also the exact worst (check --worst), for each")
     args = ap.parse_args()
     ks, seeds = parse_range(args.ks, "--ks"), parse_range(args.seeds, "--seeds")
     beaten = total = 0
@@ -33,13 +37,18 @@ def main() -> int:
                     "apf-opaque-grid", tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up),
                     args.maximize,
                 )  # fmt: skip
-                found = search(problem, args.budget, seed=0)
+                found = search(problem, args.budget, seed=0, width=args.width)
                 total += 1
                 beaten += found.beats
                 mark = " BEATS" if found.beats else ""
+                exact = ""
+                if args.exact:
+                    w = worst(get_algorithm(problem.algorithm), robots, pattern, [y_up], args.maximize)
+                    exact = f", exact {w.value if w.value is not None else w.verdict} ({w.seconds:.1f} s)"
+                    assert w.value is None or (found.best.value or 0) <= w.value, "more than the exact worst"
                 print(
                     f"k={k} seed {s}: built-ins {found.bar.value}, search {found.best.value} "
-                    f"({found.evaluations} schedules, {found.seconds:.1f} s){mark}",
+                    f"({found.evaluations} schedules, {found.seconds:.1f} s){exact}{mark}",
                     flush=True,
                 )
     except KeyboardInterrupt:

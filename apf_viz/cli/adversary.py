@@ -8,7 +8,8 @@ import time
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, cluster, positive, problem, seed
+from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, cluster, int_within, positive, problem, seed
+from apf_viz.explore.adversary import WIDTH
 from apf_viz.sweeps.driver import duration
 
 NAME = "adversary"
@@ -24,6 +25,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--budget", type=positive, default=2_000, help="schedules tried, the built-ins' 20 seeds first"
     )
+    p.add_argument(
+        "--width", type=int_within(0, 1_000_000, "a width (0 to 1,000,000)"), default=WIDTH,
+        help=f"the beam's width over the adversary's choices (default {WIDTH}; 0: no beam)",
+    )  # fmt: skip
     p.add_argument(
         "--seed", type=seed, default=0, help="the search's seed (and the flips', if the file has none)"
     )
@@ -64,7 +69,9 @@ def run(args: argparse.Namespace) -> int:
     if args.cluster:
         evaluator, close = _on_cluster(args.cluster)
     try:
-        state = search(p, args.budget, args.seed, evaluator, _reporter(args.budget, args.json))
+        state = search(
+            p, args.budget, args.seed, evaluator, _reporter(args.budget, args.json), width=args.width
+        )
     finally:
         close()
     written = None
@@ -103,6 +110,9 @@ def _reporter(budget: int, quiet: bool):
         if quiet or now - last[0] < 1.0:
             return
         last[0] = now
+        if state.doing:
+            print(f"\r{state.doing} · {duration(state.seconds)}   ", end="", file=sys.stderr, flush=True)
+            return
         rate = state.evaluations / max(state.seconds, 1e-9)
         eta = (budget - state.evaluations) / max(rate, 1e-9)
         print(

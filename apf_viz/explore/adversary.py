@@ -165,13 +165,15 @@ def decisions(problem: Problem, best: Tried) -> list[Candidate]:
     return out
 
 
-def beamed(problem: Problem, width: int, seed: int) -> tuple[Tried, Beamed]:
+def beamed(
+    problem: Problem, width: int, seed: int, progress: Callable[[int, int], None] = lambda d, n: None
+) -> tuple[Tried, Beamed]:
     """The beam's costliest path (explore/beam.py) as a run of the real engine; a path that does not
     end formed there (none has, so far) is no schedule: its cost is None."""
     e = problem.engine()
     found = beam(
         problem.algorithm, problem.robots, problem.pattern, problem.y_up, problem.maximize, width, seed,
-        problem.light_semantics, max_layers=e.max_events or 10_000_000,
+        problem.light_semantics, progress, max_layers=e.max_events or 10_000_000,
     )  # fmt: skip
     for group in found.schedule:
         if e.finished:
@@ -199,6 +201,7 @@ class Search:
     best: Tried
     evaluations: int = 0
     beam: Beamed | None = None  # the beam's effort, when one ran
+    doing: str = ""  # what the search is doing, while it is not trying schedules (for its progress)
     improvements: list[tuple[int, int]] = field(default_factory=list)  # (evaluation, value)
     seconds: float = 0.0
 
@@ -275,7 +278,14 @@ def search(
     rng = random.Random(seed)
     try:
         if width > 0 and state.evaluations < budget:
-            found, state.beam = beamed(problem, width, seed)
+
+            def deeper(layers: int, states: int) -> None:
+                state.doing = f"the beam: {layers:,} events deep, {states:,} states"
+                state.seconds = time.perf_counter() - t0
+                progress(state)
+
+            found, state.beam = beamed(problem, width, seed, deeper)
+            state.doing = ""
             state.evaluations += 1
             _better(state, found)
             frontier.offer(found)
