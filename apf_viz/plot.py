@@ -3,7 +3,12 @@
 - ``moves_vs_kD.png``: moves against k·D per algorithm (formed runs), the fitted constant c of
   moves ≈ c·k·D (least squares through the origin), and the line c·k·D;
 - ``failure_rate.png``: the share of runs that did not form, per algorithm × scheduler × light semantics;
-- ``events_per_move.png``: events per move against k, per algorithm (median over seeds).
+- ``events_per_move.png``: events per move against k, per algorithm (median over seeds);
+- ``time_per_move.png``: wall time per move against k and D;
+- ``worst_vs_kD.png``, where the table has runs of the searched adversary (scheduler ``worst-found``):
+  for each start, the moves per k·D it found beside the most of the built-in schedulers' runs there.
+
+The searched adversary's rows are no scheduler's run: the first four figures leave them out.
 """
 
 from __future__ import annotations
@@ -14,6 +19,7 @@ from pathlib import Path
 
 from apf_viz.core.files import replace_atomically
 from apf_viz.core.formats import InputError
+from apf_viz.sweeps.cells import WORST_FOUND
 
 FIGURES = ("moves_vs_kD.png", "failure_rate.png", "events_per_move.png", "time_per_move.png")
 
@@ -47,6 +53,10 @@ def fitted_constant(points: Sequence[tuple[float, float]]) -> float:
 def plot(rows: Sequence[dict], out: Path) -> list[Path]:
     if not rows:
         raise InputError("the results table has no rows")
+    searched = [r for r in rows if r["scheduler"] == WORST_FOUND]
+    rows = [r for r in rows if r["scheduler"] != WORST_FOUND]
+    if not rows:
+        raise InputError("the results table has only the searched adversary's rows: no scheduler to compare")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -103,7 +113,47 @@ def plot(rows: Sequence[dict], out: Path) -> list[Path]:
     ylabel = "events per move (median over runs)"
     written.append(_finish(fig, ax, out / FIGURES[2], "k (robots)", ylabel, "Events per move against k"))
     written.append(_time_per_move(rows, algorithms, out / FIGURES[3]))
+    if searched:
+        written.append(_worst_vs_kd(searched, rows, out / WORST_FIGURE))
     return written
+
+
+WORST_FIGURE = "worst_vs_kD.png"
+
+
+def _start_of(r: dict) -> tuple:
+    return (r["k"], r["seed"], r["algorithm"], r["light_semantics"], r["start"])
+
+
+def worst_against_built_ins(searched: Sequence[dict], rows: Sequence[dict]) -> list[tuple[int, float, float]]:
+    """For each start the searched adversary ran on and some built-in scheduler formed: (k·D, the moves
+    per k·D it found, the most of the built-in runs' there), in the order of k·D."""
+    most: dict[tuple, float] = {}
+    for r in rows:
+        if r["outcome"] == "formed":
+            most[_start_of(r)] = max(most.get(_start_of(r), 0.0), r["moves_per_kD"])
+    return sorted(
+        (r["k"] * r["D"], r["moves_per_kD"], most[_start_of(r)])
+        for r in searched
+        if r["outcome"] == "formed" and _start_of(r) in most
+    )
+
+
+def _worst_vs_kd(searched: Sequence[dict], rows: Sequence[dict], path: Path) -> Path:
+    import matplotlib.pyplot as plt
+
+    pts = worst_against_built_ins(searched, rows)
+    if not pts:
+        raise InputError("no start has both a run of the searched adversary and a built-in run that formed")
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    x = [p[0] for p in pts]
+    ax.scatter(
+        x, [p[2] for p in pts], s=22, marker="o", label="the built-in schedulers in the table: their most"
+    )
+    ax.scatter(x, [p[1] for p in pts], s=22, marker="x", label="the searched adversary (worst found)")
+    ax.set_ylim(bottom=0)
+    title = "The worst found against the built-in schedulers: moves per k·D on each start"
+    return _finish(fig, ax, path, "k · D  (D = max(m, n, M, N, k))", "moves / (k·D)", title)
 
 
 def _time_per_move(rows: Sequence[dict], algorithms: list[str], path: Path) -> Path:

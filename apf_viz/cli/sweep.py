@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import cluster, fail, need_extra, positive_seconds, workers
+from apf_viz.cli.common import cluster, fail, need_extra, positive, positive_seconds, workers
 from apf_viz.core.files import check_writable
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
@@ -34,6 +35,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--cluster", type=cluster, help="address of a running Dask scheduler, e.g. tcp://host:8786"
     )
     p.add_argument(
+        "--search-budget", type=positive, default=104,
+        help="schedules the searched adversary tries in each run of the scheduler worst-found (default "
+        "104: the built-ins' 100 runs and beams of width 64 to 512; docs/ADVERSARY.md)",
+    )  # fmt: skip
+    p.add_argument(
         "--run-timeout",
         type=positive_seconds,
         help="seconds one run may take; a run past it is recorded as outcome 'timeout' with its counts "
@@ -55,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
         [s.strip() for s in args.light_semantics.split(",")],
         args.starts,
     )
+    cells = [replace(c, search_budget=args.search_budget) for c in cells]
     check_writable(args.out)
     rows = sweep.run_sweep(  # Ctrl+C keeps what finished (cli/__init__.py's main: exit 130)
         cells,

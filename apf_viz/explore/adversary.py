@@ -45,7 +45,8 @@ BUILT_IN_SEEDS = range(20)
 BATCH = 8  # candidates drawn and tried together (a cluster's workers take them at once)
 KEPT = 16  # schedules the search varies: the costliest seen
 FRESH_SHARE = 0.2  # of the candidates, those that start afresh (a built-in scheduler, a new seed)
-WIDTH = 64  # the beam's (explore/beam.py): on generated starts of k ≤ 30 no layer was wider
+FIRST_WIDTH = 64  # the first beam's (explore/beam.py); each next one is twice as wide
+WIDTH = 512  # the widest beam, by default: 64, 128, 256, 512 (on a k = 5 start 256 was never cut)
 
 
 @dataclass(frozen=True)
@@ -200,7 +201,7 @@ class Search:
     bar: Tried
     best: Tried
     evaluations: int = 0
-    beam: Beamed | None = None  # the beam's effort, when one ran
+    beam: Beamed | None = None  # the last beam's effort, when one ran
     doing: str = ""  # what the search is doing, while it is not trying schedules (for its progress)
     improvements: list[tuple[int, int]] = field(default_factory=list)  # (evaluation, value)
     seconds: float = 0.0
@@ -277,20 +278,7 @@ def search(
         frontier.offer(t)
     rng = random.Random(seed)
     try:
-        if width > 0 and state.evaluations < budget:
-
-            def deeper(layers: int, states: int) -> None:
-                state.doing = f"the beam: {layers:,} events deep, {states:,} states"
-                state.seconds = time.perf_counter() - t0
-                progress(state)
-
-            found, state.beam = beamed(problem, width, seed, deeper)
-            state.doing = ""
-            state.evaluations += 1
-            _better(state, found)
-            frontier.offer(found)
-            state.seconds = time.perf_counter() - t0
-            progress(state)
+        _beams(state, frontier, budget, width, seed, progress, t0)
         while state.evaluations < budget:
             jobs: list[Job] = []
             for _ in range(min(BATCH, budget - state.evaluations)):
@@ -307,6 +295,38 @@ def search(
         pass
     state.seconds = time.perf_counter() - t0
     return state
+
+
+def _beams(
+    state: Search,
+    frontier: Frontier,
+    budget: int,
+    width: int,
+    seed: int,
+    progress: Callable[[Search], None],
+    t0: float,
+) -> None:
+    """Beams of width 64, 128, … up to ``width`` (each one evaluation of the budget), until one is never
+    cut: that one followed every path, and no wider beam can find more."""
+    problem = state.problem
+    w = min(FIRST_WIDTH, width)
+    while 0 < w <= width and state.evaluations < budget:
+
+        def deeper(layers: int, states: int, w: int = w) -> None:
+            state.doing = f"a beam of width {w}: {layers:,} events deep, {states:,} states"
+            state.seconds = time.perf_counter() - t0
+            progress(state)
+
+        found, state.beam = beamed(problem, w, seed, deeper)
+        state.doing = ""
+        state.evaluations += 1
+        _better(state, found)
+        frontier.offer(found)
+        state.seconds = time.perf_counter() - t0
+        progress(state)
+        if not state.beam.cut:
+            break
+        w *= 2
 
 
 def _better(state: Search, result: Tried) -> None:

@@ -37,11 +37,15 @@ class Cell:
     pattern: tuple[tuple[int, int], ...] = ()
     y_up: tuple[bool, ...] = ()
     timeout: float | None = None  # seconds; a run past it is recorded as "timeout" (not part of the key)
+    search_budget: int = 0  # WORST_FOUND's: schedules the searched adversary tries (not part of the key)
 
     def key(self) -> tuple:
         return (self.k, self.seed, self.scheduler, self.algorithm, self.light_semantics, self.start)
 
 
+WORST_FOUND = "worst-found"
+"""A "scheduler" of the sweep that is none: the searched adversary (``apf-viz adversary``, moves), its
+costliest schedule found at the sweep's ``--search-budget`` the run of the row."""
 MAX_VALUES = 100_000  # values one --ks or --seeds list may name
 MAX_RUNS = 1_000_000  # runs one sweep may hold (its rows are kept in memory)
 MAX_K = 100_000  # robots per generated start (random_configs.MAX_RANDOM_POINTS)
@@ -96,7 +100,7 @@ def grid(
             get_algorithm(name)
         except ValueError as e:
             raise InputError(f"--algorithms: {e}") from None
-    choices = AUTOMATIC
+    choices = (*AUTOMATIC, WORST_FOUND)
     for s in schedulers:
         if s not in choices:
             raise InputError(f"--schedulers: unknown scheduler {s!r} (choose from {', '.join(choices)})")
@@ -166,6 +170,8 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
         robots, pattern, y_up = list(cell.robots), list(cell.pattern), list(cell.y_up)
     else:
         robots, pattern, y_up = generated_start(cell.k, cell.seed)
+    if cell.scheduler == WORST_FOUND:
+        return _worst_found(cell, robots, pattern, y_up)
     budget = run_budget(robots, pattern)
     t0 = time.perf_counter()
     algorithm = get_algorithm(cell.algorithm)
@@ -203,6 +209,29 @@ def run_cell(cell: Cell, traces: str | None = None) -> dict:
     hidden = algorithm.count if isinstance(algorithm, AtWork) else 0
     return row(
         cell, d, outcome, st.moves, st.events, st.cycles, len(st.lights_used), wall, trace, hidden=hidden
+    )
+
+
+def _worst_found(cell: Cell, robots: list, pattern: list, y_up: list) -> dict:
+    """The searched adversary's row: the costliest schedule in moves it found (explore/adversary.py),
+    run in the engine again for its counts. No timeout: the search's budget bounds it."""
+    from apf_viz.core.budget import paper_D
+    from apf_viz.explore.adversary import Problem, search
+
+    t0 = time.perf_counter()
+    problem = Problem(
+        cell.algorithm, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves",
+        cell.light_semantics,  # type: ignore[arg-type]
+    )  # fmt: skip
+    found = search(problem, max(cell.search_budget, 1), seed=cell.seed)
+    engine = problem.engine()
+    for record in found.best.records:
+        engine.apply(record)
+    st = engine.state
+    d = paper_D(robots, pattern)
+    wall = time.perf_counter() - t0
+    return row(
+        cell, d, st.outcome or "timeout", st.moves, st.events, st.cycles, len(st.lights_used), wall, ""
     )
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 from apf_viz.core.files import check_writable, make_folder, remove_if_empty
 from apf_viz.core.formats import InputError
 from apf_viz.progress import show_progress
-from apf_viz.sweeps.cells import KEY, Cell, row, run_cell
+from apf_viz.sweeps.cells import KEY, WORST_FOUND, Cell, row, run_cell
 from apf_viz.sweeps.results import read_results, write_results
 
 
@@ -39,7 +39,8 @@ def cost(cell: Cell) -> float:
 
     # A generated start is not drawn just to be weighed: its box's side, or k, is its D.
     d = paper_D(cell.robots, cell.pattern) if cell.robots else max(cell.k, math.isqrt(3 * cell.k) + 1)
-    return 500.0 + (cell.k * min(d, max(cell.k, 3))) ** 1.2
+    one = 500.0 + (cell.k * min(d, max(cell.k, 3))) ** 1.2
+    return one * (cell.search_budget + 20) if cell.scheduler == WORST_FOUND else one  # + the beam
 
 
 def _describe(cell: Cell) -> str:
