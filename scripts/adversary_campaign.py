@@ -23,7 +23,7 @@ def main() -> int:
     ap.add_argument("--seeds", default="1-5")
     ap.add_argument("--budget", type=int, default=300)
     ap.add_argument("--maximize", choices=("moves", "events"), default="moves")
-    ap.add_argument("--width", type=int, default=64, help="the beam's width (0: no beam)")
+    ap.add_argument("--width", type=int, default=512, help="the widest beam (0: no beam)")
     ap.add_argument("--exact", action="store_true", help="also the exact worst (check --worst), for each")
     args = ap.parse_args()
     ks, seeds = parse_range(args.ks, "--ks"), parse_range(args.seeds, "--seeds")

@@ -195,3 +195,28 @@ def test_a_sweep_whose_progress_reader_goes_away_still_runs_to_the_end_and_keeps
     p.stderr.close()  # nobody reads the progress
     assert p.wait(timeout=300) == 0
     assert sorted((r["k"], r["seed"]) for r in read_results(out)) == [(3, 1), (3, 2)]
+
+
+def test_the_searched_adversary_is_a_column_of_the_table_and_plot_draws_it_against_the_built_ins(tmp_path):
+    """`--schedulers …,worst-found`: for each start the searched adversary's costliest schedule (moves)
+    is a row beside the built-ins', never below their most there (it starts from their best over seeds
+    0–19), and beyond it on the generated k = 5 start of seed 5 (exact worst 60, built-ins 44);
+    `apf-viz plot` draws both per start in worst_vs_kD.png."""
+    from apf_viz.plot import worst_against_built_ins
+
+    out = tmp_path / "r.csv"
+    done = run_cli("sweep", "--ks", "4,5", "--seeds", "5", "--schedulers", "async,fsync,worst-found",
+                   "--workers", "2", "--out", str(out))  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    table = read_results(out)
+    searched = [r for r in table if r["scheduler"] == "worst-found"]
+    built = [r for r in table if r["scheduler"] != "worst-found"]
+    assert len(searched) == 2 and len(built) == 4 and all(r["outcome"] == "formed" for r in table)
+    compared = worst_against_built_ins(searched, built)
+    assert len(compared) == 2 and all(found >= most for _, found, most in compared)
+    five = next(r for r in searched if r["k"] == 5)
+    assert five["moves"] == 60 and five["moves"] > max(r["moves"] for r in built if r["k"] == 5)
+    plots = run_cli("plot", str(out), "--out", str(tmp_path / "plots"))
+    assert plots.returncode == 0, plots.stderr
+    png = tmp_path / "plots" / "worst_vs_kD.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000
