@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     evaluator, close = evaluate, lambda: None
     if args.cluster:
-        evaluator, close = _on_cluster(args.cluster)
+        evaluator, close = on_cluster(args.cluster)
     try:
         state = search(
             p, args.budget, args.seed, evaluator, _reporter(args.budget, args.json), width=args.width
@@ -125,7 +125,7 @@ def _reporter(budget: int, quiet: bool):
     return report
 
 
-def _on_cluster(address: str):
+def on_cluster(address: str):
     """An evaluator that tries each batch on the Dask cluster at ``address``, a schedule a task, and the
     way to close it."""
     from apf_viz.explore.adversary import evaluate
