@@ -64,24 +64,7 @@ def plot(rows: Sequence[dict], out: Path) -> list[Path]:
 
     out.mkdir(parents=True, exist_ok=True)
     algorithms = sorted({r["algorithm"] for r in rows})
-    written = []
-
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    top = 0.0
-    for alg in algorithms:
-        pts = [
-            (r["k"] * r["D"], r["moves"]) for r in rows if r["algorithm"] == alg and r["outcome"] == "formed"
-        ]
-        if not pts:
-            continue
-        c = fitted_constant(pts)
-        top = max(top, max(x for x, _ in pts))
-        ax.scatter([x for x, _ in pts], [y for _, y in pts], s=14, alpha=0.6, label=f"{alg} (c = {c:.2f})")
-        ax.plot([0, top], [0, c * top], linewidth=1)
-    title = "Moves against k·D: the paper's O(kD) bound, fitted moves ≈ c·k·D"
-    written.append(
-        _finish(fig, ax, out / FIGURES[0], "k · D  (D = max(m, n, M, N, k))", "moves until formed", title)
-    )
+    written = [_moves_vs_kd(rows, algorithms, out / FIGURES[0])]
 
     groups: dict[str, list[dict]] = {}
     for r in rows:
@@ -154,6 +137,26 @@ def _worst_vs_kd(searched: Sequence[dict], rows: Sequence[dict], path: Path) -> 
     ax.set_ylim(bottom=0)
     title = "The worst found against the built-in schedulers: moves per k·D on each start"
     return _finish(fig, ax, path, "k · D  (D = max(m, n, M, N, k))", "moves / (k·D)", title)
+
+
+def _moves_vs_kd(rows: Sequence[dict], algorithms: list[str], path: Path) -> Path:
+    """Moves against k·D per algorithm (formed runs), with the fitted c·k·D."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    top = 0.0
+    for alg in algorithms:
+        pts = [
+            (r["k"] * r["D"], r["moves"]) for r in rows if r["algorithm"] == alg and r["outcome"] == "formed"
+        ]
+        if not pts:
+            continue
+        c = fitted_constant(pts)
+        top = max(top, max(x for x, _ in pts))
+        ax.scatter([x for x, _ in pts], [y for _, y in pts], s=14, alpha=0.6, label=f"{alg} (c = {c:.2f})")
+        ax.plot([0, top], [0, c * top], linewidth=1)
+    title = "Moves against k·D: the paper's O(kD) bound, fitted moves ≈ c·k·D"
+    return _finish(fig, ax, path, "k · D  (D = max(m, n, M, N, k))", "moves until formed", title)
 
 
 def _time_per_move(rows: Sequence[dict], algorithms: list[str], path: Path) -> Path:

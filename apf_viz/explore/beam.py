@@ -72,31 +72,17 @@ def beam(
     space = explorer.space
     rng = random.Random(seed)
     start, origin = space.initial(explorer.robots)
-    nodes: list[tuple[int, tuple[int, ...]]] = [(-1, ())]  # (parent node, robots acting): the paths
+    paths = Paths()
     layer: Layer = {start: (0, origin, 0)}
-    best, best_node = None, 0
     layers = states = skipped = 0
     cut = False
     while layer:
         if layers >= max_layers:  # a cycle the adversary may go round (a run's event budget, as the engine's)
             cut = True
             break
-        following: Layer = {}
-        for st, (cost, at, node) in layer.items():
-            if space.quiescent(st):
-                if best is None or cost > best:
-                    best, best_node = cost, node
-                continue
-            states += 1
-            out: list[tuple[State, tuple[int, int]]] = []
-            groups, violation = explorer.eligible_edges(st, at, out)
-            skipped += violation is not None
-            for group, (nxt, there) in zip(groups, out, strict=True):
-                value = cost + edge_weight(space, st, group, measure)
-                held = following.get(nxt)
-                if held is None or value > held[0]:
-                    nodes.append((node, group))
-                    following[nxt] = (value, there, len(nodes) - 1)
+        following, expanded, violations = next_layer(explorer, layer, measure, paths)
+        states += expanded
+        skipped += violations
         if len(following) > width:
             cut = True
             kept = rng.sample(list(following), width)
@@ -107,10 +93,54 @@ def beam(
             progress(layers, states)
         if len(space.memo.by_configuration) > MEMO_LIMIT:  # a cache: the decisions' table stays
             space.forget()
-    schedule: list[tuple[int, ...]] = []
-    node = best_node
-    while node > 0:
-        node, group = nodes[node]
-        schedule.append(group)
-    schedule.reverse()
-    return Beamed(best, schedule, layers, states, cut, skipped, time.perf_counter() - t0)
+    return Beamed(paths.best, paths.schedule(), layers, states, cut, skipped, time.perf_counter() - t0)
+
+
+class Paths:
+    """The paths the beam has made, as a tree (each node its parent and the robots acting on its edge),
+    and the costliest that ended."""
+
+    def __init__(self) -> None:
+        self.nodes: list[tuple[int, tuple[int, ...]]] = [(-1, ())]
+        self.best: int | None = None
+        self.best_node = 0
+
+    def extend(self, node: int, group: tuple[int, ...]) -> int:
+        self.nodes.append((node, group))
+        return len(self.nodes) - 1
+
+    def ended(self, cost: int, node: int) -> None:
+        if self.best is None or cost > self.best:
+            self.best, self.best_node = cost, node
+
+    def schedule(self) -> list[tuple[int, ...]]:
+        """The robots acting on each event of the costliest path that ended, first to last."""
+        out: list[tuple[int, ...]] = []
+        node = self.best_node
+        while node > 0:
+            node, group = self.nodes[node]
+            out.append(group)
+        return out[::-1]
+
+
+def next_layer(explorer: Explorer, layer: Layer, measure: Measure, paths: Paths) -> tuple[Layer, int, int]:
+    """The states one event after ``layer``'s, each with the costliest path to it (a state where nobody
+    can change anything ends its path instead); and the states expanded, and the edges skipped because
+    they collide or leave the box."""
+    space = explorer.space
+    following: Layer = {}
+    expanded = skipped = 0
+    for st, (cost, at, node) in layer.items():
+        if space.quiescent(st):
+            paths.ended(cost, node)
+            continue
+        expanded += 1
+        out: list[tuple[State, tuple[int, int]]] = []
+        groups, violation = explorer.eligible_edges(st, at, out)
+        skipped += violation is not None
+        for group, (nxt, there) in zip(groups, out, strict=True):
+            value = cost + edge_weight(space, st, group, measure)
+            held = following.get(nxt)
+            if held is None or value > held[0]:
+                following[nxt] = (value, there, paths.extend(node, group))
+    return following, expanded, skipped
