@@ -9,8 +9,9 @@ import pytest
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
+from apf_viz.core.adversarial_starts import FAMILIES, generate
 from apf_viz.core.engine import Engine
-from apf_viz.explore.beam import beam
+from apf_viz.explore.beam import against_exact, beam
 from apf_viz.explore.explorer import Explorer
 from apf_viz.explore.worst import worst
 from apf_viz.sweeps.cells import generated_start
@@ -56,3 +57,20 @@ def test_an_asynchronous_search_of_thirty_robots_makes_no_rounds():
     out: list = []
     explorer.eligible_edges(explorer.initial(), (0, 0), out)
     assert out and "groups" not in vars(explorer.space)
+
+
+FAMILY_CASES = [
+    (generate(family, seed, far=12), ("moves", "events")[seed % 2])
+    for family in FAMILIES
+    for seed in range(6)
+]
+
+
+@pytest.mark.parametrize("case", FAMILY_CASES, ids=lambda c: f"{c[0].family}-k{len(c[0].robots)}-{c[1]}")
+def test_on_the_adversarial_families_the_beam_agrees_with_the_exact_worst(case):
+    """The campaign's check (scripts/beam_campaign.py: thousands of these) on a few of each family: a
+    robot far from the others, on its target's column, on their rows, all far apart, symmetric starts
+    with robots on the axis."""
+    start, measure = case
+    verdict = against_exact(start.robots, start.pattern, start.y_up, measure, seed=len(start.robots))
+    assert verdict in ("", "none"), verdict
