@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -75,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
         )
     finally:
         close()
+        if not args.json:
+            print(file=sys.stderr)  # the progress line ends before the answer
     written = None
     if args.schedule_out:
         write_atomic(args.schedule_out, best_schedule_text(state))
@@ -102,7 +105,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _reporter(budget: int, quiet: bool):
     """Progress on stderr about every second: tried, best, rate and ETA."""
-    import sys
 
     last = [0.0]
 

@@ -310,10 +310,17 @@ def _beams(
     cut: that one followed every path, and no wider beam can find more."""
     problem = state.problem
     w = min(FIRST_WIDTH, width)
+    deep = max(1, len(state.bar.records))  # about as deep as the beam goes: the costliest run's steps
     while 0 < w <= width and state.evaluations < budget:
+        began = time.perf_counter()
 
-        def deeper(layers: int, states: int, w: int = w) -> None:
-            state.doing = f"a beam of width {w}: {layers:,} events deep, {states:,} states"
+        def deeper(layers: int, states: int, w: int = w, began: float = began) -> None:
+            rate = layers / max(time.perf_counter() - began, 1e-9)
+            eta = max(deep - layers, 0) / rate
+            state.doing = (
+                f"a beam of width {w}: {layers:,} of about {deep:,} events deep, {states:,} states, "
+                f"ETA about {eta:.0f} s"
+            )
             state.seconds = time.perf_counter() - t0
             progress(state)
 
