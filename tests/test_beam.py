@@ -74,3 +74,12 @@ def test_on_the_adversarial_families_the_beam_agrees_with_the_exact_worst(case):
     start, measure = case
     verdict = against_exact(start.robots, start.pattern, start.y_up, measure, seed=len(start.robots))
     assert verdict in ("", "none"), verdict
+
+
+def test_a_start_that_is_already_the_pattern_costs_nothing():
+    """Found by the campaign (spread, seed 383): two robots already in the pattern's shape. The engine
+    calls it formed before anyone acts, and so does the exact worst (0 moves); the beam ran the
+    algorithm on and found 6."""
+    case = generate("spread", 383, far=12)
+    assert against_exact(case.robots, case.pattern, case.y_up, "moves", seed=383) == ""
+    assert beam(ALGORITHM, case.robots, case.pattern, case.y_up, "moves", 64).value == 0

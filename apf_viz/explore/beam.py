@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 from apf_viz.algorithms import get_algorithm
 from apf_viz.core.engine import Engine
+from apf_viz.core.grid import as_point
+from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.explore.explorer import Explorer
 from apf_viz.explore.state_space import State
 from apf_viz.explore.worst import Measure, edge_weight, worst
@@ -66,6 +68,8 @@ def beam(
     called every 100 layers; no path is followed past ``max_layers`` events. KeyboardInterrupt is the
     caller's: nothing is kept of a beam cut short."""
     t0 = time.perf_counter()
+    if matches_pattern([as_point(p) for p in robots], [as_point(p) for p in pattern]):
+        return Beamed(0, [], 0, 0, False, 0, time.perf_counter() - t0)  # formed before anyone acts (engine)
     explorer = Explorer(
         get_algorithm(algorithm), robots, pattern, y_up, scheduler="async", reduction=True,
         eligible_only=True, light_semantics=light_semantics,  # type: ignore[arg-type]
