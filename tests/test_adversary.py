@@ -79,7 +79,7 @@ def test_ctrl_c_keeps_the_best_so_far():
             raise KeyboardInterrupt
         return evaluate(p, jobs)
 
-    found = search(problem, budget=1_000, seed=0, seeds=range(2), evaluator=interrupted)
+    found = search(problem, budget=1_000, seed=0, seeds=range(2), evaluator=interrupted, width=64)
     assert found.beam is not None  # the beam ran (one evaluation), then two batches before the Ctrl+C
     assert found.evaluations == 1 + sum(calls[:2]) and found.best.value is not None
     assert best_schedule_text(found)  # the best so far is still a schedule that replays
@@ -124,3 +124,36 @@ def test_the_search_beats_every_built_in_scheduler_over_seeds_0_to_19(k, seed):
     assert found.bar.value and (found.best.value or 0) > found.bar.value and found.beats
     assert "beam" in found.best.source
     best_schedule_text(found)  # replays to its cost, or raises
+
+
+def _choices_by_replay(problem: Problem, best) -> list:
+    """The choices of a schedule read by replaying it in a fresh engine (how the search read them before
+    its runs noted them on the way): a reading of its own, for the test below."""
+    import numpy as np
+
+    from apf_viz.explore.adversary import Candidate, line_starts
+
+    e, starts, out = problem.engine(), set(line_starts(best.records)), []
+    for i, record in enumerate(best.records):
+        if i in starts:
+            if record.round is not None and len(record.robots) > 1:
+                out += [Candidate(i, r, *best.policy, drop=tuple(record.robots)) for r in record.robots]
+            eligible = np.flatnonzero(e.eligible()).tolist()
+            out += [Candidate(i, int(r), *best.policy) for r in eligible if (r,) != tuple(record.robots)]
+        e.apply(record)
+    return out
+
+
+@pytest.mark.parametrize(("k", "seed"), [(4, 1), (5, 1), (8, 3)])
+def test_the_choices_a_run_notes_are_those_a_replay_reads(k, seed):
+    """Every built-in's run, the beam's path and variants of each: the choices the search varies are
+    the same whether noted as the run goes (on a cluster's worker) or read by replaying it."""
+    from apf_viz.explore.adversary import beamed, decisions, run_to_end
+
+    robots, pattern, y_up = generated_start(k, seed)
+    problem = Problem(ALGORITHM, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves")
+    tries = [built_in(problem, name, s) for name in AUTOMATIC for s in range(2)] + [beamed(problem, 8, 0)[0]]
+    tries += [run_to_end(problem, t.records, c) for t in list(tries) for c in decisions(problem, t)[:3]]
+    assert len(tries) > 20
+    for t in tries:
+        assert decisions(problem, t) == _choices_by_replay(problem, t), t.source

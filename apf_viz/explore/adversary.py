@@ -110,6 +110,7 @@ class Tried:
     records: tuple[StepRecord, ...]
     source: str
     policy: tuple[str, int] = ("async", 0)
+    choices: tuple[tuple[int, tuple[int, ...]], ...] = ()  # (step, the robots that could act there)
 
 
 def measure(engine: Engine, what: Measure) -> int | None:
@@ -119,21 +120,31 @@ def measure(engine: Engine, what: Measure) -> int | None:
 
 
 def run_to_end(problem: Problem, prefix: Sequence[StepRecord], candidate: Candidate) -> Tried:
-    """The schedule ``candidate`` makes of ``prefix`` (the best's steps), run in a fresh engine."""
+    """The schedule ``candidate`` makes of ``prefix`` (the best's steps), run in a fresh engine; where
+    it had a choice is noted on the way (:func:`decisions` reads it, on the machine that searches)."""
     e = problem.engine()
+    choices: list[tuple[int, tuple[int, ...]]] = []
     for record in prefix[: candidate.cut]:
         if e.finished:
             break
-        e.apply(record)
+        _apply(e, record, choices)
     first = candidate.first(e.state.round)
     if first is not None and not e.finished and e.eligible()[list(first.robots)].all():
-        e.apply(first)
+        _apply(e, first, choices)
     scheduler = make_scheduler(candidate.scheduler)
     while not e.finished:
-        e.apply(scheduler.choose(e, step_rng(candidate.seed, e.step_index)))
+        _apply(e, scheduler.choose(e, step_rng(candidate.seed, e.step_index)), choices)
     records = tuple(step.record for step in e.history.steps)
     policy = (candidate.scheduler, candidate.seed)
-    return Tried(measure(e, problem.maximize), records, candidate.describe(), policy)
+    return Tried(measure(e, problem.maximize), records, candidate.describe(), policy, tuple(choices))
+
+
+def _apply(e: Engine, record: StepRecord, choices: list[tuple[int, tuple[int, ...]]]) -> None:
+    """``record`` applied, and the robots that could have acted instead noted, where there were others."""
+    could = tuple(np.flatnonzero(e.eligible()).tolist())
+    if len(could) > 1 or could != tuple(record.robots):
+        choices.append((len(e.history.steps), could))
+    e.apply(record)
 
 
 def built_in(problem: Problem, scheduler: str, seed: int) -> Tried:
@@ -149,20 +160,15 @@ def line_starts(records: Sequence[StepRecord]) -> list[int]:
 def decisions(problem: Problem, best: Tried) -> list[Candidate]:
     """Every choice the best schedule made where it had another: at each line's start, each other robot
     that could act there (most steps of this algorithm leave one robot anything to do), woken instead
-    and the best's scheduler and seed to the end."""
-    e = problem.engine()
-    starts = set(line_starts(best.records))
+    and the best's scheduler and seed to the end; at a synchronous round's start, the round without one
+    of its robots. The robots that could act are those its run noted (:func:`run_to_end`): no replay."""
+    could = dict(best.choices)
     out = []
-    for i, record in enumerate(best.records):
-        if i in starts and not e.finished:
-            if record.round is not None and len(record.robots) > 1:  # the round, one robot fewer
-                out += [Candidate(i, r, *best.policy, drop=tuple(record.robots)) for r in record.robots]
-            out += [
-                Candidate(i, int(r), *best.policy)
-                for r in np.flatnonzero(e.eligible()).tolist()
-                if (r,) != tuple(record.robots)
-            ]
-        e.apply(record)
+    for i in line_starts(best.records):
+        record = best.records[i]
+        if record.round is not None and len(record.robots) > 1:  # the round, one robot fewer
+            out += [Candidate(i, r, *best.policy, drop=tuple(record.robots)) for r in record.robots]
+        out += [Candidate(i, r, *best.policy) for r in could.get(i, ()) if (r,) != tuple(record.robots)]
     return out
 
 
@@ -176,16 +182,18 @@ def beamed(
         problem.algorithm, problem.robots, problem.pattern, problem.y_up, problem.maximize, width, seed,
         problem.light_semantics, progress, max_layers=e.max_events or 10_000_000,
     )  # fmt: skip
+    choices: list[tuple[int, tuple[int, ...]]] = []
     for group in found.schedule:
         if e.finished:
             break
-        e.step(group)
+        _apply(e, StepRecord(group), choices)
     source = (
         f"a beam of width {width} over the adversary's choices ({found.states:,} states, "
         f"{found.layers:,} events deep{', cut' if found.cut else ', never cut: every path'})"
     )
     records = tuple(step.record for step in e.history.steps)
-    return Tried(measure(e, problem.maximize) if e.finished else None, records, source), found
+    value = measure(e, problem.maximize) if e.finished else None
+    return Tried(value, records, source, choices=tuple(choices)), found
 
 
 def draw(rng: random.Random) -> Candidate:
