@@ -10,6 +10,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM
 from apf_viz.cli.common import cluster, fail, need_extra, positive, positive_seconds, workers
 from apf_viz.core.files import check_writable
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
+from apf_viz.sweeps.cells import Cell
 
 NAME = "sweep"
 HELP = "run a grid of runs on Dask into one results table (apf-viz docs sweeps)"
@@ -35,9 +36,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--cluster", type=cluster, help="address of a running Dask scheduler, e.g. tcp://host:8786"
     )
     p.add_argument(
-        "--search-budget", type=positive, default=104,
-        help="schedules the searched adversary tries in each run of the scheduler worst-found (default "
-        "104: the built-ins' 100 runs and beams of width 64 to 512; docs/ADVERSARY.md)",
+        "--search-budget", type=positive, default=Cell.search_budget,
+        help=f"schedules the searched adversary tries in each run of the scheduler worst-found (default "
+        f"{Cell.search_budget}: the built-ins' 100 runs and beams of width 64 to 512; docs/ADVERSARY.md)",
     )  # fmt: skip
     p.add_argument(
         "--run-timeout",

@@ -37,7 +37,9 @@ class Cell:
     pattern: tuple[tuple[int, int], ...] = ()
     y_up: tuple[bool, ...] = ()
     timeout: float | None = None  # seconds; a run past it is recorded as "timeout" (not part of the key)
-    search_budget: int = 0  # WORST_FOUND's: schedules the searched adversary tries (not part of the key)
+    search_budget: int = (
+        104  # WORST_FOUND's: schedules the search tries (not part of the key; docs/SWEEPS.md)
+    )
 
     def key(self) -> tuple:
         return (self.k, self.seed, self.scheduler, self.algorithm, self.light_semantics, self.start)
@@ -223,7 +225,7 @@ def _worst_found(cell: Cell, robots: list, pattern: list, y_up: list) -> dict:
         cell.algorithm, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "moves",
         cell.light_semantics,  # type: ignore[arg-type]
     )  # fmt: skip
-    found = search(problem, max(cell.search_budget, 1), seed=cell.seed)
+    found = search(problem, cell.search_budget, seed=cell.seed)
     engine = problem.engine()
     for record in found.best.records:
         engine.apply(record)
