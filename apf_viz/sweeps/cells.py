@@ -37,9 +37,8 @@ class Cell:
     pattern: tuple[tuple[int, int], ...] = ()
     y_up: tuple[bool, ...] = ()
     timeout: float | None = None  # seconds; a run past it is recorded as "timeout" (not part of the key)
-    search_budget: int = (
-        104  # WORST_FOUND's: schedules the search tries (not part of the key; docs/SWEEPS.md)
-    )
+    # WORST_FOUND's: the schedules its search tries (not part of the key; docs/SWEEPS.md)
+    search_budget: int = 104
 
     def key(self) -> tuple:
         return (self.k, self.seed, self.scheduler, self.algorithm, self.light_semantics, self.start)
