@@ -464,3 +464,20 @@ def test_the_exported_lecture_asks_its_question_and_reveals_the_answer_from_disk
         assert not refused, refused[:3]
     finally:
         context.close()
+
+
+def test_the_caption_keeps_its_size_when_the_page_draws_at_a_lower_resolution():
+    """Under load viser's client lowers its pixel ratio to ⅞ or ¾ and reports a smaller canvas of the
+    same shape: the caption keeps the size it was laid out for (it ran 22–33 px past its box at 1024×768
+    when it followed). A canvas of another shape is a resized window: the caption follows it."""
+    from apf_viz.ui.panels.presentation import steady_size
+
+    seen = steady_size(None, (768, 1024))
+    for lowered in ((672, 896), (576, 768), (672, 896)):
+        seen = steady_size(seen, lowered)
+        assert seen == (768, 1024)
+    assert steady_size(seen, (768, 1024)) == (768, 1024)
+    assert steady_size((576, 768), (768, 1024)) == (768, 1024)  # first reported lowered, then in full
+    resized = steady_size(seen, (700, 1400))
+    assert resized == (700, 1400) and steady_size(resized, (612, 1225)) == (700, 1400)
+    assert steady_size(resized, (700, 1000)) == (700, 1000)  # narrower: the caption follows

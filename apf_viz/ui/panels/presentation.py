@@ -21,6 +21,17 @@ from apf_viz.ui.recorder import canvas_size
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.caption import DETAILS_KEY, caption_html
 
+
+def steady_size(seen: tuple[int, int] | None, reported: tuple[int, int]) -> tuple[int, int]:
+    """The canvas's (height, width) to lay the caption out for: the largest reported at this shape.
+    Under load viser's client draws at a lower resolution (its adaptive pixel ratio, ¾ to 1 of the
+    screen's) and reports that smaller canvas, though the page has not changed size: a caption fitted
+    to it ran 22–33 px past its box at 1024×768. Another shape (the window resized) starts afresh."""
+    if seen is None or abs(reported[1] * seen[0] - seen[1] * reported[0]) > 0.01 * seen[0] * reported[0]:
+        return reported
+    return reported if reported[1] > seen[1] else seen
+
+
 # The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
 # that room free (ui/app.py), so the caption never covers the run.
 CAPTION_ROOM = 0.35
@@ -43,6 +54,7 @@ class Presentation:
         self.panel: viser.PanelHandle | None = None
         self.html: viser.GuiHtmlHandle | None = None
         self._placed: tuple[int, int] | None = None  # the caption's (width, height) last sent
+        self._canvas: tuple[int, int] | None = None  # the canvas laid out for (steady_size)
         self.details = False  # the caption shows the details, not the stop's words (I)
         self._stop: tuple[str, str] | None = None  # the lecture stop shown: a new one opens on its words
         command = gui.add_command(
@@ -66,6 +78,7 @@ class Presentation:
         height, width = canvas_size(client) if client is not None else (0, 0)
         if width <= 16:  # not reported yet
             height, width = 768, 1024
+        self._canvas = height, width = steady_size(self._canvas, (height, width))
         placed = (min(width - 2 * MARGIN, CAPTION_MAX_WIDTH), int(CAPTION_ROOM * height) - MARGIN)
         if placed != self._placed:
             self._placed = placed
@@ -93,7 +106,7 @@ class Presentation:
             self.panel = panel = self.gui.add_panel()
             with panel.add_tab("Caption"):
                 self.html = self.gui.add_html("")
-            self._placed = None
+            self._placed = self._canvas = None
             self.fit(client)
         else:
             if self.panel is not None:
