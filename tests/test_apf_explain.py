@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import random
+from collections import Counter
 from functools import cache
 from pathlib import Path
 
@@ -48,11 +49,17 @@ def corpus() -> list[tuple[list, list, list[bool], int]]:
     return runs
 
 
+EXPLAINED_PER_RULE = 40  # decisions of each rule id explained, per variant (the runs make ~10⁵ in all)
+
+
 @cache
 def decisions_of_many_runs() -> frozenset[str]:
-    """Run the corpus under every scheduler and variant; check explain == decide on every Compute;
-    return the rule ids fired."""
+    """Run the corpus under every scheduler and variant; check explain == decide on the first
+    :data:`EXPLAINED_PER_RULE` Computes of each rule id in each variant (explaining all of them took
+    three minutes of the suite: each rule is still checked on its first forty, in every branch the
+    corpus reaches); return the rule ids fired."""
     reached: set[str] = set()
+    explained_so_far: Counter[tuple[str, str]] = Counter()
     for start, pattern, y_up, seed in corpus():
         for variant in VARIANTS:
             for scheduler in SCHEDULERS:
@@ -64,12 +71,15 @@ def decisions_of_many_runs() -> frozenset[str]:
                     for event in engine.apply(chooser.choose(engine, step_rng(seed, engine.step_index))):
                         if event.phase != "compute":
                             continue
+                        reached.update(parts(event.rule_id))
+                        if explained_so_far[variant, event.rule_id] >= EXPLAINED_PER_RULE:
+                            continue
+                        explained_so_far[variant, event.rule_id] += 1
                         view = engine.state.decided[event.robot]  # the snapshot this decision used
                         explained = explain(algorithm, view, engine.pattern)
                         assert explained.decision == algorithm.decide(view, engine.pattern)
                         assert explained.decision == engine.state.pending[event.robot]
                         assert event.rule_id == explained.decision.rule_id
-                        reached.update(parts(event.rule_id))
     return frozenset(reached)
 
 
