@@ -56,6 +56,7 @@ def test_the_schedule_found_replays_to_its_cost_from_its_file(tmp_path, capsys):
     assert summary["outcome"] == "formed" and summary["moves"] == found.best.value
 
 
+@pytest.mark.slow
 def test_the_same_seed_gives_the_same_result_whatever_order_a_batch_is_run_in():
     robots, pattern, y_up = generated_start(8, 2)
     problem = Problem(ALGORITHM, tuple(map(tuple, robots)), tuple(map(tuple, pattern)), tuple(y_up), "events")
@@ -112,6 +113,7 @@ def test_on_a_dask_cluster_the_search_finds_what_it_finds_here(capsys):
     assert {k: here[k] for k in keep} == {k: there[k] for k in keep}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("k", "seed"), [(5, 5), (10, 1), (20, 1)])
 def test_the_search_beats_every_built_in_scheduler_over_seeds_0_to_19(k, seed):
     """Generated starts where the adversary can do worse than any built-in: the beam finds it at a

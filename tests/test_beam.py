@@ -66,6 +66,7 @@ FAMILY_CASES = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", FAMILY_CASES, ids=lambda c: f"{c[0].family}-k{len(c[0].robots)}-{c[1]}")
 def test_on_the_adversarial_families_the_beam_agrees_with_the_exact_worst(case):
     """The campaign's check (scripts/beam_campaign.py: thousands of these) on a few of each family: a

@@ -50,6 +50,7 @@ def _generated(k: int, n: int, seed: int) -> list[list[tuple[int, int]]]:
     return starts[:n]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scheduler", ["async", "ssync", "fsync"])
 @pytest.mark.parametrize("algorithm", ["apf-opaque-grid", "apf-opaque-grid-literal"])
 def test_want_agrees_with_the_plain_search_on_generated_starts(scheduler, algorithm):

@@ -243,6 +243,7 @@ def _same_state(a, b) -> bool:
     )
 
 
+@pytest.mark.slow
 def test_seeking_far_back_through_thinned_checkpoints_restores_the_exact_state():
     """A long run keeps few old checkpoints (core/history.py); seeking anywhere must still reproduce
     the state the run had there, as a fresh engine stepping the same choices does."""

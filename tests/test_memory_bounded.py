@@ -90,6 +90,7 @@ def test_max_events_is_never_passed(scheduler, semantics):
         assert engine.outcome == "limit" and engine.state.events <= cap, (cap, engine.state.events)
 
 
+@pytest.mark.slow
 def test_a_walk_down_a_column_another_robot_shares_ends():
     """The family fast-forward does not cover (docs/CLI.md): the far robot walks down the column of a
     robot on the line, whose watch has the walker as its witness, 12,960 cells away; every cycle is a step,

@@ -97,6 +97,7 @@ def test_runs_with_and_without_skipping_end_the_same_way(scheduler):
         assert outcomes == ["formed", "formed"]
 
 
+@pytest.mark.slow
 def test_all_activations_reproduces_the_runs_before_skipping_existed():
     """Measured with the code before skipping (commit fdaddfc): the built-in demo, seed 3."""
     before = {"async": (4883, 144, 1624), "stale-first": (5306, 168, 1762), "ssync": (5879, 168, 1955)}
@@ -150,6 +151,7 @@ def test_a_livelock_ends_on_the_budget_as_limit():
     assert e.outcome == "limit" and e.state.moves == budget.max_moves
 
 
+@pytest.mark.slow
 def test_the_issue_recipe_forms_with_default_options():
     """100 random robots in 60×60, a random 100-point pattern in 40×40: formed, exit 0, no limit met."""
     robots = run_cli("random-robots", "--count", "100", "--width", "60", "--height", "60", "--seed", "7")

@@ -61,6 +61,7 @@ RUNS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("algorithm,scheduler,semantics,k,seeds", RUNS)
 def test_every_watched_robot_would_still_stay(algorithm, scheduler, semantics, k, seeds):
     watched = 0
@@ -76,6 +77,7 @@ def test_every_watched_robot_would_still_stay(algorithm, scheduler, semantics, k
     assert watched > 0  # the promises were put to the test
 
 
+@pytest.mark.slow
 def test_promises_hold_in_a_larger_run_where_views_hold_dozens_of_robots():
     """k = 30, every third step: the line, the crowd, the done robots and the leader all in sight."""
     start, pattern, y_up = case(30, 7)
@@ -110,6 +112,7 @@ def test_watching_changes_nothing_in_the_run(scheduler):
         assert runs[0][0] == "formed"
 
 
+@pytest.mark.slow
 def test_watches_spare_most_decisions():
     start, pattern, y_up = case(40, 0)
     calls = []
@@ -486,6 +489,7 @@ def test_quiet_steps_is_a_bound_no_single_move_of_the_walk_concerns_a_watcher(se
     assert checked > 150 and bound_hit > 20  # walks were taken, and the bound did cut some
 
 
+@pytest.mark.slow
 def test_a_decision_is_the_same_on_a_view_read_as_arrays_and_read_as_tuples():
     """The rules read large views by ranges off the arrays (Snapshot.column_start, iter_between): every
     robot's decision, its watch included, is the one made on the same view as tuples. k = 60, so views
