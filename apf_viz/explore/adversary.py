@@ -1,15 +1,15 @@
 """The searched adversary (``apf-viz adversary``): a costly schedule for a start of any size, where the
-exact worst (explore/worst.py) is out of reach.
+exact worst (explore/worst.py) may be out of reach.
 
-Most steps of this algorithm leave one robot anything to do: the adversary's choices are few, and they
-are where two or more robots could act. The search is best-first over those choices. It starts from
-every automatic built-in scheduler over seeds 0–19 (their best is the bar it must beat), keeps the
-:data:`KEPT` costliest schedules seen, and tries each choice they made differently — the same first
-steps, another robot woken there (or, at a synchronous round, the round without one of its robots),
-then the same scheduler and seed to the end — the costliest schedule's choices first, its earliest
-first; every schedule tried that is costly enough is varied in turn, so a change that costs nothing
-at once may lead to one that does. A share of the tries are fresh starts (a built-in scheduler with a
-new seed).
+It starts from every automatic built-in scheduler over seeds 0–19 (their best is the bar it must beat).
+Then beams of width 64, 128, … (:func:`_beams`, explore/beam.py) search the exact worst's own state
+graph a layer of events at a time, until one is never cut: that one is the exact worst. The rest of the
+budget varies the :data:`KEPT` costliest schedules seen, best-first: each choice they made tried
+differently — the same first steps, another robot woken there (or, at a synchronous round, the round
+without one of its robots), then the same scheduler and seed to the end — the costliest schedule's
+choices first, its earliest first. Most steps of this algorithm leave one robot anything to do, so the
+choices are few; a run notes where it had them (:func:`run_to_end`). A share of the tries are fresh
+starts (a built-in scheduler with a new seed).
 
 Every candidate is a run of the real engine, so no result exceeds what an adversary can force: where
 ``check --worst`` answers, the search never reports more (tests/test_adversary.py). The best is
@@ -17,7 +17,7 @@ written as a plain schedule file only after it is replayed from that file to the
 
 What is tried next depends on the search's seed and the results so far alone, never on which
 worker finished first: the result is the same whether a batch runs here, one schedule after the other,
-or on a Dask cluster (``--cluster``)."""
+or on a Dask cluster (``--cluster``; the beams run here)."""
 
 from __future__ import annotations
 
