@@ -15,7 +15,7 @@ import sys
 import time
 
 from apf_viz.core.adversarial_starts import FAMILIES, generate
-from apf_viz.explore.beam import against_exact
+from apf_viz.explore.beam_campaign import against_exact
 from apf_viz.explore.worst import Measure
 
 

@@ -11,7 +11,8 @@ from apf_viz.algorithms import get_algorithm
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core.adversarial_starts import FAMILIES, generate
 from apf_viz.core.engine import Engine
-from apf_viz.explore.beam import against_exact, beam
+from apf_viz.explore.beam import beam
+from apf_viz.explore.beam_campaign import against_exact
 from apf_viz.explore.explorer import Explorer
 from apf_viz.explore.worst import worst
 from apf_viz.sweeps.cells import generated_start

@@ -69,6 +69,13 @@ class Problem:
             max_events=budget.max_events, light_semantics=self.light_semantics,
         )  # fmt: skip
 
+    def replayed(self, records: Sequence[StepRecord]) -> Engine:
+        """A fresh engine that has taken ``records`` (a schedule found): its history and counts."""
+        e = self.engine()
+        for record in records:
+            e.apply(record)
+        return e
+
 
 @dataclass(frozen=True)
 class Candidate:
@@ -354,9 +361,7 @@ def best_schedule_text(state: Search) -> str:
     """The best found as a schedule file (its flips and light semantics in the header), replayed from
     that text to the same cost first: a schedule that does not replay to its count is refused."""
     p = state.problem
-    e = p.engine()
-    for record in state.best.records:
-        e.apply(record)
+    e = p.replayed(state.best.records)
     found = Found(
         maximize=p.maximize,
         value=state.best.value or 0,

@@ -23,12 +23,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from apf_viz.algorithms import get_algorithm
-from apf_viz.core.engine import Engine
 from apf_viz.core.grid import as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.explore.explorer import Explorer
 from apf_viz.explore.state_space import State
-from apf_viz.explore.worst import Measure, edge_weight, worst
+from apf_viz.explore.worst import Measure, edge_weight
 
 MEMO_LIMIT = 400_000  # configurations whose decisions are remembered before the memo starts afresh
 
@@ -149,31 +148,3 @@ def next_layer(explorer: Explorer, layer: Layer, measure: Measure, paths: Paths)
             if held is None or value > held[0]:
                 following[nxt] = (value, there, paths.extend(node, group))
     return following, expanded, skipped
-
-
-def against_exact(
-    robots, pattern, y_up, measure: Measure, seed: int, algorithm: str = "apf-opaque-grid"
-) -> str:
-    """The beam checked against the exact worst on one start (tests/test_beam.py and its campaign,
-    scripts/beam_campaign.py): '' if a beam never cut equals it, a narrow one (width 2–8) does not
-    exceed it and both paths form in the engine at their cost; else what disagreed; 'none' where the
-    start has no maximum (a failure of the algorithm, a cycle, or the state budget)."""
-    exact = worst(get_algorithm(algorithm), robots, pattern, [y_up], measure, max_states=300_000)
-    if exact.value is None:
-        return "none"
-    whole = beam(algorithm, robots, pattern, y_up, measure, 10**6)
-    narrow = beam(algorithm, robots, pattern, y_up, measure, 2 + seed % 7, seed)
-    if whole.cut or whole.value != exact.value:
-        return f"the whole beam found {whole.value} (cut: {whole.cut}), the exact worst is {exact.value}"
-    if narrow.value is None or narrow.value > exact.value:
-        return f"a narrow beam found {narrow.value}, more than the exact worst {exact.value}"
-    for found in (whole, narrow):
-        e = Engine(robots, pattern, get_algorithm(algorithm), y_up=list(y_up))
-        for group in found.schedule:
-            e.step(group)
-        cost = e.state.moves if measure == "moves" else e.state.events
-        if e.outcome != "formed" or cost != found.value:
-            return (
-                f"a beam's path replays to {e.outcome} with {cost} {measure}, not formed with {found.value}"
-            )
-    return ""

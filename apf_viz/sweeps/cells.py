@@ -225,10 +225,7 @@ def _worst_found(cell: Cell, robots: list, pattern: list, y_up: list) -> dict:
         cell.light_semantics,  # type: ignore[arg-type]
     )  # fmt: skip
     found = search(problem, cell.search_budget, seed=cell.seed)
-    engine = problem.engine()
-    for record in found.best.records:
-        engine.apply(record)
-    st = engine.state
+    st = problem.replayed(found.best.records).state
     d = paper_D(robots, pattern)
     wall = time.perf_counter() - t0
     return row(
