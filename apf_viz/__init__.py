@@ -8,7 +8,7 @@ import signal
 import sys
 
 __version__ = "0.1.0"
-__all__ = ["Run", "Shown", "Verdict", "__version__", "check", "run", "sweep"]
+__all__ = ["Run", "Shown", "Verdict", "__version__", "check", "hunt", "run", "sweep"]
 
 
 def __getattr__(name: str) -> object:
@@ -38,4 +38,4 @@ if _STARTING:
 from typing import TYPE_CHECKING  # noqa: E402  (after the handler: a Ctrl+C during it is one line)
 
 if TYPE_CHECKING:
-    from apf_viz.api import Run, Shown, Verdict, check, run, sweep
+    from apf_viz.api import Run, Shown, Verdict, check, hunt, run, sweep

@@ -274,6 +274,13 @@ RESOLUTION_LINES = [
     },
     {
         "algorithm": "A3",
+        "after": 3,
+        "depth": 1,
+        "resolution": "G4",
+        "text": "if r sees a robot with light leader1 then wait",
+    },
+    {
+        "algorithm": "A3",
         "replaces": 6,
         "depth": 3,
         "resolution": "N2",
@@ -356,6 +363,7 @@ RULES = {
     "A2.leader1.L2-symmetric": ["L2@A2.32:2"],
     "A2.leader1.L2-decider": ["L2@A2.32:2"],
     "A3.off.no-leader": ["A3.2"],
+    "A3.off.G4-wait": ["G4@A3.3"],
     "A3.off.first-target": ["A3.10"],
     "A3.off.start-line": ["A3.12"],
     "A3.off.grow-line": ["A3.14"],

@@ -111,6 +111,12 @@ CRAFTED = [
         Snapshot("off", seen((-1, 1, "decider"), (-1, -1, "decider"), (1, 1, "off"), (0, 3, "off"))),
         None,
     ),
+    (
+        "A3.off.G4-wait",
+        ALL,
+        Snapshot("off", seen((-2, -2, "leader"), (-1, 1, "leader1"))),
+        ((0, 0), (1, 0), (2, 0)),
+    ),
     ("A3.leader.alone", ALL, Snapshot("leader", ()), ((0, 0),)),
     ("A3.leader.no-done", ALL, Snapshot("leader", ()), ((0, 0), (1, 0))),
     (

@@ -302,17 +302,40 @@ class Explorer:
                 continue
             members = set(comp)
             actors = {r for i in comp for p, j in enumerate(edges[i]) if j in members for r in labels[i][p]}
+            if self.eligible_only:  # a robot left out where it would change nothing acts there: a no-op
+                actors |= {r for i in comp for r in self._idle_noops(graph.states[i])}
             if actors != set(range(self.k)):
                 continue
             entry = min(comp)
             return entry, self._tour(entry, members, graph)
         return None
 
+    @staticmethod
+    def _acts_inside(r: int, members: set[int], graph: Graph) -> bool:
+        return any(
+            r in robots
+            for i in members
+            for p, robots in enumerate(graph.labels[i])
+            if graph.edges[i][p] in members
+        )
+
+    def _idle_noops(self, st: State) -> set[int]:
+        """The robots a search of eligible activations leaves out in ``st``: idle, and a whole cycle of
+        theirs there would change nothing (it returns to ``st``: a fair run may take it at any time)."""
+        return set(range(self.k)) - set(self.space.eligible(st))
+
     def _tour(self, entry: int, members: set[int], graph: Graph) -> list[tuple[int, ...]]:
-        """Inside one component: from ``entry``, take an edge of every robot in turn, then come back."""
+        """Inside one component: from ``entry``, take an edge of every robot in turn, then come back (a
+        robot whose activations there are no-ops, left out of the graph, acts where it is one)."""
         path: list[tuple[int, ...]] = []
         here = entry
         for r in range(self.k):
+            if self.eligible_only and not self._acts_inside(r, members, graph):
+                # Its cycles inside are no-ops (left out of the graph): one of them, where it is one.
+                noop = min(i for i in members if r in self._idle_noops(graph.states[i]))
+                steps, here = _bfs(here, members, graph, None, target=noop)
+                path += steps + [self.space.singles[r]] * 3  # its Look, Compute and Move
+                continue
             steps, here = _bfs(here, members, graph, lambda robots, r=r: r in robots)
             path += steps
         steps, here = _bfs(here, members, graph, None, target=entry)

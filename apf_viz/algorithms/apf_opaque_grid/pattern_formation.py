@@ -21,12 +21,15 @@ import numpy as np
 
 from apf_viz.algorithms.apf_opaque_grid import watches
 from apf_viz.algorithms.apf_opaque_grid.phase1 import stay
-from apf_viz.algorithms.apf_opaque_grid.resolutions import LA, N2, P3, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.resolutions import G4, LA, N2, P3, Resolutions, deviation
 from apf_viz.algorithms.apf_opaque_grid.strides import FOREVER, clear_rows_stride, fixed_sign_stride
 from apf_viz.core.algorithm import Box, Decision, Pattern
 from apf_viz.core.grid import Direction, Point
 from apf_viz.core.portrayal import NO_EVIDENCE, Band, Evidence, Frame, Line
 from apf_viz.core.view import Seen, Snapshot
+
+LEADER1 = frozenset({"leader1"})
+"""G4's light: a robot showing it may hold a move of Phase 2 computed before the leader was elected."""
 
 
 def embedded_targets(pattern: Pattern) -> tuple[Point, ...]:
@@ -217,6 +220,12 @@ def pattern_formation_off(
             watches.no_leader(view),
         )
     ev.test("the leader in sight", True, "I see the robot with light leader")
+    if G4 in res and deviation(ev, G4, bool(view.lights() & LEADER1)):
+        # Algorithm 3 starts from a leader configuration: one leader, every other robot off. Lemma
+        # P2:l5 allows a second leader1 (a decider and an off robot of R_I promoted in the same race);
+        # under ASYNC it can miss the first (hidden, or gone from L_I) and hold a Phase-2 move computed
+        # before the leader was elected. Until it sees the leader and turns off (G3), nobody moves.
+        return stay(view, "Phase 3 (off): a leader1 is still in sight → wait (G4)", "A3.off.G4-wait")
     leader = c.seen(int(leaders[0]))  # the first in the view's order
     targets = embedded_targets(pattern)
     frame = follower_frame(view, leader)

@@ -24,13 +24,14 @@ class Resolution(StrEnum):
     LA = "LA"
     N2 = "N2"
     L2 = "L2"
+    G4 = "G4"
 
 
 R = Resolution
 Resolutions = frozenset[Resolution]
 # The flags as module constants: an Enum class's attribute access (R.G3) is slow enough in Python 3.11 to
 # show in a run's time, and the rules test flags on every decision (docs/PERFORMANCE.md).
-G1, G2, G3, NV, KD, LW, E2, SD, P3, LA, N2, L2 = Resolution
+G1, G2, G3, NV, KD, LW, E2, SD, P3, LA, N2, L2, G4 = Resolution
 
 RESOLUTIONS: dict[Resolution, str] = {
     R.G1: "an off robot that sees any light other than off/terminal1 does not run Phase 1 again (B1)",
@@ -45,6 +46,7 @@ RESOLUTIONS: dict[Resolution, str] = {
     R.LA: "the leader anchors its frame on t_{n-2}, not on itself, for its last TargetMove (B18)",
     R.N2: "with n = 2 the single follower goes to its target instead of LineMove(1) again (B17)",
     R.L2: "two leader1 on one leftmost line, on extreme rows, become the deciders of a stable configuration",
+    R.G4: "an off robot in Phase 3 waits while it sees a leader1 (a second leader1 may hold a stale move)",
 }
 
 ALL: Resolutions = frozenset(Resolution)

@@ -65,6 +65,7 @@ RULE_IDS: dict[str, str] = {
     "A2.leader1.L2-decider": "leader1, another leader1 on L_V → decider (L2)",
     # Algorithm 3
     "A3.off.no-leader": "off in Phase 3, the leader out of sight → wait",
+    "A3.off.G4-wait": "off in Phase 3, a leader1 in sight → wait (G4)",
     "A3.off.first-target": "off, line empty, a done robot seen (N2: or n = 2) → TargetMove(n−2) (lines 9–10)",
     "A3.off.start-line": "off, line empty, no done robot → LineMove(1) (lines 11–12)",
     "A3.off.grow-line": "off, line (1..i, −1) → LineMove(i+1) (lines 13–14)",

@@ -1,0 +1,78 @@
+"""A hunt from Python: :func:`hunt` checks every schedule of many generated starts, as ``apf-viz hunt``
+does (the same starts for the same seed, the same Dask driver), and returns its table as a DataFrame."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterable
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.core.formats import InputError
+
+if TYPE_CHECKING:
+    import pandas
+
+
+def hunt(
+    ks: Iterable[int] = range(6, 13),
+    count: int = 30,
+    *,
+    seed: int = 1,
+    families: Iterable[str] | None = None,
+    algorithm: str = DEFAULT_ALGORITHM,
+    max_states: int = 500_000,
+    out: str | os.PathLike[str] | None = None,
+    counterexamples: str | os.PathLike[str] | None = None,
+    workers: int | None = None,
+    cluster: str | None = None,
+    progress: bool = False,
+) -> pandas.DataFrame:
+    """``count`` generated starts (k drawn from ``ks``, the ``families`` in turn: all by default), each
+    searched exhaustively under ASYNC; one row per start with ``apf-viz hunt``'s columns (family, k, seed,
+    D, verdict, states, seconds, counterexample, …). A start past ``max_states`` is verdict "budget":
+    nothing proved. ``out``: keep the table in this ``.parquet`` file, resumed if it exists.
+
+    >>> table = hunt(ks=[4], count=2, workers=1)
+    >>> sorted(set(table["verdict"]))
+    ['verified']
+    """
+    try:
+        import pandas
+    except ModuleNotFoundError:
+        raise InputError(
+            "hunt's table needs pandas: pip install 'apf-viz[notebook]' "
+            "(in a checkout: pip install -e '.[notebook]')"
+        ) from None
+    from apf_viz.algorithms import get_algorithm
+    from apf_viz.explore.hunt import COLUMNS, hunt_starts
+    from apf_viz.explore.hunt_families import FAMILIES
+    from apf_viz.sweeps.hunt_driver import report_hunt, run_hunt
+
+    if not isinstance(count, int) or isinstance(count, bool) or count < 1:
+        raise InputError(f"count must be a positive integer, not {count!r}")
+    if not isinstance(max_states, int) or isinstance(max_states, bool) or max_states < 1:
+        raise InputError(f"max_states must be a positive integer, not {max_states!r}")
+    get_algorithm(algorithm)
+    chosen = list(FAMILIES) if families is None else list(families)
+    try:
+        starts = hunt_starts(list(ks), count, seed, chosen)
+    except ValueError as e:
+        raise InputError(str(e)) from None
+    with tempfile.TemporaryDirectory(prefix="apf-viz-hunt-") as scratch:
+        path = Path(out) if out is not None else Path(scratch) / "hunt.parquet"
+        if path.suffix != ".parquet":
+            raise InputError(f"out {path}: write .parquet")
+        folder = (
+            Path(counterexamples)
+            if counterexamples is not None
+            else path.with_name(path.stem + "-counterexamples")
+        )
+        rows = run_hunt(
+            starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder,
+            workers=workers, cluster=cluster, progress=report_hunt if progress else None,
+        )  # fmt: skip
+        table = pandas.DataFrame([r for r in rows if r["algorithm"] == algorithm], columns=list(COLUMNS))
+    return table
