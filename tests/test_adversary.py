@@ -159,3 +159,25 @@ def test_the_choices_a_run_notes_are_those_a_replay_reads(k, seed):
     assert len(tries) > 20
     for t in tries:
         assert decisions(problem, t) == _choices_by_replay(problem, t), t.source
+
+
+WITHOUT_G4 = "apf-opaque-grid@G1,G2,G3,NV,KD,LW,E2,SD,P3,LA,N2,L2"
+
+
+def test_on_a_start_where_the_algorithm_fails_the_search_reports_the_failure_not_a_worst(tmp_path, capsys):
+    # tests/gap_traces/G4.jsonl's start: the default algorithm without G4 collides there
+    algorithm = WITHOUT_G4
+    robots = [[0, 2], [0, 3], [2, 0], [2, 1], [3, 1], [4, 3]]
+    pattern = [[1, 1], [2, 1], [7, 0], [8, 0], [9, 0], [9, 1]]
+    y_up = [False, False, False, True, False, True]
+    (tmp_path / "r.json").write_text(json.dumps({"robots": robots, "y_up": y_up}))
+    (tmp_path / "p.json").write_text(json.dumps({"points": pattern}))
+    out = tmp_path / "fail.schedule"
+    args = ["adversary", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json")]
+    code = main([*args, "--algorithm", algorithm, "--budget", "200", "--schedule-out", str(out), "--json"])
+    said = json.loads(capsys.readouterr().out)
+    assert code == 1 and said["found"] is None and said["failure"] in ("collision", "deadlock"), said
+    replay = ["run", "--robots", str(tmp_path / "r.json"), "--pattern", str(tmp_path / "p.json")]
+    main([*replay, "--algorithm", algorithm, "--schedule", str(out), "--json"])
+    ended = json.loads(capsys.readouterr().out)["outcome"]
+    assert ended == {"deadlock": "stuck"}.get(said["failure"], said["failure"])

@@ -78,6 +78,8 @@ def run(args: argparse.Namespace) -> int:
         close()
         if not args.json:
             print(file=sys.stderr)  # the progress line ends before the answer
+    if state.failure is not None:
+        return _failed(args, state)
     written = None
     if args.schedule_out:
         write_atomic(args.schedule_out, best_schedule_text(state))
@@ -101,6 +103,33 @@ def run(args: argparse.Namespace) -> int:
             + (f"; schedule: {written}" if written else "")
         )
     return 0
+
+
+def _failed(args: argparse.Namespace, state) -> int:
+    """A schedule on which the algorithm fails has no cost to maximize: the failure is the answer, as
+    ``check`` reports one (its kind, its schedule written to --schedule-out), exit 1."""
+    from apf_viz.core.files import write_atomic
+    from apf_viz.explore.adversary import failure_schedule_text
+
+    failure = state.failure
+    kind = {"stuck": "deadlock"}.get(failure.outcome, failure.outcome)
+    written = None
+    if args.schedule_out:
+        write_atomic(args.schedule_out, failure_schedule_text(state))
+        written = str(args.schedule_out)
+    if args.json:
+        print(json.dumps({
+            "maximize": args.maximize, "found": None, "failure": kind, "events": len(failure.records),
+            "how": failure.source, "evaluations": state.evaluations, "seconds": round(state.seconds, 2),
+            "schedule": written,
+        }))  # fmt: skip
+    else:
+        print(
+            f"{kind}: the algorithm fails under a schedule the search met ({failure.source}, "
+            f"{len(failure.records):,} steps): no worst exists"
+            + (f"; schedule: {written} (apf-viz run --schedule replays it)" if written else "")
+        )
+    return 1
 
 
 def _reporter(budget: int, quiet: bool):

@@ -42,6 +42,7 @@ from apf_viz.explore.beam import Beamed, beam
 
 Measure = Literal["moves", "events"]
 BUILT_IN_SEEDS = range(20)
+FAILURES = frozenset({"collision", "stuck"})  # engine outcomes that are the algorithm's failures
 BATCH = 8  # candidates drawn and tried together (a cluster's workers take them at once)
 KEPT = 16  # schedules the search varies: the costliest seen
 FRESH_SHARE = 0.2  # of the candidates, those that start afresh (a built-in scheduler, a new seed)
@@ -118,6 +119,12 @@ class Tried:
     source: str
     policy: tuple[str, int] = ("async", 0)
     choices: tuple[tuple[int, tuple[int, ...]], ...] = ()  # (step, the robots that could act there)
+    outcome: str | None = None  # how its run ended (the engine's outcome)
+
+    @property
+    def failed(self) -> bool:
+        """It ended in a collision or stuck short of the pattern: a failure of the algorithm, no cost."""
+        return self.outcome in FAILURES
 
 
 def measure(engine: Engine, what: Measure) -> int | None:
@@ -143,7 +150,9 @@ def run_to_end(problem: Problem, prefix: Sequence[StepRecord], candidate: Candid
         _apply(e, scheduler.choose(e, step_rng(candidate.seed, e.step_index)), choices)
     records = tuple(step.record for step in e.history.steps)
     policy = (candidate.scheduler, candidate.seed)
-    return Tried(measure(e, problem.maximize), records, candidate.describe(), policy, tuple(choices))
+    return Tried(
+        measure(e, problem.maximize), records, candidate.describe(), policy, tuple(choices), e.outcome
+    )
 
 
 def _apply(e: Engine, record: StepRecord, choices: list[tuple[int, tuple[int, ...]]]) -> None:
@@ -200,7 +209,24 @@ def beamed(
     )
     records = tuple(step.record for step in e.history.steps)
     value = measure(e, problem.maximize) if e.finished else None
-    return Tried(value, records, source, choices=tuple(choices)), found
+    return Tried(value, records, source, choices=tuple(choices), outcome=e.outcome), found
+
+
+def beamed_failure(problem: Problem, found: Beamed) -> Tried | None:
+    """The failure the beam met (a collision, or a quiet state short of the pattern) as a run of the real
+    engine, if it replays to one there."""
+    if found.failure is None:
+        return None
+    kind, schedule = found.failure
+    e = problem.engine()
+    for group in schedule:
+        if e.finished:
+            break
+        e.apply(StepRecord(group))
+    if not e.finished:
+        e.settle_outcome()  # a path that ends where nobody can act: stuck (the engine decides it so)
+    records = tuple(step.record for step in e.history.steps)
+    return Tried(None, records, f"a beam's path to a {kind}", outcome=e.outcome)
 
 
 def draw(rng: random.Random) -> Candidate:
@@ -220,6 +246,7 @@ class Search:
     doing: str = ""  # what the search is doing, while it is not trying schedules (for its progress)
     improvements: list[tuple[int, int]] = field(default_factory=list)  # (evaluation, value)
     seconds: float = 0.0
+    failure: Tried | None = None  # the first schedule met on which the algorithm fails: no maximum then
 
     @property
     def beats(self) -> bool:
@@ -284,17 +311,22 @@ def search(
     firsts: list[Job] = [((), Candidate(0, None, name, s)) for name in AUTOMATIC for s in seeds]
     tried = evaluator(problem, firsts)
     formed = [t for t in tried if t.value is not None]
-    if not formed:
+    failed = next((t for t in tried if t.failed), None)
+    if not formed and failed is None:
         raise ValueError("no built-in scheduler forms the pattern from this start: nothing to beat")
-    bar = max(formed, key=lambda t: t.value or 0)
-    state = Search(problem, bar, bar, len(tried))
+    bar = max(formed, key=lambda t: t.value or 0) if formed else failed
+    assert bar is not None
+    state = Search(problem, bar, bar, len(tried), failure=failed)
+    if failed is not None:  # a failure is the answer: there is no costliest schedule to look for
+        state.seconds = time.perf_counter() - t0
+        return state
     frontier = Frontier(problem)
     for t in tried:
         frontier.offer(t)
     rng = random.Random(seed)
     try:
         _beams(state, frontier, budget, width, seed, progress, t0)
-        while state.evaluations < budget:
+        while state.evaluations < budget and state.failure is None:
             jobs: list[Job] = []
             for _ in range(min(BATCH, budget - state.evaluations)):
                 job = frontier.take() if rng.random() >= FRESH_SHARE else None
@@ -304,6 +336,8 @@ def search(
             for result in results:
                 _better(state, result)
                 frontier.offer(result)
+                if result.failed and state.failure is None:
+                    state.failure = result
             state.seconds = time.perf_counter() - t0
             progress(state)
     except KeyboardInterrupt:
@@ -342,6 +376,9 @@ def _beams(
         found, state.beam = beamed(problem, w, seed, deeper)
         state.doing = ""
         state.evaluations += 1
+        state.failure = beamed_failure(problem, state.beam)
+        if state.failure is not None:
+            break
         _better(state, found)
         frontier.offer(found)
         state.seconds = time.perf_counter() - t0
@@ -377,4 +414,21 @@ def best_schedule_text(state: Search) -> str:
             f"the schedule found replays to {measure(replayed, p.maximize)} {p.maximize}, "
             f"not {state.best.value}: not written"
         )
+    return text
+
+
+def failure_schedule_text(state: Search) -> str:
+    """The failure the search met as a schedule file (flips and light semantics in its header), replayed
+    from that text to the same outcome first."""
+    p = state.problem
+    assert state.failure is not None
+    e = p.replayed(state.failure.records)
+    text = schedule_text(len(p.robots), schedule_of_steps(e.history.steps), p.y_up, p.light_semantics)
+    replayed = p.engine()
+    for _ in follow(replayed, parse_schedule(text)):
+        pass
+    if not replayed.finished:
+        replayed.settle_outcome()
+    if replayed.outcome != state.failure.outcome:
+        raise RuntimeError(f"the failing schedule replays to {replayed.outcome}, not {state.failure.outcome}")
     return text

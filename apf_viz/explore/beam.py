@@ -7,7 +7,9 @@ the events a scheduler that skips no-ops may make, under ASYNC with the partial-
 the states d events from the start, each with the most moves (events) of any path found to it; the next
 layer is their successors, and where it holds more than ``width`` states, ``width`` of them drawn at
 random (seeded) are kept. A state none of whose robots can change anything ends its path: the costliest
-such path is the answer, replayed in the real engine.
+such path is the answer, replayed in the real engine. A path that fails (a collision, an escape from
+the box, a quiet state that is not the pattern) ends the beam: where a schedule fails there is no
+maximum, and the failure, with its schedule, is the answer.
 
 Why drawn at random rather than the costliest kept: a state that has made more moves by the same event
 is, more often than not, one whose robots went straight to their places, and the runs that cost most
@@ -46,6 +48,7 @@ class Beamed:
     cut: bool
     skipped: int
     seconds: float
+    failure: tuple[str, list[tuple[int, ...]]] | None = None  # the first failure met: kind, schedule
 
 
 Layer = dict[State, tuple[int, tuple[int, int], int]]  # state → (cost so far, origin, its node)
@@ -87,6 +90,8 @@ def beam(
         following, expanded, violations = next_layer(explorer, layer, measure, paths)
         states += expanded
         skipped += violations
+        if paths.failure is not None:  # no maximum where a schedule fails: the failure is the answer
+            break
         if len(following) > width:
             cut = True
             kept = rng.sample(list(following), width)
@@ -97,7 +102,13 @@ def beam(
             progress(layers, states)
         if len(space.memo.by_configuration) > MEMO_LIMIT:  # a cache: the decisions' table stays
             space.forget()
-    return Beamed(paths.best, paths.schedule(), layers, states, cut, skipped, time.perf_counter() - t0)
+    failure = None
+    if paths.failure is not None:
+        kind, node, group = paths.failure
+        failure = (kind, paths.schedule(node) + ([group] if group else []))
+    return Beamed(
+        paths.best, paths.schedule(), layers, states, cut, skipped, time.perf_counter() - t0, failure
+    )
 
 
 class Paths:
@@ -108,6 +119,7 @@ class Paths:
         self.nodes: list[tuple[int, tuple[int, ...]]] = [(-1, ())]
         self.best: int | None = None
         self.best_node = 0
+        self.failure: tuple[str, int, tuple[int, ...] | None] | None = None  # kind, node, the last edge
 
     def extend(self, node: int, group: tuple[int, ...]) -> int:
         self.nodes.append((node, group))
@@ -117,10 +129,15 @@ class Paths:
         if self.best is None or cost > self.best:
             self.best, self.best_node = cost, node
 
-    def schedule(self) -> list[tuple[int, ...]]:
-        """The robots acting on each event of the costliest path that ended, first to last."""
+    def failed(self, kind: str, node: int, group: tuple[int, ...] | None) -> None:
+        if self.failure is None:
+            self.failure = (kind, node, group)
+
+    def schedule(self, node: int | None = None) -> list[tuple[int, ...]]:
+        """The robots acting on each event of the path to ``node`` (the costliest that ended), first to
+        last."""
         out: list[tuple[int, ...]] = []
-        node = self.best_node
+        node = self.best_node if node is None else node
         while node > 0:
             node, group = self.nodes[node]
             out.append(group)
@@ -136,12 +153,17 @@ def next_layer(explorer: Explorer, layer: Layer, measure: Measure, paths: Paths)
     expanded = skipped = 0
     for st, (cost, at, node) in layer.items():
         if space.quiescent(st):
+            if not matches_pattern(space.positions(st, at), explorer.pattern):
+                paths.failed("deadlock", node, None)  # quiet, and not the pattern
             paths.ended(cost, node)
             continue
         expanded += 1
         out: list[tuple[State, tuple[int, int]]] = []
         groups, violation = explorer.eligible_edges(st, at, out)
-        skipped += violation is not None
+        if violation is not None:
+            skipped += 1
+            if str(violation).startswith("collision"):  # an escape only leaves the box: no verdict
+                paths.failed("collision", node, violation.robots)
         for group, (nxt, there) in zip(groups, out, strict=True):
             value = cost + edge_weight(space, st, group, measure)
             held = following.get(nxt)

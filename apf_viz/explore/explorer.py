@@ -17,9 +17,11 @@ counted in the detail).
 
 from __future__ import annotations
 
+import gc
 import time
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from itertools import combinations
 from typing import Literal
@@ -150,7 +152,8 @@ class Explorer:
         t0 = time.perf_counter()
         if matches_pattern(self.robots, self.pattern):  # the engine's rule: formed before anyone acts
             return Result("verified", 1, 0, 0.0, detail="the start is already the pattern: formed at time 0")
-        graph = self._search(t0)
+        with _no_cyclic_gc():
+            graph = self._search(t0)
         if isinstance(graph, Result):
             return graph  # a collision, an escape, or the state budget
         self.graph = graph  # every state searched and its edges: explore/worst.py reads them
@@ -340,6 +343,20 @@ class Explorer:
             path += steps
         steps, here = _bfs(here, members, graph, None, target=entry)
         return path + steps
+
+
+@contextmanager
+def _no_cyclic_gc() -> Iterator[None]:
+    """Python's cyclic collector off while the search grows its graph: the states are flat tuples of
+    integers, which make no cycles, yet each full collection walks all of them (a fifth of a search's
+    time at k = 20–30: docs/PERFORMANCE.md, "The hunt"). Restored afterwards."""
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.enable()
 
 
 def absent_detail(want: str, passed: dict[str, int]) -> str:

@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
-from itertools import combinations
+from itertools import combinations, pairwise, repeat
 from math import gcd
+
+import numpy as np
 
 from apf_viz.core.algorithm import Algorithm, Decision
 from apf_viz.core.frames import move_to_global
@@ -97,6 +99,45 @@ def visible(positions: Sequence[Point], i: int) -> list[int]:
     return [j for _, j in best.values()]
 
 
+SIGHT_CACHE = 20_000  # positions whose sight lines are kept (about 2 kB each at k = 30)
+SIGHT_LINES_FROM = 8
+"""From this many robots on, views are read off :func:`sight_lines` (numpy, every robot at once); below,
+:func:`visible` per robot is quicker (docs/PERFORMANCE.md, "The hunt")."""
+
+
+def sight_lines(flat: Sequence[int]) -> list[tuple[list[int], list[int], list[int], list[int]]]:
+    """For each robot of the flat positions (x0, y0, x1, y1, …), what it sees: the nearest robot along
+    each primitive direction (dx, dy)/gcd, for all robots at once, in exact integer arithmetic. Per robot:
+    the offsets dx and dy and the indices of the robots it sees, sorted by (dx, dy), and the permutation
+    of them that sorts by (dx, −dy) (the order a robot whose y-axis is flipped sees)."""
+    p = np.asarray(flat, dtype=np.int64).reshape(-1, 2)
+    k = p.shape[0]
+    dx = p[None, :, 0] - p[:, None, 0]  # [observer, other]
+    dy = p[None, :, 1] - p[:, None, 1]
+    g = np.gcd(dx, dy)
+    np.fill_diagonal(g, 1)
+    ux, uy = dx // g, dy // g
+    span = int(max(np.abs(ux).max(), np.abs(uy).max())) + 1
+    direction = (ux + span) * (2 * span + 1) + (uy + span)  # one integer per primitive direction
+    observer = np.repeat(np.arange(k), k)
+    other = np.tile(np.arange(k), k)
+    keep = observer != other
+    observer, other = observer[keep], other[keep]
+    direction, dist = direction.ravel()[keep], g.ravel()[keep]
+    order = np.lexsort((dist, direction, observer))  # by observer, direction, then nearest first
+    o, d = observer[order], direction[order]
+    first = np.ones(o.size, dtype=bool)
+    first[1:] = (o[1:] != o[:-1]) | (d[1:] != d[:-1])
+    o, j = o[first], other[order][first]
+    sx, sy = p[j, 0] - p[o, 0], p[j, 1] - p[o, 1]
+    up = np.lexsort((sy, sx, o))
+    o, j, sx, sy = o[up], j[up], sx[up], sy[up]
+    flipped = np.lexsort((-sy, sx, o))  # within one observer, a permutation of its own entries
+    bounds = np.searchsorted(o, np.arange(k + 1)).tolist()
+    xs, ys, js, fl = sx.tolist(), sy.tolist(), j.tolist(), flipped.tolist()
+    return [(xs[a:b], ys[a:b], js[a:b], [i - a for i in fl[a:b]]) for a, b in pairwise(bounds)]
+
+
 def canonical(positions: Sequence[int], origin: Point) -> tuple[tuple[int, ...], Point]:
     """Flat positions translated so that min x = min y = 0, and the origin that translation adds."""
     mx, my = min(positions[0::2]), min(positions[1::2])
@@ -130,6 +171,7 @@ class StateSpace:
         self.memo = decisions
         self.box = box
         self._quiet: dict[State, bool] = {}  # configuration → every robot's decision is a no-op
+        self._sight: dict[State, list] = {}  # positions → each robot's sight lines (sight_lines)
         # Each state's edges are labelled by one of these shared tuples (no tuple per edge).
         self.singles = tuple((r,) for r in range(self.k))
         self.alone = tuple((s,) for s in self.singles)
@@ -160,19 +202,40 @@ class StateSpace:
         return d
 
     def _decide_uncached(self, cfg: State, r: int) -> int:
-        positions = self.positions(cfg)
         names = self.memo.lights
         lights = [names[i] for i in cfg[2 * self.k : 3 * self.k]]
-        x0, y0 = positions[r]
-        s = 1 if self.y_up[r] else -1
-        seen = sorted(
-            Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j]) for j in visible(positions, r)
-        )
-        view = Snapshot(lights[r], tuple(seen))
+        if self.k < SIGHT_LINES_FROM:
+            positions = self.positions(cfg)
+            x0, y0 = positions[r]
+            s = 1 if self.y_up[r] else -1
+            seen = tuple(
+                sorted(
+                    Seen(positions[j][0] - x0, s * (positions[j][1] - y0), lights[j])
+                    for j in visible(positions, r)
+                )
+            )
+        else:
+            seen = self._seen_from_sight_lines(cfg, r, lights)
+        view = Snapshot(lights[r], seen)
         d = self.memo.by_view.get(view)
         if d is None:
             d = self.memo.by_view[view] = self.memo.intern(self.algorithm.decide(view, self.pattern))
         return d
+
+    def _seen_from_sight_lines(self, cfg: State, r: int, lights: list[str]) -> tuple[Seen, ...]:
+        """r's view from the configuration's sight lines (:func:`sight_lines`, made once for all its
+        robots and every light: they depend on the positions only), sorted by (dx, dy) in r's frame."""
+        at = cfg[: 2 * self.k]
+        lines = self._sight.get(at)
+        if lines is None:
+            if len(self._sight) > SIGHT_CACHE:  # a cache of the positions being expanded lately
+                self._sight.clear()
+            lines = self._sight[at] = sight_lines(at)
+        dx, dy, who, flipped = lines[r]
+        # tuple.__new__ mapped in C: a NamedTuple's own __new__ is a Python function, many times slower.
+        if self.y_up[r]:
+            return tuple(map(tuple.__new__, repeat(Seen), zip(dx, dy, [lights[j] for j in who], strict=True)))
+        return tuple(map(tuple.__new__, repeat(Seen), [(dx[i], -dy[i], lights[who[i]]) for i in flipped]))
 
     def forget(self) -> None:
         """Drop what is remembered per configuration (the decisions' table, which states refer to,
@@ -180,6 +243,7 @@ class StateSpace:
         self.memo.by_configuration.clear()
         self.memo.by_view.clear()
         self._quiet.clear()
+        self._sight.clear()
 
     def quiescent(self, st: State) -> bool:
         """No robot can change anything: every held decision and every decision on the current view
