@@ -30,7 +30,8 @@ def test_sight_lines_are_the_nearest_robot_of_every_direction_in_both_orders():
                 want = sorted(
                     (pts[j][0] - pts[r][0], s * (pts[j][1] - pts[r][1]), j) for j in visible(pts, r)
                 )
-                got = list(zip(dx, dy, who, strict=True)) if s == 1 else [(dx[i], -dy[i], who[i]) for i in flipped]
+                up = list(zip(dx, dy, who, strict=True))
+                got = up if s == 1 else [(dx[i], -dy[i], who[i]) for i in flipped]
                 assert got == want
 
 
