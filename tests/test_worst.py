@@ -99,3 +99,24 @@ def test_no_maximum_where_the_plain_search_fails():
     start, corner = [(0, 0), (0, 3), (2, 1)], [(0, 1), (0, 0), (1, 0)]
     found = worst(literal, start, corner, all_flips(3), "moves")
     assert found.verdict == "collision" and found.value is None and "no maximum" in found.detail
+
+
+@pytest.mark.parametrize("scheduler", ["ssync", "fsync"])
+def test_a_synchronous_worst_replays_to_exactly_its_count_on_generated_starts(scheduler):
+    """A round that only lights robots and leaves everyone quiet ends the run after its Computes (the
+    engine never makes the Moves that would all stay): the worst counts it so, and its schedule replays
+    to the very count."""
+    from apf_viz.explore.worst import worst_schedule_text
+
+    replayed = 0
+    for n, start in enumerate(_generated(3, 8, seed=5) + [[(0, 0), (0, 1), (2, 0)]]):
+        pattern = [(0, 1), (0, 0), (1, 0)] if n % 2 else [(0, 0), (1, 0), (2, 0)]
+        y_up = (n % 2 == 0, True, n % 3 == 0)
+        for measure in ("moves", "events"):
+            found = worst(ALGORITHM, start, pattern, [y_up], measure, scheduler=scheduler)
+            if found.verdict != "worst":
+                continue
+            _, moves, events = worst_schedule_text(ALGORITHM, start, pattern, found, scheduler)
+            assert (moves if measure == "moves" else events) == found.value, (start, measure)
+            replayed += 1
+    assert replayed >= 8

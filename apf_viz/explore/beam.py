@@ -165,7 +165,7 @@ def next_layer(explorer: Explorer, layer: Layer, measure: Measure, paths: Paths)
             if str(violation).startswith("collision"):  # an escape only leaves the box: no verdict
                 paths.failed("collision", node, violation.robots)
         for group, (nxt, there) in zip(groups, out, strict=True):
-            value = cost + edge_weight(space, st, group, measure)
+            value = cost + edge_weight(space, st, group, measure, nxt)
             held = following.get(nxt)
             if held is None or value > held[0]:
                 following[nxt] = (value, there, paths.extend(node, group))

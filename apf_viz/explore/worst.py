@@ -48,16 +48,23 @@ def weights(explorer: Explorer, graph: Graph, measure: Measure) -> list[list[int
     """Each edge's weight (:func:`edge_weight`), per state, per edge."""
     space = explorer.space
     return [
-        [edge_weight(space, graph.states[i], graph.labels[i][p], measure) for p in range(len(targets))]
+        [
+            edge_weight(space, graph.states[i], graph.labels[i][p], measure, graph.states[j])
+            for p, j in enumerate(targets)
+        ]
         for i, targets in enumerate(graph.edges)
     ]
 
 
-def edge_weight(space: StateSpace, st: State, group: tuple[int, ...], measure: Measure) -> int:
+def edge_weight(
+    space: StateSpace, st: State, group: tuple[int, ...], measure: Measure, target: State | None = None
+) -> int:
     """What the edge out of ``st`` on which ``group`` acts costs: the robots it moves (read from the
     decisions, not from the states: a state is kept up to translation, so two states' points need not
     share an origin), or the events it makes (a round: Look, Compute and Move of each robot in it; an
-    lc-atomic Look brings its Compute)."""
+    lc-atomic Look brings its Compute). A round that moves nobody and leaves every robot quiet (its
+    ``target``) ends the run after its Computes, as the engine does (the new lights are the last change):
+    its Moves, which would all stay, are never made."""
     k = space.k
     moves_of = space.memo.moves
     if measure == "moves" and space.scheduler == "async":
@@ -68,6 +75,10 @@ def edge_weight(space: StateSpace, st: State, group: tuple[int, ...], measure: M
         return sum(1 for r in group if moves_of[space.y_up[r]][space.decide(cfg, r)])
     if space.scheduler == "async":
         return 2 if st[3 * k + group[0]] == 0 and space.lc_atomic else 1
+    if target is not None and space.quiescent(target):
+        cfg = st[: 3 * k]
+        if not any(moves_of[space.y_up[r]][space.decide(cfg, r)] for r in group):
+            return 2 * len(group)
     return 3 * len(group)
 
 
