@@ -109,7 +109,7 @@ def test_a_synchronous_worst_replays_to_exactly_its_count_on_generated_starts(sc
     from apf_viz.explore.worst import worst_schedule_text
 
     replayed = 0
-    for n, start in enumerate(_generated(3, 8, seed=5) + [[(0, 0), (0, 1), (2, 0)]]):
+    for n, start in enumerate([*_generated(3, 8, seed=5), [(0, 0), (0, 1), (2, 0)]]):
         pattern = [(0, 1), (0, 0), (1, 0)] if n % 2 else [(0, 0), (1, 0), (2, 0)]
         y_up = (n % 2 == 0, True, n % 3 == 0)
         for measure in ("moves", "events"):
