@@ -95,3 +95,16 @@ def test_cli_check_want_says_what_it_found_or_that_none_exists(tmp_path):
     assert out.exists()
     p = subprocess.run([*base, "--want", "collision"], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0 and p.stdout.startswith("absent:") and "no collision in any schedule" in p.stdout
+
+
+def test_want_deadlock_says_a_deadlock_as_soon_as_it_reaches_one_and_it_replays(tmp_path):
+    """A deadlock is checked as each state is found (the goal of the search), not after the whole graph:
+    on this start of the literal paper a breadth-first search ran out of a million states before."""
+    robots, y_up = [(0, 0), (0, 1), (0, 2), (0, 4)], (True, False, True, True)
+    pattern = [(0, 1), (1, 1), (2, 1), (1, 0)]
+    found, flips = check(
+        LITERAL, robots, pattern, [y_up], "async", 1_000_000, progress=False, want="deadlock"
+    )
+    assert found.verdict == "deadlock" and found.states < 100_000
+    e = counterexample_engine(LITERAL, robots, pattern, flips, "async", found)
+    assert e.outcome == "stuck"

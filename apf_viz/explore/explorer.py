@@ -276,6 +276,10 @@ class Explorer:
                     origins.append(o)
                     parent.append(i)
                     via.append(groups[p])
+                    if self.want == "deadlock" and self._deadlocked(st, o):  # the goal: said at once
+                        return self._fail(
+                            "deadlock", "a terminal state that is not the pattern", graph, j, None, t0
+                        )
                 out.append(j)
             graph.transitions += len(out)
             if violation is not None:
@@ -288,6 +292,12 @@ class Explorer:
             if self.progress and len(edges) % 20_000 == 0:
                 self.progress(len(states), len(states) - i - 1, time.perf_counter() - t0)
         return graph
+
+    def _deadlocked(self, st: State, origin: Point) -> bool:
+        """Quiet (nobody can change anything) and not the pattern."""
+        return self.space.quiescent(st) and not matches_pattern(
+            self.space.positions(st, origin), self.pattern
+        )
 
     def _fail(self, verdict, detail, graph: Graph, i: int, robots, t0: float) -> Result:
         schedule = graph.path(i) + ([robots] if robots is not None else [])
