@@ -133,3 +133,15 @@ def test_the_hunt_command_writes_its_table_and_says_what_it_found(tmp_path):
     assert "| apf-opaque-grid |" in done.stdout and pq.read_table(out).num_rows == 3
     bad = subprocess.run([*cmd[:-2], "--families", "round"], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "unknown families" in bad.stderr
+
+
+def test_every_flip_assignment_is_searched_and_a_failing_one_is_kept():
+    start = next(s for s in hunt_starts(range(4, 8), 30, 7) if s.family == "wide-pattern" and s.k == 7)
+    drawn = hunt_one(start, WITHOUT_G4, 400_000)
+    assert drawn["verdict"] == "collision"  # the planted bug, under the start's own y-axes
+    small = hunt_starts([3], 3, 4)
+    for s in small:
+        row = hunt_one(s, "apf-opaque-grid", 400_000, flips="all")
+        assert row["verdict"] == "verified" and row["flips"] == "all"
+        one = hunt_one(s, "apf-opaque-grid", 400_000)
+        assert row["states"] > one["states"]  # eight searches, not one

@@ -23,6 +23,7 @@ def hunt(
     seed: int = 1,
     families: Iterable[str] | None = None,
     algorithm: str = DEFAULT_ALGORITHM,
+    flips: str = "drawn",
     max_states: int = 500_000,
     out: str | os.PathLike[str] | None = None,
     counterexamples: str | os.PathLike[str] | None = None,
@@ -33,7 +34,8 @@ def hunt(
     """``count`` generated starts (k drawn from ``ks``, the ``families`` in turn: all by default), each
     searched exhaustively under ASYNC; one row per start with ``apf-viz hunt``'s columns (family, k, seed,
     D, verdict, states, seconds, counterexample, …). A start past ``max_states`` is verdict "budget":
-    nothing proved. ``out``: keep the table in this ``.parquet`` file, resumed if it exists.
+    nothing proved. ``flips="all"``: every assignment of the robots' y-axes (2^k searches a start).
+    ``out``: keep the table in this ``.parquet`` file, resumed if it exists.
 
     >>> table = hunt(ks=[4], count=2, workers=1)
     >>> sorted(set(table["verdict"]))
@@ -56,6 +58,8 @@ def hunt(
     if not isinstance(max_states, int) or isinstance(max_states, bool) or max_states < 1:
         raise InputError(f"max_states must be a positive integer, not {max_states!r}")
     get_algorithm(algorithm)
+    if flips not in ("drawn", "all"):
+        raise InputError(f"flips must be 'drawn' or 'all', not {flips!r}")
     chosen = list(FAMILIES) if families is None else list(families)
     try:
         starts = hunt_starts(list(ks), count, seed, chosen)
@@ -71,8 +75,9 @@ def hunt(
             else path.with_name(path.stem + "-counterexamples")
         )
         rows = run_hunt(
-            starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder,
+            starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder, flips=flips,
             workers=workers, cluster=cluster, progress=report_hunt if progress else None,
         )  # fmt: skip
-        table = pandas.DataFrame([r for r in rows if r["algorithm"] == algorithm], columns=list(COLUMNS))
+        mine = [r for r in rows if r["algorithm"] == algorithm and r["flips"] == flips]
+        table = pandas.DataFrame(mine, columns=list(COLUMNS))
     return table

@@ -25,6 +25,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         default=",".join(FAMILIES),
         help=f"comma-separated families of starts, taken in turn (default: all: {', '.join(FAMILIES)})",
     )
+    p.add_argument(
+        "--flips", choices=("drawn", "all"), default="drawn",
+        help="each start's own random y-axes, or every assignment of them (2^k searches a start)",
+    )  # fmt: skip
     p.add_argument("--algorithm", default=DEFAULT_ALGORITHM, help="the algorithm checked (a registry name)")
     p.add_argument(
         "--max-states", type=positive, default=500_000,
@@ -57,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
     signal.signal(signal.SIGTERM, signal.getsignal(signal.SIGINT))
     rows = run_hunt(
         starts, args.out, algorithm=args.algorithm, max_states=args.max_states, counterexamples=folder,
+        flips=args.flips,
         workers=args.workers, cluster=args.cluster, progress=report_hunt,
     )  # fmt: skip
     print(hunt_summary([r for r in rows if r["algorithm"] == args.algorithm]))

@@ -15,7 +15,7 @@ import json
 import random
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from apf_viz.explore.hunt_families import FAMILIES, draw
@@ -23,11 +23,11 @@ from apf_viz.explore.hunt_families import FAMILIES, draw
 __all__ = ["COLUMNS", "KEY", "HuntStart", "hunt_one", "hunt_starts"]
 
 COLUMNS: tuple[str, ...] = (
-    "family", "k", "seed", "algorithm", "D", "verdict", "states", "max_states", "seconds", "detail",
-    "counterexample", "robots", "pattern", "y_up",
+    "family", "k", "seed", "algorithm", "flips", "D", "verdict", "states", "max_states", "seconds",
+    "detail", "counterexample", "robots", "pattern", "y_up",
 )  # fmt: skip
 """A hunt table's columns, in order."""
-KEY: tuple[str, ...] = ("family", "k", "seed", "algorithm")
+KEY: tuple[str, ...] = ("family", "k", "seed", "algorithm", "flips")
 """What names a row: a resumed hunt runs only the starts whose key is not in the table yet."""
 INTEGERS = frozenset({"k", "seed", "D", "states", "max_states"})
 
@@ -62,22 +62,37 @@ def hunt_starts(
     return out
 
 
-def hunt_one(start: HuntStart, algorithm: str, max_states: int, counterexamples: str | None = None) -> dict:
+def hunt_one(
+    start: HuntStart,
+    algorithm: str,
+    max_states: int,
+    counterexamples: str | None = None,
+    flips: str = "drawn",
+) -> dict:
     """Search every schedule of one start; its row (and, on a failure, its counterexample trace written
-    into the folder ``counterexamples``)."""
+    into the folder ``counterexamples``). ``flips``: "drawn", the start's own y-axes; "all", every
+    assignment of them in turn (2^k searches sharing their decisions; ``max_states`` is for all of
+    them), the first failing one kept."""
     from apf_viz.algorithms import get_algorithm
     from apf_viz.core.budget import paper_D
-    from apf_viz.explore.check import counterexample_text
-    from apf_viz.explore.explorer import Explorer
+    from apf_viz.explore.check import all_flips, counterexample_text
+    from apf_viz.explore.explorer import Decisions, Explorer
 
     case = draw(start.family, start.k, start.seed)
     algo = get_algorithm(algorithm)
     t0 = time.perf_counter()
-    explorer = Explorer(
-        algo, case.robots, case.pattern, case.y_up,
-        max_states=max_states, reduction=True, eligible_only=True,
-    )  # fmt: skip
-    result = explorer.run()
+    assignments = [tuple(case.y_up)] if flips == "drawn" else all_flips(start.k)
+    decisions, states = Decisions(), 0
+    for y_up in assignments:
+        result = Explorer(
+            algo, case.robots, case.pattern, y_up, max_states=max(1, max_states - states),
+            reduction=True, eligible_only=True, decisions=decisions,
+        ).run()  # fmt: skip
+        states += result.states
+        if result.verdict != "verified":
+            case = replace(case, y_up=list(y_up))
+            break
+    result.states = states
     seconds = time.perf_counter() - t0
     written = ""
     if result.verdict not in ("verified", "budget") and counterexamples is not None:
@@ -94,6 +109,7 @@ def hunt_one(start: HuntStart, algorithm: str, max_states: int, counterexamples:
         "k": start.k,
         "seed": start.seed,
         "algorithm": algorithm,
+        "flips": flips,
         "D": paper_D(case.robots, case.pattern),
         "verdict": result.verdict,
         "states": result.states,

@@ -40,6 +40,7 @@ def run_hunt(
     algorithm: str,
     max_states: int,
     counterexamples: Path | None = None,
+    flips: str = "drawn",
     workers: int | None = None,
     cluster: str | None = None,
     progress: Callable[[HuntProgress], None] | None = None,
@@ -52,13 +53,13 @@ def run_hunt(
     if counterexamples is not None:
         make_folder(counterexamples)
     done = {tuple(r[c] for c in KEY) for r in rows}
-    todo = [s for s in starts if (s.family, s.k, s.seed, algorithm) not in done]
+    todo = [s for s in starts if (s.family, s.k, s.seed, algorithm, flips) not in done]
     todo.sort(key=weight, reverse=True)  # the biggest first: no long start left alone at the end
     if not todo:
         return rows
     client, local = dask_client(cluster, workers)
     folder = str(counterexamples) if counterexamples is not None else None
-    futures = {client.submit(hunt_one, s, algorithm, max_states, folder, pure=False): s for s in todo}
+    futures = {client.submit(hunt_one, s, algorithm, max_states, folder, flips, pure=False): s for s in todo}
     total_weight = sum(weight(s) for s in todo)
     done_weight, failures, budget, t0, last_write = 0.0, 0, 0, time.monotonic(), time.monotonic()
     finished = 0
@@ -66,7 +67,7 @@ def run_hunt(
         for got, _pending in by_the_second(futures):
             for fut in got:
                 start = futures[fut]
-                r = _row(fut, start, algorithm, max_states)
+                r = _row(fut, start, algorithm, max_states, flips)
                 rows = [x for x in rows if tuple(x[c] for c in KEY) != tuple(r[c] for c in KEY)] + [r]
                 finished += 1
                 done_weight += weight(start)
@@ -89,12 +90,13 @@ def run_hunt(
     return rows
 
 
-def _row(fut, start: HuntStart, algorithm: str, max_states: int) -> dict:
+def _row(fut, start: HuntStart, algorithm: str, max_states: int, flips: str) -> dict:
     try:
         return fut.result()
     except Exception as e:  # the search raised, or its worker died: the row says so
         return {
-            "family": start.family, "k": start.k, "seed": start.seed, "algorithm": algorithm, "D": 0,
+            "family": start.family, "k": start.k, "seed": start.seed, "algorithm": algorithm, "flips": flips,
+            "D": 0,
             "verdict": "error", "states": 0, "max_states": max_states, "seconds": 0.0,
             "detail": f"{type(e).__name__}: {e}"[:500], "counterexample": "", "robots": "", "pattern": "",
             "y_up": "",
