@@ -267,6 +267,13 @@ RESOLUTION_LINES = [
     },
     {
         "algorithm": "A2",
+        "after": 41,
+        "depth": 3,
+        "resolution": "G5",
+        "text": "else if H_L^O(r) is empty and R_I(r) is the next vertical line then move left",
+    },
+    {
+        "algorithm": "A2",
         "replaces": 45,
         "depth": 4,
         "resolution": "SD",
@@ -355,6 +362,7 @@ RULES = {
     "A2.leader1.away": ["A2.43"],
     "A2.leader1.up": ["A2.45"],
     "A2.leader1.SD-away": ["SD@A2.45"],
+    "A2.leader1.G5-left": ["G5@A2.41"],
     "A2.leader1.off": ["A2.47"],
     "A2.leader1.wait": ["A2.33"],
     "A2.leader1.G3-off": ["G3@A2.32"],

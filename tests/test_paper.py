@@ -51,7 +51,7 @@ def test_a_resolutions_line_shows_only_in_a_variant_that_has_it():
     full, literal = lines(FULL), lines(LITERAL)
     added = {k: line for k, line in full.items() if line.resolution}
     assert {line.resolution for line in added.values()} == {
-        "G1", "G2", "G3", "E2", "KD", "NV", "LW", "SD", "L2", "P3", "LA", "N2", "G4",
+        "G1", "G2", "G3", "E2", "KD", "NV", "LW", "SD", "L2", "P3", "LA", "N2", "G4", "G5",
     }  # fmt: skip
     assert all(line.why for line in added.values())  # its name and a one-sentence reason
     assert {line.resolution for line in literal.values() if line.resolution} == {"LA"}  # the paper + LA

@@ -41,25 +41,12 @@ def hunt(
     >>> sorted(set(table["verdict"]))
     ['verified']
     """
-    try:
-        import pandas
-    except ModuleNotFoundError:
-        raise InputError(
-            "hunt's table needs pandas: pip install 'apf-viz[notebook]' "
-            "(in a checkout: pip install -e '.[notebook]')"
-        ) from None
-    from apf_viz.algorithms import get_algorithm
     from apf_viz.explore.hunt import COLUMNS, hunt_starts
     from apf_viz.explore.hunt_families import FAMILIES
     from apf_viz.sweeps.hunt_driver import report_hunt, run_hunt
 
-    if not isinstance(count, int) or isinstance(count, bool) or count < 1:
-        raise InputError(f"count must be a positive integer, not {count!r}")
-    if not isinstance(max_states, int) or isinstance(max_states, bool) or max_states < 1:
-        raise InputError(f"max_states must be a positive integer, not {max_states!r}")
-    get_algorithm(algorithm)
-    if flips not in ("drawn", "all"):
-        raise InputError(f"flips must be 'drawn' or 'all', not {flips!r}")
+    pandas = _pandas()
+    _check_arguments(count, max_states, algorithm, flips)
     chosen = list(FAMILIES) if families is None else list(families)
     try:
         starts = hunt_starts(list(ks), count, seed, chosen)
@@ -69,11 +56,8 @@ def hunt(
         path = Path(out) if out is not None else Path(scratch) / "hunt.parquet"
         if path.suffix != ".parquet":
             raise InputError(f"out {path}: write .parquet")
-        folder = (
-            Path(counterexamples)
-            if counterexamples is not None
-            else path.with_name(path.stem + "-counterexamples")
-        )
+        folder = path.with_name(path.stem + "-counterexamples")
+        folder = Path(counterexamples) if counterexamples is not None else folder
         rows = run_hunt(
             starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder, flips=flips,
             workers=workers, cluster=cluster, progress=report_hunt if progress else None,
@@ -81,3 +65,26 @@ def hunt(
         mine = [r for r in rows if r["algorithm"] == algorithm and r["flips"] == flips]
         table = pandas.DataFrame(mine, columns=list(COLUMNS))
     return table
+
+
+def _pandas():
+    try:
+        import pandas
+    except ModuleNotFoundError:
+        raise InputError(
+            "hunt's table needs pandas: pip install 'apf-viz[notebook]' "
+            "(in a checkout: pip install -e '.[notebook]')"
+        ) from None
+    return pandas
+
+
+def _check_arguments(count: object, max_states: object, algorithm: str, flips: str) -> None:
+    """Each argument a hunt takes, refused in one line before any work."""
+    from apf_viz.algorithms import get_algorithm
+
+    for name, value in (("count", count), ("max_states", max_states)):
+        if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+            raise InputError(f"{name} must be a positive integer, not {value!r}")
+    get_algorithm(algorithm)
+    if flips not in ("drawn", "all"):
+        raise InputError(f"flips must be 'drawn' or 'all', not {flips!r}")

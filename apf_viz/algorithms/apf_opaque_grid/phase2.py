@@ -24,7 +24,7 @@ from apf_viz.algorithms.apf_opaque_grid.predicates import (
     upper_closed_half_has_other,
     vertical_line,
 )
-from apf_viz.algorithms.apf_opaque_grid.resolutions import G3, KD, L2, NV, SD, Resolutions, deviation
+from apf_viz.algorithms.apf_opaque_grid.resolutions import G3, G5, KD, L2, NV, SD, Resolutions, deviation
 from apf_viz.algorithms.apf_opaque_grid.strides import FOREVER, left_walk_stride, vertical_stride
 from apf_viz.core.algorithm import Decision
 from apf_viz.core.grid import Direction
@@ -212,32 +212,47 @@ def phase2_leader1(view: Snapshot, res: Resolutions, ev: Evidence = NO_EVIDENCE)
     return stay(view, "Phase 2 (leader1): waiting for L_I (or R_I) to turn off", "A2.leader1.wait")
 
 
+def _on_an_extreme_row(view: Snapshot, ev: Evidence) -> Decision:
+    """Algorithm 2, a leader1 on an extreme row: it walks left until H_L^C is empty, then leads."""
+    if left_closed_half_has_other(view, ev):
+        left = Decision(
+            "leader1",
+            Direction.LEFT,
+            "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
+            "A2.leader1.extreme-left",
+            stride=FOREVER,
+        )
+        return left_walk_stride(left, view)
+    return Decision(
+        "leader",
+        None,
+        "Phase 2 (leader1): H_L^C empty and an extreme row → leader",
+        "A2.leader1.leader",
+    )
+
+
 def _leader1_acts(view: Snapshot, r_i: list[Seen], res: Resolutions, ev: Evidence) -> Decision:
     """Algorithm 2 lines 41–53: a leader1 that may act walks to an extreme row, then left, and becomes the
     leader. Its walks promise a stride (``strides.py``)."""
     upper, bottom = upper_closed_half_has_other(view, ev), bottom_closed_half_has_other(view, ev)
     if not upper or not bottom:
-        if left_closed_half_has_other(view, ev):
-            left = Decision(
-                "leader1",
-                Direction.LEFT,
-                "Phase 2 (leader1): an extreme row, H_L^C not empty → move left",
-                "A2.leader1.extreme-left",
-                stride=FOREVER,
-            )
-            return left_walk_stride(left, view)
-        return Decision(
-            "leader",
-            None,
-            "Phase 2 (leader1): H_L^C empty and an extreme row → leader",
-            "A2.leader1.leader",
-        )
+        return _on_an_extreme_row(view, ev)
     if not is_terminal(view, ev):
         return Decision(
             "leader1",
             Direction.LEFT,
             "Phase 2 (leader1): not terminal on L_V → move left",
             "A2.leader1.inner-left",
+        )
+    if G5 in res and deviation(ev, G5, bool(r_i) and r_i[0].dx == 1 and left_open_half_empty(view, ev)):
+        # B2's hidden window: the column next to me may be one I just crossed, hidden from its terminal
+        # robots, which can fire Phase 1 on a stale view and step left into my column (B3 likewise): a
+        # vertical walk there could meet them. Two columns away they land beside it, never on it.
+        return Decision(
+            "leader1",
+            Direction.LEFT,
+            "Phase 2 (leader1): terminal and leftmost, R_I next to me → one column further left (G5)",
+            "A2.leader1.G5-left",
         )
     if not is_singleton(view, ev):
         (neighbour,) = vertical_line(view)

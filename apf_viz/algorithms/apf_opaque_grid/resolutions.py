@@ -25,13 +25,14 @@ class Resolution(StrEnum):
     N2 = "N2"
     L2 = "L2"
     G4 = "G4"
+    G5 = "G5"
 
 
 R = Resolution
 Resolutions = frozenset[Resolution]
 # The flags as module constants: an Enum class's attribute access (R.G3) is slow enough in Python 3.11 to
 # show in a run's time, and the rules test flags on every decision (docs/PERFORMANCE.md).
-G1, G2, G3, NV, KD, LW, E2, SD, P3, LA, N2, L2, G4 = Resolution
+G1, G2, G3, NV, KD, LW, E2, SD, P3, LA, N2, L2, G4, G5 = Resolution
 
 RESOLUTIONS: dict[Resolution, str] = {
     R.G1: "an off robot that sees any light other than off/terminal1 does not run Phase 1 again (B1)",
@@ -47,6 +48,7 @@ RESOLUTIONS: dict[Resolution, str] = {
     R.N2: "with n = 2 the single follower goes to its target instead of LineMove(1) again (B17)",
     R.L2: "two leader1 on one leftmost line, on extreme rows, become the deciders of a stable configuration",
     R.G4: "an off robot in Phase 3 waits while it sees a leader1 (a second leader1 may hold a stale move)",
+    R.G5: "a leftmost terminal leader1 steps left until R_I is not the next column, then walks vertically",
 }
 
 ALL: Resolutions = frozenset(Resolution)

@@ -56,6 +56,7 @@ RULE_IDS: dict[str, str] = {
     "A2.leader1.away": "leader1, terminal, not alone on L_V → move away from r′ (lines 42–43)",
     "A2.leader1.up": "leader1, alone on L_V → move along its +y (lines 44–45)",
     "A2.leader1.SD-away": "leader1, alone on L_V, R_I on one side → move away from R_I (SD)",
+    "A2.leader1.G5-left": "leader1, terminal and leftmost, R_I the next column → one more column left (G5)",
     "A2.leader1.off": "leader1, another leader1 on L_I → off (lines 46–47)",
     "A2.leader1.wait": "leader1, waiting for L_I (or R_I) to turn off",
     "A2.leader1.G3-off": "leader1, a leader is visible → off (G3)",
