@@ -48,7 +48,21 @@ def test_the_same_schedule_with_every_resolution_forms_the_pattern(path):
 
 
 def test_there_is_a_trace_for_the_resolutions_random_search_found_needed():
-    assert {p.stem for p in TRACES} >= {"E2", "G1", "G2", "G3", "KD", "LA", "LW", "N2", "P3", "SD", "L2", "G4", "G5"}
+    assert {p.stem for p in TRACES} >= {
+        "E2",
+        "G1",
+        "G2",
+        "G3",
+        "KD",
+        "LA",
+        "LW",
+        "N2",
+        "P3",
+        "SD",
+        "L2",
+        "G4",
+        "G5",
+    }
 
 
 LITERAL = sorted((Path(__file__).parent / "literal_traces").glob("*.jsonl"))
