@@ -91,7 +91,8 @@ def test_the_command_says_what_it_found_and_writes_a_schedule_that_replays(tmp_p
     assert main(["adversary", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--budget", "120",
                  "--schedule-out", str(out), "--json"]) == 0  # fmt: skip
     said = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
-    assert said["found"] >= said["built_ins"] > 0 and said["evaluations"] == 120 and out.exists()
+    assert said["found"] >= said["built_ins"] > 0 and out.exists()
+    assert said["evaluations"] == 120 or (said["exact"] and said["evaluations"] < 120)  # proved: it stops
     assert main(["run", "--robots", "one-on-L1-3", "--pattern", "corner-3", "--schedule", str(out),
                  "--json"]) == 0  # fmt: skip
     assert json.loads(capsys.readouterr().out.strip().splitlines()[-1])["moves"] == said["found"]

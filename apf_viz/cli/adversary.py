@@ -92,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
             "k": k, "D": d, "per_kD": round(best / (k * d), 4), "built_ins_per_kD": round(bar / (k * d), 4),
             "evaluations": state.evaluations, "seconds": round(state.seconds, 2),
             "per_second": round(state.evaluations / max(state.seconds, 1e-9), 2),
-            "how": state.best.source, "schedule": written,
+            "how": state.best.source, "schedule": written, "exact": state.exact,
         }))  # fmt: skip
     else:
         verdict = "beats" if state.beats else "does not beat"
@@ -100,6 +100,7 @@ def run(args: argparse.Namespace) -> int:
             f"found {best:,} {args.maximize} ({best / (k * d):.3f} per k·D, k·D = {k * d}); the built-in "
             f"schedulers' most over seeds 0–19: {bar:,} ({bar / (k * d):.3f}): the search {verdict} them; "
             f"{state.evaluations:,} schedules in {duration(state.seconds)}; the best: {state.best.source}"
+            + ("; a beam never cut followed every path: this is the exact worst" if state.exact else "")
             + (f"; schedule: {written}" if written else "")
         )
     return 0

@@ -63,8 +63,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from apf_viz.core.formats import InputError
     from apf_viz.explore.check import all_flips, check, write_counterexample
 
+    if args.schedule_out and not args.worst:
+        raise InputError("--schedule-out writes the schedule that forces the worst: give --worst too")
     robots, points, targets, algorithm = problem(args, args.counterexample)
     flips = all_flips(len(points)) if args.flips == "all" else [tuple(robots.flips(args.seed))]
     if args.worst:

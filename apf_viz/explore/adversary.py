@@ -249,6 +249,12 @@ class Search:
     failure: Tried | None = None  # the first schedule met on which the algorithm fails: no maximum then
 
     @property
+    def exact(self) -> bool:
+        """A beam never cut followed every path: its answer is the exact worst, no variant can beat it."""
+        beam = self.beam
+        return beam is not None and not beam.cut and beam.value is not None and self.best.value == beam.value
+
+    @property
     def beats(self) -> bool:
         return (self.best.value or 0) > (self.bar.value or 0)
 
@@ -326,7 +332,8 @@ def search(
     rng = random.Random(seed)
     try:
         _beams(state, frontier, budget, width, seed, progress, t0)
-        while state.evaluations < budget and state.failure is None:
+        # A beam never cut followed every path: its answer is the exact worst, and no variant can beat it.
+        while state.evaluations < budget and state.failure is None and not state.exact:
             jobs: list[Job] = []
             for _ in range(min(BATCH, budget - state.evaluations)):
                 job = frontier.take() if rng.random() >= FRESH_SHARE else None
