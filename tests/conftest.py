@@ -18,6 +18,25 @@ def write_json(tmp_path: Path):
     return _write
 
 
+def unmarked_browser_tests(items: list) -> list[str]:
+    """The tests that start Chromium (they ask for the ``browser`` fixture) without the ``browser`` mark:
+    ``--quick`` leaves out exactly the marked ones, so an unmarked one would run there (and twice in CI,
+    once more on the lowest versions)."""
+    return [
+        item.nodeid
+        for item in items
+        if "browser" in getattr(item, "fixturenames", ()) and item.get_closest_marker("browser") is None
+    ]
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    unmarked = unmarked_browser_tests(items)
+    if unmarked:
+        raise pytest.UsageError(
+            f"{len(unmarked)} tests start Chromium without @pytest.mark.browser: {', '.join(unmarked[:5])}"
+        )
+
+
 @pytest.fixture(scope="module")
 def browser():
     """Debian's Chromium driven by Playwright, one for a test module (tests/test_ui_browser.py says how it

@@ -22,6 +22,7 @@ from tests.test_ui_browser import (
 )
 
 pytest.importorskip("playwright.sync_api")
+pytestmark = pytest.mark.browser
 
 
 @pytest.fixture

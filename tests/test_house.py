@@ -270,3 +270,19 @@ def test_no_class_declares_its_hosts_members_again():
                     if isinstance(stmt, ast.If) and "TYPE_CHECKING" in ast.unparse(stmt.test)
                 ]
     assert found == []
+
+
+def test_a_test_that_starts_chromium_without_the_browser_mark_is_refused_at_collection():
+    """``--quick`` leaves out the marked tests only; conftest refuses an unmarked test asking for the
+    browser (its rule, on stand-in tests: one marked, one not, one that needs no browser)."""
+    from types import SimpleNamespace
+
+    from tests.conftest import unmarked_browser_tests
+
+    def item(nodeid: str, fixtures: tuple[str, ...], marked: bool):
+        return SimpleNamespace(
+            nodeid=nodeid, fixturenames=fixtures, get_closest_marker=lambda name: object() if marked else None
+        )
+
+    items = [item("a", ("browser", "tmp_path"), True), item("b", ("browser",), False), item("c", (), False)]
+    assert unmarked_browser_tests(items) == ["b"]
