@@ -25,7 +25,7 @@ def app(demo_app: App) -> App:
 def test_the_worst_found_for_the_heart_plays_from_the_adversary_panel(browser, app, tmp_path, capsys):
     found_file = tmp_path / "heart-worst-found.jsonl"
     assert main(["adversary", "--robots", "demo-10", "--pattern", "heart", "--maximize", "moves",
-                 "--budget", "110", "--schedule-out", str(found_file), "--json"]) == 0  # fmt: skip
+                 "--budget", "10", "--schedule-out", str(found_file), "--json"]) == 0  # fmt: skip
     said = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     page = open_page(browser, app, {"width": 1024, "height": 768})
     # the Adversary folder is open from the start

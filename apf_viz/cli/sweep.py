@@ -38,7 +38,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--search-budget", type=positive, default=Cell.search_budget,
         help=f"schedules the searched adversary tries in each run of the scheduler worst-found (default "
-        f"{Cell.search_budget}: the built-ins' 100 runs and beams of width 64 to 512; docs/ADVERSARY.md)",
+        f"{Cell.search_budget}: beams of width 64 to 512, beside the built-ins' 100 runs; docs/ADVERSARY.md)",
     )  # fmt: skip
     p.add_argument(
         "--run-timeout",

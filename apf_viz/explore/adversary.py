@@ -241,12 +241,13 @@ class Search:
     problem: Problem
     bar: Tried
     best: Tried
-    evaluations: int = 0
+    evaluations: int = 0  # schedules searched (the budget), beside the built-ins' runs
     beam: Beamed | None = None  # the last beam's effort, when one ran
     doing: str = ""  # what the search is doing, while it is not trying schedules (for its progress)
     improvements: list[tuple[int, int]] = field(default_factory=list)  # (evaluation, value)
     seconds: float = 0.0
     failure: Tried | None = None  # the first schedule met on which the algorithm fails: no maximum then
+    bar_runs: int = 0  # the built-in schedulers' runs that set the bar (not counted in the budget)
 
     @property
     def exact(self) -> bool:
@@ -310,19 +311,20 @@ def search(
     seeds: Sequence[int] = BUILT_IN_SEEDS,
     width: int = WIDTH,
 ) -> Search:
-    """Up to ``budget`` schedules tried (the built-ins' runs first), the costliest kept: a best-first
-    search over the choices the costliest schedules made (:class:`Frontier`), with now and then a fresh
-    start. KeyboardInterrupt ends it early: the search so far is returned (the caller writes its best)."""
+    """The built-in schedulers' runs (the bar: one per scheduler and seed, not counted in the budget),
+    then up to ``budget`` schedules searched, the costliest kept: beams, then a best-first search over
+    the choices the costliest schedules made (:class:`Frontier`), with now and then a fresh start.
+    KeyboardInterrupt ends it early: the search so far is returned (the caller writes its best)."""
     t0 = time.perf_counter()
     firsts: list[Job] = [((), Candidate(0, None, name, s)) for name in AUTOMATIC for s in seeds]
-    tried = evaluator(problem, firsts)
+    tried = _built_ins(problem, firsts, evaluator, progress, t0)
     formed = [t for t in tried if t.value is not None]
     failed = next((t for t in tried if t.failed), None)
     if not formed and failed is None:
         raise ValueError("no built-in scheduler forms the pattern from this start: nothing to beat")
     bar = max(formed, key=lambda t: t.value or 0) if formed else failed
     assert bar is not None
-    state = Search(problem, bar, bar, len(tried), failure=failed)
+    state = Search(problem, bar, bar, 0, failure=failed, bar_runs=len(tried))
     if failed is not None:  # a failure is the answer: there is no costliest schedule to look for
         state.seconds = time.perf_counter() - t0
         return state
@@ -351,6 +353,26 @@ def search(
         pass
     state.seconds = time.perf_counter() - t0
     return state
+
+
+def _built_ins(
+    problem: Problem,
+    firsts: list[Job],
+    evaluator: Evaluator,
+    progress: Callable[[Search], None],
+    t0: float,
+) -> list[Tried]:
+    """The built-in schedulers' runs, a batch at a time, saying how far they are (on a far start each
+    run is long: the search must not sit silent through them)."""
+    tried: list[Tried] = []
+    for i in range(0, len(firsts), BATCH):
+        tried.extend(evaluator(problem, firsts[i : i + BATCH]))
+        so_far = max(tried, key=lambda t: t.value or -1)
+        shown = Search(problem, so_far, so_far, 0, bar_runs=len(tried))
+        shown.doing = f"the built-in schedulers' runs: {len(tried)} of {len(firsts)}"
+        shown.seconds = time.perf_counter() - t0
+        progress(shown)
+    return tried
 
 
 def _beams(
@@ -410,7 +432,7 @@ def best_schedule_text(state: Search) -> str:
         maximize=p.maximize,
         value=state.best.value or 0,
         built_ins=state.bar.value or 0,
-        tried=state.evaluations,
+        tried=state.bar_runs + state.evaluations,
     )
     text = schedule_text(len(p.robots), schedule_of_steps(e.history.steps), p.y_up, p.light_semantics, found)
     replayed = p.engine()

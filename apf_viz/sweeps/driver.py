@@ -40,7 +40,8 @@ def cost(cell: Cell) -> float:
     # A generated start is not drawn just to be weighed: its box's side, or k, is its D.
     d = paper_D(cell.robots, cell.pattern) if cell.robots else max(cell.k, math.isqrt(3 * cell.k) + 1)
     one = 500.0 + (cell.k * min(d, max(cell.k, 3))) ** 1.2
-    return one * (cell.search_budget + 20) if cell.scheduler == WORST_FOUND else one  # + the beam
+    # WORST_FOUND: the built-ins' 100 runs, its budget's schedules, and about 20 runs' worth of beam.
+    return one * (cell.search_budget + 120) if cell.scheduler == WORST_FOUND else one
 
 
 def _describe(cell: Cell) -> str:
