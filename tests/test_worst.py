@@ -120,3 +120,17 @@ def test_a_synchronous_worst_replays_to_exactly_its_count_on_generated_starts(sc
             assert (moves if measure == "moves" else events) == found.value, (start, measure)
             replayed += 1
     assert replayed >= 8
+
+
+def test_worst_reports_progress_as_it_goes_not_only_every_20000_states(monkeypatch):
+    """On a far start a state is slow (a robot's walk is a chain of them) and 20,000 states took minutes
+    of silence: the search also reports every PROGRESS_EVERY seconds (here 0, so at every state)."""
+    import apf_viz.explore.explorer as explorer_module
+
+    monkeypatch.setattr(explorer_module, "PROGRESS_EVERY", 0.0)
+    said: list[int] = []
+    found = worst(
+        ALGORITHM, [(0, 0), (0, 3), (2, 1)], [(0, 1), (0, 0), (1, 0)], [(True, True, False)], "events",
+        progress=lambda states, frontier, seconds: said.append(states),
+    )  # fmt: skip
+    assert found.verdict == "worst" and len(said) > 10 and said == sorted(said)

@@ -127,6 +127,7 @@ def _worst(args: argparse.Namespace, points, targets, algorithm, flips) -> int:
     from apf_viz.core.budget import paper_D
     from apf_viz.core.files import write_atomic
     from apf_viz.core.formats import InputError
+    from apf_viz.explore.check import say_progress
     from apf_viz.explore.worst import worst, worst_schedule_text
 
     if args.want:
@@ -135,6 +136,7 @@ def _worst(args: argparse.Namespace, points, targets, algorithm, flips) -> int:
         algorithm, points, targets, flips, args.worst,
         scheduler=args.scheduler, max_states=args.max_states,
         reduction=not args.no_reduction, light_semantics=args.light_semantics,
+        progress=None if args.json else say_progress,
     )  # fmt: skip
     written = None
     replayed = None

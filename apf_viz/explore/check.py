@@ -41,7 +41,7 @@ def check(
             y_up,
             scheduler=scheduler,
             max_states=max(1, max_states - total_states),
-            progress=_report if progress else None,
+            progress=say_progress if progress else None,
             light_semantics=light_semantics,
             reduction=reduction,
             decisions=decisions,
@@ -123,7 +123,8 @@ def all_flips(k: int) -> list[tuple[bool, ...]]:
     return list(itertools.product((True, False), repeat=k))
 
 
-def _report(states: int, frontier: int, seconds: float) -> None:
+def say_progress(states: int, frontier: int, seconds: float) -> None:
+    """A search's progress on stderr (``check``, ``check --worst``)."""
     print(
         f"apf-viz check: {states:,} states, frontier {frontier:,}, "
         f"{states / max(seconds, 1e-9):,.0f} states/s",

@@ -38,6 +38,9 @@ Wanted = Literal["collision", "escape", "deadlock", "livelock"]
 WANTED: tuple[Wanted, ...] = ("collision", "escape", "deadlock", "livelock")
 
 
+PROGRESS_EVERY = 5.0  # seconds: the longest a search is silent, however slow its states
+
+
 @dataclass
 class Result:
     verdict: Verdict
@@ -250,6 +253,7 @@ class Explorer:
         successors = self.space.successors
         before = self.space.labels  # what the edges before a violation are labelled by
         i = -1  # breadth first: states are searched in the order they are found, so an index is the queue
+        said = t0  # when progress was last reported
         while i + 1 < len(states):
             i += 1
             nexts: list[tuple[State, Point]] = []
@@ -289,8 +293,10 @@ class Explorer:
                 return self._fail(verdict, message, graph, i, violation.robots, t0)
             edges.append(out)
             labels.append(groups)
-            if self.progress and len(edges) % 20_000 == 0:
-                self.progress(len(states), len(states) - i - 1, time.perf_counter() - t0)
+            # Every 20,000 states, or every few seconds where states are slow (robots far apart).
+            if self.progress and (len(edges) % 20_000 == 0 or time.perf_counter() - said > PROGRESS_EVERY):
+                said = time.perf_counter()
+                self.progress(len(states), len(states) - i - 1, said - t0)
         return graph
 
     def _deadlocked(self, st: State, origin: Point) -> bool:

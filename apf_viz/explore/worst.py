@@ -15,7 +15,7 @@ maximum either (it is said, with the cycle's length), although no fair run is en
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -147,6 +147,7 @@ def worst(
     max_states: int = 1_000_000,
     reduction: bool = True,
     light_semantics: str = "compute",
+    progress: Callable[[int, int, float], None] | None = None,
 ) -> Worst:
     """The most ``measure`` any adversary can force before FORMED, over every schedule and each of
     ``flips``; or the reason there is no maximum."""
@@ -163,6 +164,7 @@ def worst(
             reduction=reduction,
             decisions=decisions,
             eligible_only=True,
+            progress=progress,
         )  # fmt: skip
         verdict = explorer.run()  # the plain verdict first: a failure has no maximum
         total += verdict.states
