@@ -19,7 +19,7 @@ import pytest
 
 from apf_viz.lecture import lectures
 from apf_viz.ui.app import App, demo_session, free_port
-from apf_viz.ui.panels.presentation import CAPTION_ROOM
+from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET
 from apf_viz.workbench.view_model.caption import TITLE_PX, WORDS_PX
 from tests.test_ui_browser import OUT, _canvas, inside_canvas, offline_context, settled, wait_for

@@ -8,8 +8,8 @@ from typing import Protocol, cast
 import numpy as np
 
 from apf_viz.ui.attachment import Attachment
+from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.panels import Panels, SharedVerifier
-from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.ui.scene import (
     NARROW_ASPECT,

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 import viser
 
 from apf_viz.lecture import Lecture
+from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.lecture_page import PageQuestion, PageStop, paced_page
 from apf_viz.ui.network import free_port
-from apf_viz.ui.panels.presentation import CAPTION_ROOM
 from apf_viz.ui.scene import SceneRenderer, text_cells
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.workbench.question import choice_words

@@ -3,9 +3,8 @@ semantics; switching restarts the run."""
 
 from __future__ import annotations
 
-from apf_viz.algorithms import ALGORITHMS
-from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
 from apf_viz.ui.panels.context import PanelContext
+from apf_viz.workbench.algorithm_choice import algorithm_names, light_merges, merge_of, with_merge
 from apf_viz.workbench.view_model import SessionView
 
 
@@ -29,7 +28,7 @@ class AlgorithmFolder:
             self.merge = gui.add_dropdown(
                 "Two lights as one",
                 self._merges(),
-                initial_value=self._merge_of(s.algorithm_name),
+                initial_value=merge_of(s.algorithm_name),
                 hint="show one light as another, to every robot and to itself: does the algorithm still "
                 "work with one light fewer? (apf-viz lights tries them all: docs/LIGHTS.md)",
             )
@@ -42,33 +41,14 @@ class AlgorithmFolder:
 
     def _names(self, current: str | None = None) -> tuple[str, ...]:
         s = self.ctx.session
-        names = [*ALGORITHMS, *(n for n in s.run.plugins if ":" not in n)]
-        current = current or s.algorithm_name
-        return tuple(names if current in names else [*names, current])
+        return algorithm_names(current or s.algorithm_name, s.run.plugins)
 
     def _merges(self) -> tuple[str, ...]:
-        """ "—" and "b shown as a" for every ordered pair of the unmerged algorithm's lights."""
-        algorithm = self.ctx.session.engine.algorithm
-        lights = (algorithm.base if isinstance(algorithm, MergedLights) else algorithm).lights
-        return ("—", *(f"{b} shown as {a}" for a in lights for b in lights if a != b))
-
-    @staticmethod
-    def _merge_of(name: str) -> str:
-        parts = split_name(name)
-        if parts is None or len(parts[1]) != 1:
-            return "—"
-        (a, b), *_ = parts[1]
-        return f"{b} shown as {a}"
+        return light_merges(self.ctx.session.engine.algorithm)
 
     def _on_merge(self, event) -> None:
         s = self.ctx.session
-        parts = split_name(s.algorithm_name)
-        base = parts[0] if parts else s.algorithm_name
-        if self.merge.value == "—":
-            wanted = base
-        else:
-            b, a = self.merge.value.split(" shown as ")
-            wanted = f"{base}{MARKER}{a}={b})"
+        wanted = with_merge(s.algorithm_name, self.merge.value)
         if wanted != s.algorithm_name:
             s.set_algorithm(wanted)
 
@@ -90,6 +70,6 @@ class AlgorithmFolder:
             merges = self._merges()
             if tuple(self.merge.options) != merges:
                 self.merge.options = merges
-            self.merge.value = self._merge_of(s.algorithm_name)
+            self.merge.value = merge_of(s.algorithm_name)
         if self.semantics.value != s.config.light_semantics:
             self.semantics.value = s.config.light_semantics

@@ -12,6 +12,7 @@ from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.demos import demo_files
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.lecture_export import LectureExport
+from apf_viz.ui.page_export import export_run
 from apf_viz.ui.panels.context import PanelContext, tell
 from apf_viz.ui.recorder import MAX_SECONDS, RECORD_FPS, GifRecorder, render_view
 from apf_viz.ui.slide import compose
@@ -120,7 +121,6 @@ class FilesFolder:
     def _export_page(self, event) -> str:
         """The run this page shows, from its start to where it is, recorded on a copy (the run itself,
         shared or not, does not move)."""
-        from apf_viz.ui.page_export import export_run
         from apf_viz.workbench.session.branch import branch
 
         if event.client is None:

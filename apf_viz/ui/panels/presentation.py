@@ -16,6 +16,7 @@ import zlib
 
 import viser
 
+from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.workbench.view_model import SessionView
@@ -32,9 +33,6 @@ def steady_size(seen: tuple[int, int] | None, reported: tuple[int, int]) -> tupl
     return reported if reported[1] > seen[1] else seen
 
 
-# The caption floats over the bottom of the canvas, this share of its height; a framed camera leaves
-# that room free (ui/app.py), so the caption never covers the run.
-CAPTION_ROOM = 0.35
 CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of a room
 MARGIN = 10  # px between the caption and the canvas's edges
 
