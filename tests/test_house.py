@@ -318,3 +318,18 @@ def test_every_module_imports_on_its_own():
     assert done.returncode == 0, done.stderr[-2000:]
     count, *failed = done.stdout.strip().splitlines()
     assert int(count) > 150 and not failed, failed
+
+
+def _assigned_names(tree: ast.Module) -> set[str]:
+    targets = [t for n in tree.body if isinstance(n, ast.Assign) for t in n.targets]
+    targets += [n.target for n in tree.body if isinstance(n, ast.AnnAssign)]
+    return {t.id for t in targets if isinstance(t, ast.Name)}
+
+
+def test_every_package_says_what_it_exports():
+    """``__all__`` in every package's ``__init__.py`` (an empty one where the modules are the interface)."""
+    inits = sorted(PACKAGE.rglob("__init__.py"))
+    missing = [
+        str(i.relative_to(ROOT)) for i in inits if "__all__" not in _assigned_names(ast.parse(i.read_text()))
+    ]
+    assert len(inits) > 10 and not missing, missing

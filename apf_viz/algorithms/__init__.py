@@ -21,6 +21,15 @@ from apf_viz.algorithms.examples import CompactLeft, Stay
 from apf_viz.algorithms.merged_lights import MARKER, merged_algorithm
 from apf_viz.core.algorithm import Algorithm
 
+__all__ = [
+    "ALGORITHMS",
+    "DEFAULT_ALGORITHM",
+    "Factory",
+    "algorithm_from_command_line",
+    "get_algorithm",
+    "load_plugin",
+]
+
 Factory = Callable[[], Algorithm]
 
 ALGORITHMS: Mapping[str, Factory] = MappingProxyType(

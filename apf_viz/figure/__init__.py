@@ -5,3 +5,6 @@
 and frames, one robot's rays and the robots it cannot see, a legend); :mod:`~apf_viz.figure.svg` and
 :mod:`~apf_viz.figure.tikz` write it out. No viser here.
 """
+
+# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing is re-exported.
+__all__: list[str] = []

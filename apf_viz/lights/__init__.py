@@ -58,3 +58,6 @@ from apf_viz.lights.table import is_lights_table as is_lights_table
 from apf_viz.lights.table import read_lights as read_lights
 from apf_viz.lights.table import summary as summary
 from apf_viz.lights.table import write_lights as write_lights
+
+# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing is re-exported.
+__all__: list[str] = []

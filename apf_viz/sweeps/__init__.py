@@ -36,3 +36,30 @@ from apf_viz.sweeps.driver import summary as summary
 from apf_viz.sweeps.driver import usable_cores as usable_cores
 from apf_viz.sweeps.results import read_results as read_results
 from apf_viz.sweeps.results import write_results as write_results
+
+__all__ = [
+    "COLUMNS",
+    "KEY",
+    "MAX_K",
+    "MAX_RUNS",
+    "MAX_VALUES",
+    "Cell",
+    "Progress",
+    "by_the_second",
+    "cost",
+    "dask_client",
+    "duration",
+    "generated_start",
+    "grid",
+    "parse_range",
+    "read_results",
+    "report_progress",
+    "row",
+    "run_cell",
+    "run_sweep",
+    "shut_down",
+    "start_pairs",
+    "summary",
+    "usable_cores",
+    "write_results",
+]

@@ -7,3 +7,6 @@ and said; the run controller, screen state, editor, loader, compare, lecturer an
 the exports build on this package; ``ui/`` is the viser adapter over it (app, browser screens, panels,
 scene, broadcast, own runs), and nothing here imports ``ui/`` or viser (tests/test_house.py).
 """
+
+# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing is re-exported.
+__all__: list[str] = []
