@@ -4,8 +4,9 @@ a :class:`Verdict`, whose counterexample (if any) is a schedule to read and a ru
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, algorithm_from_command_line
 from apf_viz.api.inputs import Points, Start, start_of
@@ -42,7 +43,13 @@ class Verdict:
 
     @classmethod
     def of(
-        cls, result: Result, y_up, start: Start, algorithm: Algorithm, scheduler: str, light_semantics: str
+        cls,
+        result: Result,
+        y_up: Sequence[bool],
+        start: Start,
+        algorithm: Algorithm,
+        scheduler: str,
+        light_semantics: str,
     ) -> Verdict:
         """The explorer's result on ``start`` under the flips ``y_up``."""
         return cls(
@@ -84,7 +91,7 @@ class Verdict:
 
         write_atomic(os.fspath(path), counterexample_text(*self._counterexample()))
 
-    def _counterexample(self) -> tuple:
+    def _counterexample(self) -> tuple[Any, ...]:
         """What the explorer's counterexample is replayed from (explore/check.py's arguments)."""
         robots, pattern = list(self._robots), list(self._pattern)
         return (

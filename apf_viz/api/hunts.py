@@ -7,6 +7,7 @@ import os
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
+from types import ModuleType
 from typing import TYPE_CHECKING
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
@@ -67,7 +68,7 @@ def hunt(
     return table
 
 
-def _pandas():
+def _pandas() -> ModuleType:
     try:
         import pandas
     except ModuleNotFoundError:
@@ -75,7 +76,8 @@ def _pandas():
             "hunt's table needs pandas: pip install 'apf-viz[notebook]' "
             "(in a checkout: pip install -e '.[notebook]')"
         ) from None
-    return pandas
+    module: ModuleType = pandas
+    return module
 
 
 def _check_arguments(count: object, max_states: object, algorithm: str, flips: str) -> None:

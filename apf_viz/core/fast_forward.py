@@ -131,7 +131,7 @@ def hidden_only_on_line(positions: np.ndarray, r: int, delta: Point, seen: Colum
     axis = 1 if delta[1] == 0 else 0  # a horizontal walk keeps y; a vertical one keeps x
     on_line = int(np.count_nonzero(positions[:, axis] == positions[r, axis])) - 1
     seen_on_line = int(np.count_nonzero((seen.dy if axis == 1 else seen.dx) == 0))
-    return hidden == on_line - seen_on_line
+    return bool(hidden == on_line - seen_on_line)
 
 
 def shifted(view: Snapshot, move: Direction, j: int) -> Snapshot:

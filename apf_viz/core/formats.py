@@ -10,11 +10,12 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, ValidationError, model_validator
 
-from apf_viz.core.files import InputError, read_lines, read_text
+from apf_viz.core.files import InputError as InputError  # re-exported: the error of every input file
+from apf_viz.core.files import read_lines, read_text
 from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Direction, Point, as_point, coordinate_problem
 from apf_viz.core.history import Event
@@ -186,7 +187,10 @@ def _parse_json(text: str, where: str) -> Any:
         raise InputError(f"{where}: not valid JSON ({e})") from None
 
 
-def _validate(model: type[BaseModel], data: Any, where: str) -> Any:
+M = TypeVar("M", bound=BaseModel)
+
+
+def _validate(model: type[M], data: Any, where: str) -> M:
     try:
         return model.model_validate(data)
     except ValidationError as e:
@@ -215,7 +219,9 @@ def load_pattern(path: Path | str) -> PatternFile:
     return parse_pattern(read_text(path, MAX_INPUT_BYTES), str(path))
 
 
-def header_line(numbered: Iterable[tuple[int, str]], where: str, what: str) -> tuple[Iterator, int, Any]:
+def header_line(
+    numbered: Iterable[tuple[int, str]], where: str, what: str
+) -> tuple[Iterator[tuple[int, str]], int, Any]:
     """The first line of a JSON Lines file (trace or schedule), parsed, its number, and the rest to come."""
     lines = iter(numbered)
     first = next(lines, None)

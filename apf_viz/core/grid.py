@@ -122,7 +122,8 @@ def table_scratch() -> np.ndarray:
 
 def table_index(offsets: np.ndarray) -> np.ndarray:
     """Where each offset (|dx|, |dy| ≤ TABLE_SPAN) sits in the direction tables."""
-    return offsets[:, 0] * TABLE_WIDTH + offsets[:, 1] + TABLE_CENTRE
+    index: np.ndarray = offsets[:, 0] * TABLE_WIDTH + offsets[:, 1] + TABLE_CENTRE
+    return index
 
 
 def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
@@ -141,7 +142,8 @@ def visible_in_crowd(at: np.ndarray, i: int, scratch: np.ndarray) -> np.ndarray:
     nearest = rank == scratch[slot]
     scratch[slot] = _FAR
     nearest[i] = False
-    return nearest.nonzero()[0]
+    seen: np.ndarray = nearest.nonzero()[0]
+    return seen
 
 
 def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) -> np.ndarray:
@@ -172,7 +174,8 @@ def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) 
         np.not_equal(sorted_key[2:], sorted_key[1:-1], out=first[2:])
         first[0] = False  # the observer
         first[1] = True
-        return order[first]
+        seen: np.ndarray = order[first]
+        return seen
     g = np.gcd(dx, dy)
     g[i] = 1  # the observer itself: offset (0, 0), sorted first and dropped below
     ddx, ddy = dx // g, dy // g  # the primitive direction of each robot
@@ -196,7 +199,8 @@ def nearest_per_direction(offsets: np.ndarray, i: int, span: int | None = None) 
         first[2:] = (sx[2:] != sx[1:-1]) | (sy[2:] != sy[1:-1])
     first[0] = False  # the observer
     first[1] = True
-    return order[first]
+    in_sight: np.ndarray = order[first]
+    return in_sight
 
 
 def hiders(points: Sequence[Point], i: int) -> dict[int, int]:

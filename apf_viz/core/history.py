@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import bisect
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING, Literal, NamedTuple, overload
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple, overload
 
 import numpy as np
 
@@ -69,7 +69,7 @@ class RecordedStep(NamedTuple):
 # collector forever, and its full passes over them cost more than the run itself; a plain tuple of
 # atomic values (moves as their string) is untracked after its first collection. So steps are packed
 # on record and unpacked on access.
-_Packed = tuple  # (robots, round, events as plain tuples)
+_Packed = tuple[Any, ...]  # (robots, round, events as plain tuples)
 
 
 def _pack(record: StepRecord, events: Sequence[Event]) -> _Packed:
@@ -158,8 +158,8 @@ class Walk(NamedTuple):
     robot: int
     steps: int  # the steps it stands for (cycles × per_cycle, or a prefix of them after a branch)
     per_cycle: int  # 3, or 2 under lc-atomic (a Look and its Compute are one step)
-    look: tuple  # the packed Look event
-    compute: tuple  # the packed Compute event
+    look: tuple[Any, ...]  # the packed Look event
+    compute: tuple[Any, ...]  # the packed Compute event
     start: Point
     delta: Point  # global, one lattice step
 

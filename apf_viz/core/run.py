@@ -7,6 +7,7 @@ import json
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
+from typing import Any
 
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.budget import paper_D
@@ -93,7 +94,7 @@ class RunSummary:
 
 
 def trace_header(
-    engine: Engine, scheduler: str, seed: int | None, options: dict | None = None
+    engine: Engine, scheduler: str, seed: int | None, options: dict[str, Any] | None = None
 ) -> TraceHeader:
     return TraceHeader(
         format="apf-viz-trace",

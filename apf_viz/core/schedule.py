@@ -20,7 +20,7 @@ import json
 from array import array
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt, model_validator
 
@@ -216,7 +216,7 @@ def schedule_text(
 ) -> str:
     """A schedule file; ``y_up`` and ``light_semantics`` make it the whole adversary (version 2);
     ``found``: the searched adversary's words on it."""
-    header: dict = {"format": SCHEDULE_FORMAT, "version": SCHEDULE_VERSION, "robots": k}
+    header: dict[str, Any] = {"format": SCHEDULE_FORMAT, "version": SCHEDULE_VERSION, "robots": k}
     if y_up is not None:
         header["y_up"] = [bool(u) for u in y_up]
     if light_semantics is not None:

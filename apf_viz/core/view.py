@@ -50,7 +50,8 @@ class Columns:
     def showing(self, light: str) -> np.ndarray:
         """Boolean mask of the robots showing this light."""
         try:
-            return self.code == self.palette.index(light)
+            mask: np.ndarray = self.code == self.palette.index(light)
+            return mask
         except ValueError:
             return np.zeros(self.code.shape, dtype=bool)
 
@@ -129,7 +130,7 @@ class Snapshot:
     def __repr__(self) -> str:
         return f"Snapshot(light={self.light!r}, robots={self.robots!r})"
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[type[Snapshot], tuple[str, tuple[Seen, ...]]]:
         return (Snapshot, (self.light, self.robots))
 
     # Ranges of the view, in its order, read off whichever form it has: a rule that needs a vertical line

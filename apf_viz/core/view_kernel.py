@@ -21,6 +21,7 @@ from __future__ import annotations
 import functools
 import os
 from collections.abc import Callable
+from types import ModuleType
 
 import numpy as np
 
@@ -62,7 +63,8 @@ def reduced_table() -> np.ndarray:
     g[0, 0] = 1
     entry = g | (axis[:, None] // g) << _BITS | (axis[None, :] // g) << (2 * _BITS)
     entry[0, 0] = 0
-    return entry.astype(np.uint32)
+    table: np.ndarray = entry.astype(np.uint32)
+    return table
 
 
 def table_size(k: int) -> int:
@@ -103,7 +105,7 @@ def compiled() -> Kernel | None:
 
 
 @functools.cache
-def _compile(numba) -> Kernel:
+def _compile(numba: ModuleType) -> Kernel:
     # build_view calls its helpers as globals: compiled code must find the compiled ones there.
     global _counting_pass, _order_by_offset, _nearest_by_table, _nearest_by_hash, _in_view_order
     counting, order, by_table, by_hash, view_order = (
@@ -121,7 +123,8 @@ def _compile(numba) -> Kernel:
     _nearest_by_table = jit(by_table)
     _nearest_by_hash = jit(by_hash)
     _in_view_order = jit(view_order)  # after _order_by_offset: it calls the compiled one
-    return jit(build_view)
+    kernel: Kernel = jit(build_view)
+    return kernel
 
 
 def build_view(

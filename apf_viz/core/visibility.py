@@ -19,7 +19,7 @@ nothing. ``tests/test_visibility.py`` checks every patched view against a from-s
 from __future__ import annotations
 
 from bisect import bisect_left, insort
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import cast
 
 import numpy as np
@@ -447,7 +447,9 @@ def _steps_inside(c: int, lo: int, hi: int, step: int) -> int:
     return 1 << 62 if lo <= c <= hi else 0
 
 
-def _directions(observers: list[int], here: np.ndarray, px: int, py: int):
+def _directions(
+    observers: list[int], here: np.ndarray, px: int, py: int
+) -> Iterator[tuple[int, tuple[int, int], int]]:
     """(observer, primitive direction towards (px, py), lattice distance g) for every observer."""
     ox = px - here[:, 0]
     oy = py - here[:, 1]

@@ -98,5 +98,5 @@ def robots_in(P: np.ndarray, box: tuple[int, int, int, int], r: int) -> int:
             continue
         inside = part if inside is None else inside & part
     if inside is None:  # the whole plane
-        return P.shape[0] - 1
+        return int(P.shape[0]) - 1
     return int(np.count_nonzero(inside)) - bool(inside[r])

@@ -55,7 +55,7 @@ class Answer:
         return " or ".join(choice_words(self.question.kind, c) for c in sorted(self.right, key=_order))
 
 
-def _order(choice: str) -> tuple:
+def _order(choice: str) -> tuple[int | str, ...]:
     parts = choice.split(",")
     return (0, *map(int, parts)) if all(p.lstrip("-").isdigit() for p in parts) else (1, choice)
 

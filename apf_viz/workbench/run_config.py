@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from typing import Any
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory, get_algorithm
 from apf_viz.core.budget import run_budget
@@ -45,6 +46,6 @@ class RunConfig:
             fast_forward=True,  # only Play at speed walks (RunController.play_steps); a step is one step
         )
 
-    def but(self, **changes) -> RunConfig:
+    def but(self, **changes: Any) -> RunConfig:
         """This configuration with some fields changed."""
         return replace(self, **changes)

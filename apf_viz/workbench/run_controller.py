@@ -8,7 +8,7 @@ new :class:`~apf_viz.workbench.run_config.RunConfig`; nothing is reset field by 
 from __future__ import annotations
 
 import threading
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 from apf_viz.algorithms import Factory, get_algorithm
 from apf_viz.core.engine import Engine
@@ -187,7 +187,7 @@ class RunController:
                 self.following, self.trace_options = False, {}
             return phase
 
-    def _branching_step(self, robots, round: int | None) -> None:
+    def _branching_step(self, robots: Sequence[int], round: int | None) -> None:
         """A step that may differ from the recorded future: then the future is kept as a branch."""
         history = self.engine.history
         generation = history.generation

@@ -42,7 +42,7 @@ class RunMark:
     """Where a run stood: its engine (held weakly: a new engine may reuse a dropped one's id()), its
     history's generation (a branch that drops steps bumps it) and the step it was at."""
 
-    run: weakref.ref = field(compare=False, repr=False)
+    run: weakref.ref[Engine] = field(compare=False, repr=False)
     generation: int
     step: int
 

@@ -5,6 +5,7 @@ tool draws or erases across the axes fixed when it was turned on."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from typing import Literal
 
 from apf_viz.core import shapes
@@ -218,7 +219,7 @@ class Studio:
                 chosen.moved(dx, dy)
                 return _set(editor, mode, moved, f"moved the selection {name}")
             return _set(editor, mode, shapes.translated(cells, dx, dy), f"moved {name}")
-        changed = {
+        changed: dict[str, Callable[[Sequence[Point]], shapes.Cells]] = {
             "Mirror ↔": lambda c: shapes.mirrored(c, "x"),
             "Mirror ↕": lambda c: shapes.mirrored(c, "y"),
             "Rotate 90°": shapes.rotated,

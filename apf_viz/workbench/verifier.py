@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from apf_viz.algorithms import Factory, get_algorithm
+from apf_viz.core.algorithm import Algorithm
 from apf_viz.explore.check import counterexample_text, explore
 from apf_viz.workbench.run_config import RunConfig
 
@@ -85,7 +86,7 @@ class Verifier:
             self._status = Status("running", states, frontier, states / max(seconds, 1e-9))
         self._on_change(self.status)
 
-    def _run(self, config: RunConfig, algorithm) -> None:
+    def _run(self, config: RunConfig, algorithm: Algorithm) -> None:
         scheduler = EXPLORED.get(config.scheduler, "async")
         try:
             result = explore(

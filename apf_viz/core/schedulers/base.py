@@ -16,7 +16,8 @@ eligible, and the choices are exactly those of a scheduler that never skips.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 import numpy as np
 
@@ -24,6 +25,8 @@ from apf_viz.core.history import StepRecord
 
 if TYPE_CHECKING:
     from apf_viz.core.engine import Engine
+
+T = TypeVar("T")
 
 new_step = tuple.__new__  # builds a StepRecord without the NamedTuple's Python-level __new__
 
@@ -125,7 +128,7 @@ class StepRandom:
         z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & mask
         return (z ^ (z >> 31)) % n  # bias below 2**-40 for any n we simulate
 
-    def choice(self, seq):
+    def choice(self, seq: Sequence[T]) -> T:
         return seq[self.randrange(len(seq))]
 
 

@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable, Hashable, Mapping, Sequence
-from typing import Self, TypeVar
+from typing import Any, Generic, Self, TypeVar
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory
+from apf_viz.core.engine import Engine
 from apf_viz.core.formats import InputError, size_problem
 from apf_viz.core.frames import random_y_up
 from apf_viz.core.grid import Point, as_point
@@ -21,10 +22,11 @@ from apf_viz.workbench.library import PatternLibrary
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.run_controller import RunController
-from apf_viz.workbench.screen_state import BrowserState, Role, SharedScreen
+from apf_viz.workbench.screen_state import BrowserState, Mode, Role, SharedScreen
 from apf_viz.workbench.view_model import SessionView, browser_key, for_browser, present, present_run
 
-F = TypeVar("F", bound=Callable)
+F = TypeVar("F", bound=Callable[..., Any])
+T = TypeVar("T")
 
 
 def shared_only(command: F) -> F:
@@ -33,7 +35,7 @@ def shared_only(command: F) -> F:
     no control or key can reach it from a class page."""
 
     @functools.wraps(command)
-    def refusing(self, *args, **kwargs):
+    def refusing(self: Any, *args: Any, **kwargs: Any) -> Any:
         if self.private:
             raise InputError(
                 f"{command.__name__.replace('_', ' ')}: not in a run of your own (Back to the lecture first)"
@@ -47,11 +49,20 @@ SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
 """The UI's dropdown: each scheduler's label, and the name it stands for (core/schedulers)."""
 
 
-def _screen_field(name: str) -> property:
-    """A Session attribute that is the shared screen's field ``name`` (read and written)."""
-    return property(
-        lambda self: getattr(self.screen, name), lambda self, value: setattr(self.screen, name, value)
-    )
+class _ScreenField(Generic[T]):
+    """A Session attribute that is the shared screen's field ``name`` (read and written), typed."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, session: Any, owner: type | None = None) -> T:
+        if session is None:  # read on the class (introspection, docs): the descriptor itself
+            return self  # type: ignore[return-value]
+        value: T = getattr(session.screen, self.name)
+        return value
+
+    def __set__(self, session: Any, value: T) -> None:
+        setattr(session.screen, self.name, value)
 
 
 class SessionCore:
@@ -197,12 +208,12 @@ class SessionCore:
             state.selected = None
 
     # ------------------------------------------------------------------ the screen, shared
-    editor = _screen_field("editor")
-    mode = _screen_field("mode")
-    scenario_note = _screen_field("scenario_note")
-    twin = _screen_field("twin")
-    click_advances = _screen_field("click_advances")
-    numbers = _screen_field("numbers")
+    editor = _ScreenField[Editor]("editor")
+    mode = _ScreenField[Mode]("mode")
+    scenario_note = _ScreenField[str]("scenario_note")
+    twin = _ScreenField[Twin | None]("twin")
+    click_advances = _ScreenField[bool]("click_advances")
+    numbers = _ScreenField[bool | None]("numbers")
 
     @property
     def selected(self) -> int | None:
@@ -215,7 +226,7 @@ class SessionCore:
 
     # ------------------------------------------------------------------ the run, read-only
     @property
-    def engine(self):
+    def engine(self) -> Engine:
         return self.run.engine
 
     @property
@@ -265,7 +276,7 @@ class SessionCore:
         run's part once, each browser's selection laid over it."""
         with self.lock:
             shared = present_run(self.run, self.screen)
-            made: dict[tuple, SessionView] = {}  # one view per browser_key: a class shares a few
+            made: dict[tuple[Any, ...], SessionView] = {}  # one view per browser_key: a class shares a few
             own = {}
             for b in browsers:
                 state = self.browser(b)

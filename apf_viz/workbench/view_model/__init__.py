@@ -167,7 +167,7 @@ def lecture_words(stop: LectureStop | None, engine: Engine, playing: bool) -> tu
     )
 
 
-def _over_time(run: RunSource, screen: SharedScreen, pts: list[Point]) -> dict:
+def _over_time(run: RunSource, screen: SharedScreen, pts: list[Point]) -> dict[str, Any]:
     """What the run's history adds to its picture: trails, the stale marks, the timeline's marks."""
     e = run.engine
     stale = stale_holders(e, pts) if e.k <= SIGHT_MARKS_UP_TO else []
@@ -302,7 +302,7 @@ def robot_views(e: Engine, pts: list[Point]) -> list[RobotView]:
     )
 
 
-def run_numbers(e: Engine, overlays: Overlays) -> dict:
+def run_numbers(e: Engine, overlays: Overlays) -> dict[str, Any]:
     """The counts and stage a panel shows for engine ``e`` (the run's, or Compare's second run)."""
     st = e.state
     return {

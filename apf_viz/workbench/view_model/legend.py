@@ -7,7 +7,7 @@ from __future__ import annotations
 import html
 import re
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from apf_viz.core.portrayal import Cells, Frame
 from apf_viz.workbench.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
@@ -34,7 +34,7 @@ def symbol_html(text: str) -> str:
     """Escape ``text`` and typeset the paper's sub- and superscripts: ``H_L^O`` becomes
     H<sub>L</sub><sup>O</sup>."""
 
-    def typeset(m: re.Match) -> str:
+    def typeset(m: re.Match[str]) -> str:
         sub = m.group(2).strip("{}")
         sup = f"<sup>{m.group(3)}</sup>" if m.group(3) else ""
         return f"{m.group(1)}<sub>{sub}</sub>{sup}"
@@ -126,7 +126,7 @@ def _engine_marks() -> list[tuple[str, str, str]]:
     ]
 
 
-_last_legend: list = [None, None, ""]  # (legend, overlays, html): the last inputs, by identity
+_last_legend: list[Any] = [None, None, ""]  # (legend, overlays, html): the last inputs, by identity
 
 
 def legend_html(view: SessionView) -> str:
@@ -135,7 +135,7 @@ def legend_html(view: SessionView) -> str:
     of one frame holds the run's very legend and overlays: the table is made once for them all."""
     legend, overlays, made = _last_legend
     if view.legend is legend and view.overlays is overlays:
-        return made
+        return str(made)
     made = _legend_html(view)
     _last_legend[:] = [view.legend, view.overlays, made]
     return made
@@ -231,11 +231,11 @@ def canvas_symbol(text: str) -> str:
     :func:`symbol_html`) in Unicode. A label with a symbol Unicode cannot set whole (there is no
     subscript R) is written as the paper's source writes it: never half set."""
 
-    def settable(m: re.Match) -> bool:
+    def settable(m: re.Match[str]) -> bool:
         sub, sup = m.group(2).strip("{}"), m.group(3) or ""
         return all(c in _SUBSCRIPTS for c in sub) and all(c in _SUPERSCRIPTS for c in sup)
 
-    def typeset(m: re.Match) -> str:
+    def typeset(m: re.Match[str]) -> str:
         sub, sup = m.group(2).strip("{}"), m.group(3) or ""
         return m.group(1) + "".join(_SUBSCRIPTS[c] for c in sub) + "".join(_SUPERSCRIPTS[c] for c in sup)
 

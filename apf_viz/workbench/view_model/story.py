@@ -8,8 +8,10 @@ from collections.abc import Mapping, Sequence
 
 from apf_viz.core.engine import Engine
 from apf_viz.core.engine_state import Phase
-from apf_viz.core.grid import Point, as_point
+from apf_viz.core.grid import Direction, Point, as_point
+from apf_viz.core.history import Event
 from apf_viz.core.schedulers import SYNCHRONOUS
+from apf_viz.workbench.compare import Divergence
 from apf_viz.workbench.view_model.legend import symbol_html
 from apf_viz.workbench.view_model.staleness import SeenRobot, changes
 
@@ -22,7 +24,7 @@ OUTCOME_ICONS = {"formed": "✔", "collision": "✖", "stuck": "⊘", "limit": "
 _FLIPPED = {"up": "down", "down": "up", "left": "left", "right": "right"}
 
 
-def describe_event(ev, stays: bool = False, was: str | None = None, y_up: bool = True) -> str:
+def describe_event(ev: Event, stays: bool = False, was: str | None = None, y_up: bool = True) -> str:
     """One event in words: "robot 3 · Move → (1, 0) on the grid",
     "robot 1 · Compute: off → leader1, stay — A1.off.on-K"
     (``stays``: the Move of a decision to stay; ``was``: the light before a Compute, when known;
@@ -38,14 +40,16 @@ def describe_event(ev, stays: bool = False, was: str | None = None, y_up: bool =
             light = f"{was} → {ev.light}" if was != ev.light else f"stays {ev.light}"
         return head + f"Compute: {light}, {move_words(ev.move, y_up)}{rule}"
     # The screen's coordinates, said so: a lecture's words give the leader's frame, Why a robot's own.
+    assert ev.to is not None  # a Move event says where it ended
+    x, y = ev.to
     if ev.collision:
-        return head + f"Move → ({ev.to[0]}, {ev.to[1]}) on the grid: COLLISION"
+        return head + f"Move → ({x}, {y}) on the grid: COLLISION"
     if stays:
-        return head + f"Move: stays at ({ev.to[0]}, {ev.to[1]}) on the grid"
-    return head + f"Move → ({ev.to[0]}, {ev.to[1]}) on the grid"
+        return head + f"Move: stays at ({x}, {y}) on the grid"
+    return head + f"Move → ({x}, {y}) on the grid"
 
 
-def move_words(move, y_up: bool) -> str:
+def move_words(move: Direction | None, y_up: bool) -> str:
     """A decided move (global frame) as the robot meant it and as the screen shows it: "move left",
     "move up (its own frame; down on screen)" for a robot whose y-axis the adversary flipped."""
     if move is None:
@@ -326,7 +330,9 @@ def loop_marks(options: Mapping[str, object], steps: int, scheduler: str) -> tup
     return ((first, "loop starts"), (again, "loop repeats"), (again + twice * per, "…for ever"))
 
 
-def compare_text(a: tuple[str, str | None, int, int], b: tuple[str, str | None, int, int], divergence) -> str:
+def compare_text(
+    a: tuple[str, str | None, int, int], b: tuple[str, str | None, int, int], divergence: Divergence | None
+) -> str:
     """Compare: each side's (algorithm, outcome, event, moves), the first decision where they differ and the
     move that follows it in each."""
 

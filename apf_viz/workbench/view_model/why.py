@@ -57,6 +57,7 @@ _NEGATIONS: tuple[tuple[str, str], ...] = (
     ("r leftmost", "r not leftmost"),
     ("two ", "not two "),
     ("another robot", "no other robot"),
+    ("the other ", "no other "),
     ("another ", "no other "),
     ("a robot", "no robot"),
     ("no robot", "a robot"),
