@@ -25,6 +25,9 @@ fi
 .venv/bin/python -m pip install -q -e '.[test,notebook,fast]'
 .venv/bin/python -m ruff check .
 .venv/bin/python -m mypy  # the package, as configured in pyproject.toml
+# The core, the workbench and the API under --strict (their imports checked, not reported: the rest of
+# the package keeps the basic strictness above).
+.venv/bin/python -m mypy --strict --follow-imports=silent apf_viz/core apf_viz/workbench apf_viz/api
 whole=$([ "$#" = 0 ] && echo yes || echo no)  # no arguments: the whole suite, then the lowest versions
 if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser's and the slow ones
   shift

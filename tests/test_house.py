@@ -7,6 +7,8 @@ import ast
 import subprocess
 import sys
 import textwrap
+
+import pytest
 import tomllib
 from pathlib import Path
 
@@ -331,6 +333,7 @@ def test_a_test_that_starts_chromium_without_the_browser_mark_is_refused_at_coll
     assert unmarked_browser_tests(items) == ["b"]
 
 
+@pytest.mark.slow
 def test_every_module_imports_on_its_own():
     """A run-time import circle (a module importing, at its top, one that imports it back while it is
     half made) shows only when that module is imported first. In one fresh interpreter, each module of
