@@ -7,10 +7,10 @@ import ast
 import subprocess
 import sys
 import textwrap
-
-import pytest
 import tomllib
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "apf_viz"
