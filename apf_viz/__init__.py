@@ -20,6 +20,11 @@ def __getattr__(name: str) -> object:
     raise AttributeError(f"module 'apf_viz' has no attribute {name!r}")
 
 
+def __dir__() -> list[str]:
+    """What tab completion and ``dir(apf_viz)`` offer: the library, not the modules this file uses."""
+    return sorted(__all__)
+
+
 def interrupted_while_starting(signum: int, frame: object) -> None:
     """Ctrl+C while the command line imports what it needs (seconds on a busy machine): one line."""
     sys.stderr.write("apf-viz: interrupted\n")

@@ -280,3 +280,23 @@ def test_a_run_shown_in_a_notebook_cell_plays_in_a_browser_from_disk(browser, tm
         assert refused == []
     finally:
         context.close()
+
+
+def test_dir_and_tab_completion_offer_the_library_not_the_modules_it_uses():
+    names = dir(apf_viz)
+    assert {"run", "sweep", "check", "hunt", "Run", "Verdict"} <= set(names)
+    assert not {"signal", "contextlib", "os", "sys", "TYPE_CHECKING"} & set(names)
+
+
+def test_a_run_has_the_attributes_its_repr_shows_and_counts_in_words():
+    r = apf_viz.run("one-on-L1-3", "corner-3", seed=2, scheduler="fsync")
+    assert (r.algorithm, r.scheduler, r.seed) == ("apf-opaque-grid", "fsync", 2)
+    text = repr(r)
+    assert f"{r.algorithm}, fsync, seed 2" in text and " 1 moves" not in text and " 1 events" not in text
+    from apf_viz.api.runs import _count
+
+    assert (_count(1, "move"), _count(2, "move"), _count(1200, "event")) == (
+        "1 move",
+        "2 moves",
+        "1,200 events",
+    )

@@ -402,6 +402,7 @@ def test_every_option_of_every_command_has_help_and_shows_its_default(monkeypatc
                 flag = action.option_strings[0]
                 after = " ".join(text.split(flag, 2)[-1].split())
                 assert f"(default: {action.default})" in after, f"{name} {flag} hides its default"
+                assert "(default" not in action.help, f"{name} {flag} says its default twice"
     serve = commands["serve"].format_help()
     for word in ("--scheduler", "--seed", "apf-opaque-grid-literal", "compact-left", "--algorithm"):
         assert word in serve

@@ -166,7 +166,7 @@ def test_after_play_or_a_step_past_a_stop_the_caption_says_where_the_run_is():
     assert s.view().lecture == ("stop 1 of 12 · The algorithm in 12 stops", stop.title, stop.say)
     s.step()
     where, title, words = s.view().lecture
-    assert where == "off stop 1 of 12 · The algorithm in 12 stops" and stop.say not in words
+    assert where == "away from stop 1 of 12 · The algorithm in 12 stops" and stop.say not in words
     assert title == "Played on from stop 1 — event 1"
     assert "PageDown: stop 2, “Phase 1: the terminals of L_1”" in words and "PageUp: back to stop 1" in words
     s.toggle_play()

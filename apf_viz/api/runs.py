@@ -115,10 +115,15 @@ class Run:
     def __repr__(self) -> str:
         s = self.summary
         return (
-            f"<Run {s.outcome}: k={s.k}, D={s.D}, {s.moves} moves, {s.events} events, "
-            f"{s.moves_per_kD:.3f} moves/(k·D); {self.engine.algorithm.name}, {self.scheduler}, "
+            f"<Run {s.outcome}: k={s.k}, D={s.D}, {_count(s.moves, 'move')}, {_count(s.events, 'event')}, "
+            f"{s.moves_per_kD:.3f} moves/(k·D); {self.algorithm}, {self.scheduler}, "
             f"seed {self.seed}>"
         )
+
+    @property
+    def algorithm(self) -> str:
+        """The algorithm's name, as ``run(algorithm=…)`` takes it."""
+        return self.engine.algorithm.name
 
     # ------------------------------------------------------------------ the numbers
     @property
@@ -257,3 +262,8 @@ def _data_frame(rows: list[dict[str, Any]]) -> pandas.DataFrame:
             "(in a checkout: pip install -e '.[notebook]')"
         ) from None
     return pandas.DataFrame(rows)
+
+
+def _count(n: int, word: str) -> str:
+    """ "1 move", "2 moves"."""
+    return f"{n:,} {word}" + ("" if n == 1 else "s")

@@ -32,8 +32,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--width", type=int_within(0, 1_000_000, "a width (0 to 1,000,000)"), default=WIDTH,
-        help=f"the widest beam over the adversary's choices: 64, 128, … up to it, until one is never cut "
-        f"(default {WIDTH}; 0: no beam)",
+        help="the widest beam over the adversary's choices: 64, 128, … up to it, until one is never cut "
+        "(0: no beam)",
     )  # fmt: skip
     p.add_argument(
         "--seed", type=seed, default=0, help="the search's seed (and the flips', if the file has none)"

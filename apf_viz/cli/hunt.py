@@ -23,7 +23,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--families",
         default=",".join(FAMILIES),
-        help=f"comma-separated families of starts, taken in turn (default: all: {', '.join(FAMILIES)})",
+        help="comma-separated families of starts, taken in turn",
     )
     p.add_argument(
         "--flips", choices=("drawn", "all"), default="drawn",

@@ -19,7 +19,7 @@ HELP = (
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("results", type=Path, help="the results file of apf-viz sweep or apf-viz lights")
     p.add_argument(
-        "--out", type=Path, default=Path("plots"), help="folder for the PNGs (default: ./plots, said first)"
+        "--out", type=Path, default=Path("plots"), help="folder for the PNGs (its path said first)"
     )
 
 

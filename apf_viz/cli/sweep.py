@@ -37,8 +37,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--search-budget", type=positive, default=Cell.search_budget,
-        help=f"schedules the searched adversary tries in each run of the scheduler worst-found (default "
-        f"{Cell.search_budget}: beams of width 64 to 512, beside the built-ins' 100 runs; docs/ADVERSARY.md)",
+        help="schedules the searched adversary tries in each run of the scheduler worst-found, beside the "
+        "built-ins' 100 runs (4: beams of width 64 to 512; docs/ADVERSARY.md)",
     )  # fmt: skip
     p.add_argument(
         "--run-timeout",

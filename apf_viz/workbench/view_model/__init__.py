@@ -160,7 +160,7 @@ def lecture_words(stop: LectureStop | None, engine: Engine, playing: bool) -> tu
         else "That was the last stop."
     )
     return (
-        f"off stop {stop.index + 1} of {stop.count} · {stop.lecture}",
+        f"away from stop {stop.index + 1} of {stop.count} · {stop.lecture}",  # not "off": a light
         f"{how.capitalize()} from stop {stop.index + 1} — event {event}",
         f"The words of stop {stop.index + 1}, “{stop.title}”, were about event {stop.event}. {ahead} "
         f"PageUp: back to stop {stop.index + 1}.",
