@@ -37,11 +37,20 @@ def app() -> Iterator[App]:
 
 
 def class_page(browser, app: App):
+    from playwright.sync_api import Error as PlaywrightError
+
     before = set(app.screens)
     page = browser.new_page(viewport=PROJECTOR)
     page.set_default_timeout(60_000)
     page.goto(app.addresses[1])
-    page.wait_for_url(re.compile(r"\?websocket=ws://[^/]+/seat/[0-9a-f]{32}$"))  # to its seat (ui/seat.py)
+    seat = re.compile(r"\?websocket=ws://[^/]+/seat/[0-9a-f]{32}$")  # to its seat (ui/seat.py)
+    for _ in range(3):  # the page's own move to its seat aborts the load being waited on: wait again
+        try:
+            page.wait_for_url(seat)
+            break
+        except PlaywrightError:
+            if seat.search(page.url):
+                break
     page.get_by_label("Event").wait_for()
     wait_for(lambda: set(app.screens) - before)
     drawn_there(app, page)

@@ -1240,12 +1240,18 @@ def _choose(page, label: str, option: str, tries: int = 4) -> None:
     """Choose ``option`` in the dropdown ``label`` until the page shows it chosen: on a loaded machine (the
     whole suite, four workers on two cores) an option was clicked while its list was still opening, and the
     choice never happened."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
     box = page.get_by_role("combobox", name=label)
     for _ in range(tries):
         box.click()
         item = page.get_by_role("option", name=option, exact=True)
-        item.wait_for(state="visible")
-        item.click()
+        try:  # the list may be drawn again (the server refreshing the panel) under the pointer: try again
+            item.wait_for(state="visible", timeout=20_000)
+            item.click(timeout=20_000)
+        except PlaywrightTimeout:
+            page.keyboard.press("Escape")
+            continue
         end = time.time() + 10
         while time.time() < end:
             if box.input_value() == option:
