@@ -369,6 +369,17 @@ def _assigned_names(tree: ast.Module) -> set[str]:
     return {t.id for t in targets if isinstance(t, ast.Name)}
 
 
+def _exported(tree: ast.Module) -> list[str]:
+    """The names a module's ``__all__`` lists (a literal list)."""
+    for n in tree.body:
+        target = (
+            n.targets[0] if isinstance(n, ast.Assign) else n.target if isinstance(n, ast.AnnAssign) else None
+        )
+        if isinstance(target, ast.Name) and target.id == "__all__" and n.value is not None:
+            return list(ast.literal_eval(n.value))
+    return []
+
+
 def test_every_package_says_what_it_exports():
     """``__all__`` in every package's ``__init__.py`` (an empty one where the modules are the interface)."""
     inits = sorted(PACKAGE.rglob("__init__.py"))
@@ -376,3 +387,10 @@ def test_every_package_says_what_it_exports():
         str(i.relative_to(ROOT)) for i in inits if "__all__" not in _assigned_names(ast.parse(i.read_text()))
     ]
     assert len(inits) > 10 and not missing, missing
+    for init in inits:  # and says every name it re-exports (``from m import a as a``)
+        tree = ast.parse(init.read_text())
+        again = {
+            a.name for n in tree.body if isinstance(n, ast.ImportFrom) for a in n.names if a.asname == a.name
+        }
+        listed = set(_exported(tree))
+        assert again <= listed, (str(init.relative_to(ROOT)), sorted(again - listed))

@@ -59,5 +59,36 @@ from apf_viz.lights.table import read_lights as read_lights
 from apf_viz.lights.table import summary as summary
 from apf_viz.lights.table import write_lights as write_lights
 
-# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing is re-exported.
-__all__: list[str] = []
+__all__ = [
+    "COLUMNS",
+    "DEMO_SCALES",
+    "KEY",
+    "MAX_RANDOM_RUNS",
+    "MAX_STATES",
+    "RANDOM_KS",
+    "RANDOM_SCHEDULERS",
+    "RANDOM_SYMMETRIC_KS",
+    "Merge",
+    "base_path",
+    "base_verified_starts",
+    "demo_starts",
+    "explore_every_flip",
+    "explore_merge",
+    "fold_random",
+    "is_lights_table",
+    "kept_base",
+    "ks_label",
+    "merges",
+    "parse_ks",
+    "random_cells",
+    "random_path",
+    "read_lights",
+    "report_progress",
+    "run_lab",
+    "starts_for",
+    "story",
+    "summary",
+    "verdict_row",
+    "verify_start",
+    "write_lights",
+]
