@@ -300,3 +300,21 @@ def test_a_run_has_the_attributes_its_repr_shows_and_counts_in_words():
         "2 moves",
         "1,200 events",
     )
+
+
+def test_every_table_without_pandas_is_one_line_naming_the_extra(monkeypatch):
+    """pandas is the notebook extra: a run's events, a sweep and a hunt without it say so in the same
+    words (api/tables.py), before any work."""
+    from apf_viz.core.formats import InputError
+
+    r = apf_viz.run("one-on-L1-3", "corner-3", seed=2)
+    monkeypatch.setitem(sys.modules, "pandas", None)  # `import pandas` now fails as if it were missing
+    for call, what in (
+        (r.events_table, "a table"),
+        (lambda: apf_viz.sweep(ks=[4], seeds=[0], workers=1), "sweep's table"),
+        (lambda: apf_viz.hunt(ks=[4], count=1, workers=1), "hunt's table"),
+    ):
+        with pytest.raises(InputError) as e:
+            call()
+        install = "pip install 'apf-viz[notebook]' (in a checkout: pip install -e '.[notebook]')"
+        assert str(e.value) == f"{what} needs pandas: {install}"

@@ -7,10 +7,10 @@ import os
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
-from types import ModuleType
 from typing import TYPE_CHECKING
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.api.tables import pandas_for
 from apf_viz.core.formats import InputError
 
 if TYPE_CHECKING:
@@ -46,7 +46,7 @@ def hunt(
     from apf_viz.explore.hunt_families import FAMILIES
     from apf_viz.sweeps.hunt_driver import report_hunt, run_hunt
 
-    pandas = _pandas()
+    pandas = pandas_for("hunt's table")
     _check_arguments(count, max_states, algorithm, flips)
     chosen = list(FAMILIES) if families is None else list(families)
     try:
@@ -66,18 +66,6 @@ def hunt(
         mine = [r for r in rows if r["algorithm"] == algorithm and r["flips"] == flips]
         table = pandas.DataFrame(mine, columns=list(COLUMNS))
     return table
-
-
-def _pandas() -> ModuleType:
-    try:
-        import pandas
-    except ModuleNotFoundError:
-        raise InputError(
-            "hunt's table needs pandas: pip install 'apf-viz[notebook]' "
-            "(in a checkout: pip install -e '.[notebook]')"
-        ) from None
-    module: ModuleType = pandas
-    return module
 
 
 def _check_arguments(count: object, max_states: object, algorithm: str, flips: str) -> None:

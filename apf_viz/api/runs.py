@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory, algorithm_from_command_line
 from apf_viz.api.inputs import Points, Start, start_of
+from apf_viz.api.tables import pandas_for
 from apf_viz.core.budget import run_budget
 from apf_viz.core.engine import Engine, LightSemantics
 from apf_viz.core.files import write_atomic
@@ -254,14 +255,7 @@ class Shown:
 
 
 def _data_frame(rows: list[dict[str, Any]]) -> pandas.DataFrame:
-    try:
-        import pandas
-    except ModuleNotFoundError:
-        raise InputError(
-            "a table needs pandas: pip install 'apf-viz[notebook]' "
-            "(in a checkout: pip install -e '.[notebook]')"
-        ) from None
-    return pandas.DataFrame(rows)
+    return pandas_for("a table").DataFrame(rows)
 
 
 def _count(n: int, word: str) -> str:

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.api.tables import pandas_for
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
@@ -45,13 +46,7 @@ def sweep(
     >>> sorted(table.columns)[:3], len(table)
     (['D', 'algorithm', 'cycles'], 2)
     """
-    try:
-        import pandas
-    except ModuleNotFoundError:
-        raise InputError(
-            "sweep's table needs pandas: pip install 'apf-viz[notebook]' "
-            "(in a checkout: pip install -e '.[notebook]')"
-        ) from None
+    pandas = pandas_for("sweep's table")
     from apf_viz import sweeps as driver
 
     cells = driver.grid(
