@@ -145,3 +145,26 @@ def test_every_flip_assignment_is_searched_and_a_failing_one_is_kept():
         assert row["verdict"] == "verified" and row["flips"] == "all"
         one = hunt_one(s, "apf-opaque-grid", 400_000)
         assert row["states"] > one["states"]  # eight searches, not one
+
+
+@pytest.mark.slow
+def test_sigterm_keeps_the_starts_that_finished_as_ctrl_c_does(tmp_path):
+    """A batch system's stop: the hunt says it was interrupted and its table keeps the finished starts
+    (the same command resumes them)."""
+    import signal
+
+    out = tmp_path / "h.parquet"
+    p = subprocess.Popen(
+        [sys.executable, "-m", "apf_viz.cli", "hunt", "--ks", "8-10", "--count", "400", "--seed", "9",
+         "--workers", "1", "--out", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    assert p.stderr is not None
+    line = ""
+    while "starts, 0 failing" not in line or line.startswith("apf-viz hunt: 0/"):
+        line = p.stderr.readline()
+        assert line, "the hunt ended before it was stopped"
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130 and "interrupted; keeping the starts that finished" in err, err
+    assert 0 < pq.read_table(out).num_rows < 400

@@ -4,13 +4,21 @@ from __future__ import annotations
 
 import argparse
 import json
-import signal
 import sys
 import time
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import ALGORITHM_HELP, SEMANTICS_HELP, cluster, int_within, positive, problem, seed
+from apf_viz.cli.common import (
+    ALGORITHM_HELP,
+    SEMANTICS_HELP,
+    cluster,
+    int_within,
+    positive,
+    problem,
+    seed,
+    stop_on_sigterm_as_on_ctrl_c,
+)
 from apf_viz.explore.adversary import WIDTH
 from apf_viz.sweeps.driver import duration
 
@@ -71,8 +79,7 @@ def run(args: argparse.Namespace) -> int:
         args.algorithm, tuple(points), tuple(targets), tuple(robots.flips(args.seed)), args.maximize,
         args.light_semantics,
     )  # fmt: skip
-    # SIGTERM (a batch system's stop) keeps the best so far, as Ctrl+C does.
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    stop_on_sigterm_as_on_ctrl_c()  # keeps the best so far
     evaluator, close = evaluate, lambda: None
     if args.cluster:
         evaluator, close = on_cluster(args.cluster)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 import re
+import signal
 import sys
 from collections.abc import Sequence
 from dataclasses import asdict
@@ -40,6 +41,13 @@ class Parser(argparse.ArgumentParser):
 def fail(message: str, code: int = EXIT_BAD_INPUT) -> NoReturn:
     print(f"apf-viz: error: {message}", file=sys.stderr)
     raise SystemExit(code)
+
+
+def stop_on_sigterm_as_on_ctrl_c() -> None:
+    """SIGTERM (a batch system's stop, a `kill`) raises KeyboardInterrupt as Ctrl+C does, so that a long
+    command keeps what it has done: Python's own handler, not SIGINT's current one, which a background
+    job may have ignored."""
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
 
 
 def int_within(low: int, high: float, what: str):

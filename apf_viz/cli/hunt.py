@@ -3,11 +3,18 @@
 from __future__ import annotations
 
 import argparse
-import signal
 from pathlib import Path
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
-from apf_viz.cli.common import cluster, fail, need_extra, positive, seed, workers
+from apf_viz.cli.common import (
+    cluster,
+    fail,
+    need_extra,
+    positive,
+    seed,
+    stop_on_sigterm_as_on_ctrl_c,
+    workers,
+)
 from apf_viz.explore.hunt_families import FAMILIES
 
 NAME = "hunt"
@@ -57,8 +64,7 @@ def run(args: argparse.Namespace) -> int:
     families = [f.strip() for f in args.families.split(",") if f.strip()]
     starts = hunt_starts(parse_range(args.ks, "--ks"), args.count, args.seed, families)
     folder = args.counterexamples or args.out.with_name(args.out.stem + "-counterexamples")
-    # SIGTERM (a batch system's stop) keeps what finished, as Ctrl+C does.
-    signal.signal(signal.SIGTERM, signal.getsignal(signal.SIGINT))
+    stop_on_sigterm_as_on_ctrl_c()  # keeps the starts that finished
     rows = run_hunt(
         starts, args.out, algorithm=args.algorithm, max_states=args.max_states, counterexamples=folder,
         flips=args.flips,
