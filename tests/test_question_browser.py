@@ -51,6 +51,7 @@ def class_page(browser, app: App):
         except PlaywrightError:
             if seat.search(page.url):
                 break
+    assert seat.search(page.url), page.url  # at its seat, whichever wait saw it arrive
     page.get_by_label("Event").wait_for()
     wait_for(lambda: set(app.screens) - before)
     drawn_there(app, page)
