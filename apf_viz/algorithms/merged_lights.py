@@ -42,6 +42,12 @@ MARKER = "+merge("
 _PAIR = re.compile(r"\s*([A-Za-z0-9_-]+)\s*=\s*([A-Za-z0-9_-]+)\s*")
 
 
+def merged_name(base: str, pairs: Sequence[tuple[str, str]]) -> str:
+    """``BASE+merge(a=b,…)``, the name :func:`split_name` reads back; ``base`` itself without pairs."""
+    merges = ",".join(f"{a}={b}" for a, b in pairs)
+    return f"{base}{MARKER}{merges})" if merges else base
+
+
 def split_name(name: str) -> tuple[str, list[tuple[str, str]]] | None:
     """``BASE+merge(a=b,…)`` as (BASE, [(a, b), …]); None for a name without a merge. Raises
     ``ValueError`` (one line) for a merge written wrong."""
@@ -84,8 +90,7 @@ class MergedLights:
         self.pairs = tuple((a, b) for b, a in self._as.items())
         self._start_hidden = base.lights[0] in self._as
         self.lights: tuple[str, ...] = tuple(dict.fromkeys(self.shown(light) for light in base.lights))
-        merges = ",".join(f"{a}={b}" for a, b in self.pairs)
-        self.name = f"{base.name}{MARKER}{merges})" if merges else base.name
+        self.name = merged_name(base.name, self.pairs)
 
     def shown(self, light: str) -> str:
         """The colour a light is shown as."""

@@ -6,7 +6,7 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from apf_viz.algorithms.merged_lights import MARKER
+from apf_viz.algorithms.merged_lights import MARKER, merged_name
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import ordered
 
@@ -40,7 +40,7 @@ class Merge:
 
     @property
     def variant(self) -> str:
-        return f"{self.algorithm}{MARKER}{self.name})"
+        return merged_name(self.algorithm, [(self.shown, self.hidden)])
 
     @classmethod
     def of(cls, row: dict) -> Merge:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from apf_viz.algorithms import ALGORITHMS
-from apf_viz.algorithms.merged_lights import MARKER, MergedLights, split_name
+from apf_viz.algorithms.merged_lights import MergedLights, merged_name, split_name
 from apf_viz.core.algorithm import Algorithm
 
 __all__ = ["NO_MERGE", "algorithm_names", "light_merges", "merge_of", "with_merge"]
@@ -74,4 +74,4 @@ def with_merge(name: str, choice: str) -> str:
     if choice == NO_MERGE:
         return base
     b, a = choice.split(" shown as ")
-    return f"{base}{MARKER}{a}={b})"
+    return merged_name(base, [(a, b)])
