@@ -8,7 +8,22 @@ import signal
 import sys
 
 __version__ = "0.1.0"
-__all__ = ["Run", "Shown", "Verdict", "__version__", "check", "hunt", "run", "sweep"]
+__all__ = [
+    "Found",
+    "LectureChecked",
+    "Run",
+    "Shown",
+    "Verdict",
+    "Worst",
+    "__version__",
+    "adversary",
+    "check",
+    "hunt",
+    "lecture_check",
+    "plot",
+    "run",
+    "sweep",
+]
 
 
 def __getattr__(name: str) -> object:
@@ -43,4 +58,18 @@ if _STARTING:
 from typing import TYPE_CHECKING  # noqa: E402  (after the handler: a Ctrl+C during it is one line)
 
 if TYPE_CHECKING:
-    from apf_viz.api import Run, Shown, Verdict, check, hunt, run, sweep
+    from apf_viz.api import (
+        Found,
+        LectureChecked,
+        Run,
+        Shown,
+        Verdict,
+        Worst,
+        adversary,
+        check,
+        hunt,
+        lecture_check,
+        plot,
+        run,
+        sweep,
+    )

@@ -168,7 +168,7 @@ def test_bad_inputs_are_one_line_errors_and_seeds_are_never_negative():
         (lambda: apf_viz.run([(0, 0), (1, 0.5)], [(0, 0), (1, 0)]), "valid integer"),
         (lambda: apf_viz.run("unsolvable-4", "block-6"), "unsolvable start|points"),
         (lambda: apf_viz.check("sym-call-7", "cup-7", flips="some"), "choose all or file"),
-        (lambda: apf_viz.sweep(ks=[3], seeds=[-2]), "seeds are 0 or more"),
+        (lambda: apf_viz.sweep(ks=[3], seeds=[-2]), "seeds are whole numbers, 0 or more"),
     ]:
         with pytest.raises(InputError, match=said):
             call()

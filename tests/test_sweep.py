@@ -202,7 +202,7 @@ def test_the_searched_adversary_is_a_column_of_the_table_and_plot_draws_it_again
     is a row beside the built-ins', never below their most there (it starts from their best over seeds
     0–19), and beyond it on the generated k = 5 start of seed 5 (exact worst 60, built-ins 44);
     `apf-viz plot` draws both per start in worst_vs_kD.png."""
-    from apf_viz.plot import worst_against_built_ins
+    from apf_viz.charts import worst_against_built_ins
 
     out = tmp_path / "r.csv"
     done = run_cli("sweep", "--ks", "4,5", "--seeds", "5", "--schedulers", "async,fsync,worst-found",

@@ -10,7 +10,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.api.inputs import whole_numbers
+from apf_viz.api.progress_bars import ProgressBar
 from apf_viz.api.tables import pandas_for
+from apf_viz.api.workers import refuse_unstartable_workers, unguarded
 from apf_viz.core.formats import InputError
 
 if TYPE_CHECKING:
@@ -30,13 +33,14 @@ def hunt(
     counterexamples: str | os.PathLike[str] | None = None,
     workers: int | None = None,
     cluster: str | None = None,
-    progress: bool = False,
+    progress: bool = True,
 ) -> pandas.DataFrame:
     """``count`` generated starts (k drawn from ``ks``, the ``families`` in turn: all by default), each
     searched exhaustively under ASYNC; one row per start with ``apf-viz hunt``'s columns (family, k, seed,
     D, verdict, states, seconds, counterexample, …). A start past ``max_states`` is verdict "budget":
     nothing proved. ``flips="all"``: every assignment of the robots' y-axes (2^k searches a start).
-    ``out``: keep the table in this ``.parquet`` file, resumed if it exists.
+    ``out``: keep the table in this ``.parquet`` file, resumed if it exists. ``progress``: a bar with
+    the starts done and an ETA.
 
     >>> table = hunt(ks=[4], count=2, workers=1)
     >>> sorted(set(table["verdict"]))
@@ -44,13 +48,15 @@ def hunt(
     """
     from apf_viz.explore.hunt import COLUMNS, hunt_starts
     from apf_viz.explore.hunt_families import FAMILIES
-    from apf_viz.sweeps.hunt_driver import report_hunt, run_hunt
+    from apf_viz.sweeps.hunt_driver import run_hunt
 
     pandas = pandas_for("hunt's table")
     _check_arguments(count, max_states, algorithm, flips)
     chosen = list(FAMILIES) if families is None else list(families)
+    if cluster is None:
+        refuse_unstartable_workers("hunt()")
     try:
-        starts = hunt_starts(list(ks), count, seed, chosen)
+        starts = hunt_starts(whole_numbers("ks", ks), count, seed, chosen)
     except ValueError as e:
         raise InputError(str(e)) from None
     with tempfile.TemporaryDirectory(prefix="apf-viz-hunt-") as scratch:
@@ -59,10 +65,17 @@ def hunt(
             raise InputError(f"out {path}: write .parquet")
         folder = path.with_name(path.stem + "-counterexamples")
         folder = Path(counterexamples) if counterexamples is not None else folder
-        rows = run_hunt(
-            starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder, flips=flips,
-            workers=workers, cluster=cluster, progress=report_hunt if progress else None,
-        )  # fmt: skip
+        with ProgressBar("apf-viz hunt", len(starts), "starts", progress) as bar:
+            try:
+                rows = run_hunt(
+                    starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder,
+                    flips=flips, workers=workers, cluster=cluster,
+                    progress=lambda p: bar.to(p.finished, f"{p.failures} failing, {p.budget} out of budget"),
+                )  # fmt: skip
+            except RuntimeError as e:
+                if cluster is None and "failed to start" in str(e):
+                    raise unguarded("hunt()") from None
+                raise
         mine = [r for r in rows if r["algorithm"] == algorithm and r["flips"] == flips]
         table = pandas.DataFrame(mine, columns=list(COLUMNS))
     return table

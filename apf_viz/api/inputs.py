@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 import numbers
 import os
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -67,14 +67,45 @@ def _read(given: Points, kind: str) -> tuple[RobotsFile | PatternFile, str]:
                 raise InputError(f"{kind} {str(given)!r}: no such file, and no shipped {kind} of that name")
             path = found
         return (load_robots(path) if kind == "robots" else load_pattern(path)), path.name
-    points = [list(point) for point in given]
+    if isinstance(given, bytes | bytearray) or not isinstance(given, Sequence | Iterable):
+        raise InputError(f"{kind} {given!r}: a shipped name, a JSON file's path, or the points [(x, y), …]")
+    points = [_point(point, kind) for point in given]
     # As a file would say them: numpy's integers as integers, anything else left for the check to refuse.
     text = json.dumps({"robots": points} if kind == "robots" else {"points": points}, default=_plain)
     where = f"the {kind} given"
     return (parse_robots(text, where) if kind == "robots" else parse_pattern(text, where)), where
 
 
+def _point(point: object, kind: str) -> list[object]:
+    if isinstance(point, str | bytes) or not isinstance(point, Sequence | Iterable):
+        raise InputError(f"{kind}: {point!r} is not a point (x, y)")
+    return list(point)
+
+
 def _plain(value: object) -> object:
     if isinstance(value, numbers.Integral):
         return int(value)
     raise InputError(f"{value!r} is not a grid coordinate (an integer)")
+
+
+def whole_number(
+    name: str, value: object, low: int = 1, high: int | None = None, says: str | None = None
+) -> int:
+    """An integer argument (never a bool, a float or a string) from ``low`` to ``high``, or the one-line
+    :class:`InputError` naming it (and saying ``says``, or the range)."""
+    ok = isinstance(value, int) and not isinstance(value, bool) and value >= low
+    if not ok or (high is not None and value > high):  # type: ignore[operator]
+        span = f"{low:,} or more" if high is None else f"{low:,} to {high:,}"
+        raise InputError(f"{name} {value!r}: {says or 'a whole number, ' + span}")
+    return value  # type: ignore[return-value]
+
+
+def whole_numbers(name: str, values: object, low: int = 1) -> list[int]:
+    """A list of integer arguments (``ks=[4, 6]``, ``seeds=range(3)``), or the one-line InputError."""
+    if isinstance(values, str | bytes) or not isinstance(values, Iterable):
+        raise InputError(f"{name} {values!r}: a list of whole numbers, such as [4, 6] or range(1, 4)")
+    given = list(values)
+    for v in given:
+        if isinstance(v, bool) or not isinstance(v, int) or v < low:
+            raise InputError(f"{name} {given!r}: {name} are whole numbers, {low} or more (not {v!r})")
+    return given

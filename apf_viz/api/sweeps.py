@@ -10,7 +10,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM
+from apf_viz.api.inputs import whole_numbers
+from apf_viz.api.progress_bars import ProgressBar
 from apf_viz.api.tables import pandas_for
+from apf_viz.api.workers import refuse_unstartable_workers, unguarded
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
@@ -31,7 +34,7 @@ def sweep(
     workers: int | None = None,
     cluster: str | None = None,
     run_timeout: float | None = None,
-    progress: bool = False,
+    progress: bool = True,
 ) -> pandas.DataFrame:
     """Every run of the grid (each k, seed, scheduler, algorithm and light semantics; or each pair of
     ``starts``, a folder of ``NAME.robots.json`` + ``NAME.pattern.json``), one row each, with the columns
@@ -47,28 +50,38 @@ def sweep(
     (['D', 'algorithm', 'cycles'], 2)
     """
     pandas = pandas_for("sweep's table")
+    ks, seeds = whole_numbers("ks", ks), whole_numbers("seeds", seeds, 0)
+    if cluster is None:
+        refuse_unstartable_workers("sweep()")
     from apf_viz import sweeps as driver
 
     cells = driver.grid(
-        list(ks),
-        list(seeds),
+        ks,
+        seeds,
         list(schedulers),
         list(algorithms),
         list(light_semantics),
         Path(starts) if starts is not None else None,
     )
-    report = driver.report_progress if progress else None
-    with tempfile.TemporaryDirectory(prefix="apf-viz-sweep-") as scratch:
+    with (
+        tempfile.TemporaryDirectory(prefix="apf-viz-sweep-") as scratch,
+        ProgressBar("apf-viz sweep", len(cells), "runs", progress) as bar,
+    ):
         path = Path(out) if out is not None else Path(scratch) / "results.parquet"
         if path.suffix not in (".parquet", ".csv"):
             raise InputError(f"out {path}: write .parquet or .csv")
-        rows = driver.run_sweep(
-            cells,
-            path,
-            traces=Path(traces) if traces is not None else None,
-            workers=workers,
-            cluster=cluster,
-            progress=report,
-            run_timeout=run_timeout,
-        )
+        try:
+            rows = driver.run_sweep(
+                cells,
+                path,
+                traces=Path(traces) if traces is not None else None,
+                workers=workers,
+                cluster=cluster,
+                progress=lambda p: bar.to(p.finished, f"{p.failed} not formed"),
+                run_timeout=run_timeout,
+            )
+        except RuntimeError as e:
+            if cluster is None and "failed to start" in str(e):
+                raise unguarded("sweep()") from None
+            raise
     return pandas.DataFrame(rows, columns=list(driver.COLUMNS))

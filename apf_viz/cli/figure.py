@@ -11,12 +11,12 @@ from apf_viz.cli.sessions import start_session, trace_session
 from apf_viz.core.files import check_writable, write_atomic
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import AUTOMATIC
+from apf_viz.figure import FORMATS
 
 NAME = "figure"
 HELP = "one moment of a run (or the paper's figures) as SVG, TikZ or PNG, in grid units, with a legend"
 OUTPUTS = ("out",)
 """The options naming files this command writes (never one of its inputs)."""
-FORMATS = ("svg", "tikz", "png")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -25,18 +25,18 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     need_extra("plot", ["matplotlib", "pyarrow"])
-    from apf_viz import lights, plot
+    from apf_viz import charts, lights
     from apf_viz import sweeps as sweep
 
     check_readable(args.results)  # missing, a folder or a FIFO: one line
     if args.results.suffix == ".parquet" and lights.is_lights_table(args.results):
         table = lights.read_lights(args.results)
         _say_where(args.out)  # once the table is read: a bad one is refused in its one line
-        written = [plot.plot_lights(table, args.out)]
+        written = [charts.plot_lights(table, args.out)]
     else:
         rows = sweep.read_results(args.results)
         _say_where(args.out)
-        written = plot.plot(rows, args.out)
+        written = charts.plot(rows, args.out)
     for path in written:
         print(path)
     return 0

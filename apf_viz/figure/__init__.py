@@ -6,5 +6,9 @@ and frames, one robot's rays and the robots it cannot see, a legend); :mod:`~apf
 :mod:`~apf_viz.figure.tikz` write it out. No viser here.
 """
 
-# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing is re-exported.
-__all__: list[str] = []
+# The modules are the interface: import from them (apf_viz.<package>.<module>); nothing else is here but
+# the formats, which the command line's help needs without loading a drawing.
+__all__ = ["FORMATS"]
+
+FORMATS = ("svg", "tikz", "png")
+"""Every format a figure is drawn in: SVG and TikZ text, and PNG (matplotlib)."""
