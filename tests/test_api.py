@@ -202,7 +202,7 @@ def test_every_example_of_the_api_doc_runs_as_written_in_an_empty_folder(tmp_pat
         else:
             continue
         ran.append(info)
-    assert ran.count("python") >= 5 and "sh" in ran and "python file=mylamp.py" in ran
+    assert ran.count("python") >= 9 and "sh" in ran and "python file=mylamp.py" in ran
     assert (tmp_path / "run.jsonl").is_file() and (tmp_path / "cex.jsonl").is_file()
 
 

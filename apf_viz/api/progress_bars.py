@@ -45,10 +45,9 @@ class ProgressBar:
             of = f"/{self.total:,}" if self.total is not None else ""
             show_progress(f"{self.what}: {n:,}{of} {self.unit}{'; ' + note if note else ''}", last=False)
             return
-        self._bar.n = n
         if note:
             self._bar.set_postfix_str(note, refresh=False)
-        self._bar.refresh()
+        self._bar.update(n - self._bar.n)  # update, not refresh: it keeps the quiet spell (delay)
 
     def close(self) -> None:
         if not self.enabled:
