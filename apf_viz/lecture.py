@@ -31,12 +31,14 @@ State = Literal["running", "formed", "collision", "stuck", "limit"]  # a run's s
 _PANEL_WORDS = re.compile(r"\b(?:(?:the )?\w+ (?:panel|folder)|the panel)\b", re.I)
 
 
+# Every model here is strict: a lecture's author writes 0 for a number; "0", true or 0.0 is a mistake
+# said in one line, never read as 0 (tests/test_lecture.py).
 class Until(BaseModel):
     """What a stop runs to: exactly one of an event number, a stage (words of the algorithm's stage
     name), the first time a rule id fires (``A1.off.terminal``; a part of a composite id counts) or an
     outcome."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     event: int | None = Field(default=None, ge=0, le=MAX_EVENT)
     stage: str | None = Field(default=None, min_length=1, max_length=200)
     rule: str | None = Field(default=None, min_length=1, max_length=120)
@@ -63,7 +65,7 @@ class Expect(BaseModel):
     """What a stop claims is true when it is reached; ``apf-viz lecture check`` holds every claim. Each
     field is optional; a field given is a claim."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     # light -> how many robots show it, exactly (0: none); lights not named are not claimed
     lights: dict[str, int] | None = Field(default=None, max_length=20)
     state: State | None = None  # the run's state
@@ -142,7 +144,7 @@ class Question(BaseModel):
     does from the stop under the lecture's scheduler and seed (workbench/question.py). ``robot``: which
     robot a ``cell`` or ``light`` question is about (and only theirs)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     kind: QuestionKind
     robot: int | None = Field(default=None, ge=0, le=100_000)
     text: str | None = Field(default=None, min_length=1, max_length=160)  # else the kind's own words
@@ -164,7 +166,7 @@ class Stop(BaseModel):
     """One stop: where (a Demo scenario, else the run as the previous stop left it), until when, what
     to select or compare, and the words (a few sentences; the paper's symbols as ``L_1``, ``H_L^O``)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     title: str = Field(min_length=1, max_length=120)
     say: str = Field(min_length=1, max_length=2000)
     scenario: str | None = Field(default=None, max_length=120)
@@ -191,7 +193,7 @@ class Stop(BaseModel):
 
 
 class Lecture(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     format: Literal["apf-viz-lecture"]
     version: Literal[1]
     title: str = Field(min_length=1, max_length=200)
@@ -244,7 +246,7 @@ class Marked(BaseModel):
     and ``L_H`` (the vertical and horizontal lines through it), ``L_I`` and ``R_I`` (the nearest occupied
     vertical lines to its left and right)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     robot: int = Field(ge=0, le=100_000)
     name: str = Field(min_length=1, max_length=8)
     lines: tuple[Literal["L_V", "L_H", "L_I", "R_I"], ...] = ()
@@ -255,7 +257,7 @@ class Figure(BaseModel):
     its picture holds, the robots' lights then (how many show each; what the caption describes) and the
     caption, in the paper's words."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
     label: str
     caption: str
     scenario: str
@@ -277,7 +279,7 @@ class Figure(BaseModel):
 
 
 class _Figures(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     note: str = ""
     figures: list[Figure]
 

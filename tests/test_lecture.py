@@ -202,6 +202,13 @@ def test_a_stop_that_is_never_reached_fails_the_check_with_exit_1(tmp_path, caps
         ({"until": {"outcome": "exploded"}}, "stops[1].until.outcome:"),
         ({"select": -1}, "stops[1].select:"),
         ({"script": "rm -rf /"}, "stops[1].script:"),
+        # A number is a number: a string, a truth value or a float is the author's mistake, never 0.
+        ({"ask": {"kind": "light", "robot": "0"}}, "stops[1].ask.robot: Input should be a valid integer"),
+        ({"ask": {"kind": "light", "robot": True}}, "stops[1].ask.robot: Input should be a valid integer"),
+        ({"ask": {"kind": "light", "robot": 0.0}}, "stops[1].ask.robot: Input should be a valid integer"),
+        ({"select": "2"}, "stops[1].select: Input should be a valid integer"),
+        ({"until": {"event": 3.0}}, "stops[1].until.event: Input should be a valid integer"),
+        ({"class_address": 1}, "stops[1].class_address: Input should be a valid boolean"),
     ],
 )
 def test_a_malformed_lecture_is_one_line_naming_the_field_and_exit_2(tmp_path, capsys, stop, said):

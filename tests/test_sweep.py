@@ -220,3 +220,17 @@ def test_the_searched_adversary_is_a_column_of_the_table_and_plot_draws_it_again
     assert plots.returncode == 0, plots.stderr
     png = tmp_path / "plots" / "worst_vs_kD.png"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000
+
+
+def test_every_column_of_the_table_is_documented():
+    """docs/SWEEPS.md's table of columns names every column a sweep writes (one row may name several)."""
+    import re
+
+    from apf_viz.sweeps.cells import COLUMNS
+
+    text = (Path(__file__).resolve().parent.parent / "docs" / "SWEEPS.md").read_text()
+    table = text.split("## The columns", 1)[1].split("\n## ", 1)[0]
+    named = {
+        name.strip() for row in re.findall(r"^\| ([^|]+) \|", table, flags=re.M) for name in row.split(",")
+    }
+    assert set(COLUMNS) - named == set()
