@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from apf_viz.algorithms import DEFAULT_ALGORITHM, Factory, algorithm_from_command_line
 from apf_viz.api.inputs import Points, Start, start_of, whole_number
+from apf_viz.api.progress_bars import ProgressBar
 from apf_viz.api.tables import pandas_for
 from apf_viz.core.algorithm import Algorithm
 from apf_viz.core.budget import run_budget
@@ -55,6 +56,7 @@ def run(
     schedule: str | os.PathLike[str] | Schedule | None = None,
     then: str | None = None,
     flips: Literal["schedule", "file"] | None = None,
+    progress: bool = True,
 ) -> Run:
     """Run an algorithm from a start to its outcome, as ``apf-viz run`` does with the same options (the
     same numbers: tests/test_api.py compares them).
@@ -69,6 +71,7 @@ def run(
     instead of ``scheduler``, as ``run --schedule``: its flips and light semantics are the run's, the run
     stops where it ends (outcome ``schedule-end``) unless ``then`` names a scheduler to go on with;
     ``flips`` chooses between the schedule's flips and the robots file's when they differ.
+    ``progress``: a bar of the moves made, for a run longer than two seconds.
 
     >>> r = run("sym-call-7", "cup-7", seed=3)
     >>> r.outcome, r.k
@@ -107,15 +110,29 @@ def run(
         skip_noops=skip,
         fast_forward=fast_forward,
     )
-    if followed is None:
-        advance(engine, make_scheduler(scheduler or DEFAULT_SCHEDULER), seed)
-        return Run(engine, scheduler or DEFAULT_SCHEDULER, seed, start, plugins)
-    for _ in follow(engine, followed, where):
-        pass
-    if then is not None:
-        advance(engine, make_scheduler(then), seed)
+    with ProgressBar("apf-viz run", None, "moves", progress) as bar:
+        if followed is None:
+            _advance(engine, scheduler or DEFAULT_SCHEDULER, seed, bar)
+            return Run(engine, scheduler or DEFAULT_SCHEDULER, seed, start, plugins)
+        for _ in follow(engine, followed, where):
+            pass
+        if then is not None:
+            _advance(engine, then, seed, bar)
     outcome = "schedule-end" if then is None and not engine.finished else None
     return Run(engine, "schedule", seed, start, plugins, outcome)
+
+
+STEPS_BETWEEN_REPORTS = 5_000
+"""A long run says how far it is this often (the steps are the scheduler's, the same run either way)."""
+
+
+def _advance(engine: Engine, scheduler: str, seed: int, bar: ProgressBar) -> None:
+    """The scheduler drives the run to its end, saying its moves as it goes (a run of k = 300 takes
+    seconds)."""
+    chosen = make_scheduler(scheduler)
+    while not engine.finished:
+        advance(engine, chosen, seed, STEPS_BETWEEN_REPORTS)
+        bar.to(engine.state.moves, f"{engine.state.events:,} events")
 
 
 def chosen_algorithm(algorithm: str | None) -> tuple[Algorithm, dict[str, Factory]]:
