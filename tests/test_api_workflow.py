@@ -269,3 +269,15 @@ def test_the_adversarys_notebook_runs_top_to_bottom(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     assert "the built-in schedulers' most: 59 moves; the search: 69; exact: 69" in done.stdout
     assert (tmp_path / "worst.schedule").read_text().startswith('{"format": "apf-viz-schedule"')
+
+
+@pytest.mark.parametrize("fmt", ["svg", "tikz", "png"])
+def test_a_runs_figure_is_the_commands_in_every_format(tmp_path, fmt):
+    """``Run.figure(event, fmt, select, caption=True)`` is ``apf-viz figure … --caption`` byte for byte."""
+    out = tmp_path / f"cli.{fmt}"
+    main(
+        ["figure", "--robots", "sym-call-7", "--pattern", "cup-7", "--seed", "3", "--event", "10",
+         "--select", "2", "--caption", "--format", fmt, "--out", str(out)]
+    )  # fmt: skip
+    mine = apf_viz.run("sym-call-7", "cup-7", seed=3).figure(10, fmt=fmt, select=2, caption=True)
+    assert (mine if isinstance(mine, bytes) else mine.encode()) == out.read_bytes()

@@ -362,9 +362,13 @@ class Run:
         session.load_trace("run.jsonl", self.trace().encode(), MAX_TRACE_BYTES)
         return session
 
-    def figure(self, event: int | None = None, fmt: str = "svg", select: int | None = None) -> str | bytes:
-        """The run after ``event`` events (None: its end) as a figure: ``svg`` or ``tikz`` text, or
-        ``png`` bytes (matplotlib: the ``sweep`` extra). ``select``: the robot whose rays are drawn."""
+    def figure(
+        self, event: int | None = None, fmt: str = "svg", select: int | None = None, caption: bool = False
+    ) -> str | bytes:
+        """The run after ``event`` events (None: its end) as a figure, as ``apf-viz figure`` draws it:
+        ``svg`` or ``tikz`` text, or ``png`` bytes (matplotlib: the ``sweep`` extra). ``select``: the robot
+        whose rays are drawn; ``caption``: the caption written into the figure (``--caption``; without it,
+        a bare picture for a paper's own caption)."""
         from apf_viz.figure import FORMATS
         from apf_viz.figure.export import figure_png, figure_text, run_to_event
 
@@ -376,9 +380,13 @@ class Run:
             whole_number("select", select, 0, self.k - 1, f"the run has robots 0 to {self.k - 1}")
         session = self.session()
         run_to_event(session, event)
+        said = ""
+        if caption:
+            events = session.engine.state.events
+            said = f"{self.start.robots_name}, {self.scheduler}, seed {self.seed}, after {events} events"
         if fmt == "png":
-            return figure_png(session, select)
-        return figure_text(session, fmt, select)
+            return figure_png(session, select, said)
+        return figure_text(session, fmt, select, said)
 
     def show(self, height: int = 520) -> Shown:
         """The run, played in a notebook cell: the page ``apf-viz export`` writes (viser's own recording
