@@ -491,10 +491,12 @@ def test_a_websocket_path_that_is_not_ascii_is_a_class_page():
     assert roles.role_of("/present/sécret") == "class" and roles.role_of("/") == "class"
 
 
-def test_a_dragged_box_takes_the_cells_whose_centres_it_covers():
+def test_a_dragged_box_takes_the_cells_it_was_pressed_and_released_in_both_included():
     from apf_viz.ui.scene.camera import covered_cells
 
-    assert covered_cells((0.6, 0.6), (3.4, 2.4)) == ((1, 1), (3, 2))  # 3×2 covered, not the 5×3 touched
+    assert covered_cells((0.6, 0.6), (3.4, 2.4)) == ((1, 1), (3, 2))  # the cells pressed and released in
     assert covered_cells((3.4, 2.4), (0.6, 0.6)) == ((1, 1), (3, 2))  # dragged either way
     assert covered_cells((9.0001, -0.0001), (13.9999, 3.0)) == ((9, 0), (14, 3))  # from centre to centre
     assert covered_cells((2.2, 5.1), (2.4, 5.3)) == ((2, 5), (2, 5))  # inside one cell: that cell
+    # Released short of the last cell's centre: that cell's row and column are still the box's.
+    assert covered_cells((9.3, 0.2), (13.6, 2.7)) == ((9, 0), (14, 3))

@@ -341,3 +341,102 @@ def test_no_robots_is_not_called_solvable():
     assert s.editor.robots == []
     counts = s.view().counts
     assert "no robots" in counts and "solvable:" not in counts
+
+
+def test_a_download_carries_the_name_the_pattern_was_saved_or_loaded_under_wherever_it_is_drawn(tmp_path):
+    """Saved as "APF", moved (a drawing goes beside the robots), loaded back: the download is named
+    "APF" inside and saved as APF.pattern.json; an unnamed drawing is "pattern of N cells" in
+    pattern.json; an uploaded file's name is kept too."""
+    import json
+
+    from apf_viz.workbench.library import PatternLibrary
+
+    s = session()
+    s.use_library(PatternLibrary(tmp_path / "lib"))
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    s.draw_box((0, 0), (2, 1), erase=False)
+    assert (
+        json.loads(s.pattern_file())["name"] == "pattern of 6 cells"
+        and s.pattern_file_name() == "pattern.json"
+    )
+    s.save_pattern("APF")
+    s.transform("→")  # moved: the same shape
+    s.transform("↑")
+    assert json.loads(s.pattern_file())["name"] == "APF" and s.pattern_file_name() == "APF.pattern.json"
+    s.clear_pattern()
+    s.load_saved_pattern("APF")
+    assert json.loads(s.pattern_file())["name"] == "APF"
+    s.draw_box((40, 40), (40, 40), erase=False)  # another shape: no longer the one saved
+    assert json.loads(s.pattern_file())["name"] == "pattern of 7 cells"
+    s.load_pattern("mine.json", json.dumps({"name": "my L / 1", "points": [[0, 0], [0, 1], [1, 0]]}).encode())
+    assert (
+        json.loads(s.pattern_file())["name"] == "my L / 1" and s.pattern_file_name() == "my-L-1.pattern.json"
+    )
+
+
+def test_a_drawing_at_its_bound_keeps_its_history_small_and_one_cell_more_is_one_line():
+    """10,000 cells drawn (100 boxes of a row each), then 300 edits of one cell: the whole history (200
+    steps) holds what each step changed, not 200 copies of the drawing (which would be 16 MB of references
+    alone); past the bound, a change is refused in one line and the drawing is kept."""
+    import tracemalloc
+
+    from apf_viz.workbench.editor import MAX_DRAWN, UNDO_DEPTH
+
+    s = session()
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    tracemalloc.start()
+    try:
+        base = tracemalloc.get_traced_memory()[0]
+        for row in range(100):
+            s.draw_box((0, row), (99, row), erase=False)
+        assert len(s.editor.pattern) == MAX_DRAWN
+        for i in range(150):
+            s.draw_box((i % 100, 50), (i % 100, 50), erase=True)
+            s.draw_box((i % 100, 50), (i % 100, 50), erase=False)
+        held = tracemalloc.get_traced_memory()[0] - base
+    finally:
+        tracemalloc.stop()
+    assert held < 5_000_000, f"{held:,} bytes for the drawing and its history"
+    drawn = list(s.editor.pattern)
+    with pytest.raises(InputError, match="a drawing holds at most 10,000") as refused:
+        s.draw_box((200, 0), (200, 0), erase=False)
+    assert "\n" not in str(refused.value) and s.editor.pattern == drawn
+    for _ in range(UNDO_DEPTH):  # every step of the history still undoes exactly
+        s.editor.undo()
+    assert len(s.editor.pattern) == MAX_DRAWN  # the last 200 steps: one-cell erases and adds, undone
+    assert s.editor.undo() == "nothing to undo"
+
+
+@given(st.lists(st.tuples(st.sampled_from(["toggle", "box", "undo", "redo", "erase"]), st.integers(0, 6),
+                          st.integers(0, 6)), max_size=40))  # fmt: skip
+@settings(max_examples=150, deadline=None)
+def test_undo_and_redo_by_differences_restore_exactly_what_copies_would(steps):
+    """The history kept as differences against a model that keeps a copy of every draft."""
+    editor = Editor([(0, 0)], [True], [])
+    undo: list = []
+    redo: list = []
+    for what, x, y in steps:
+        before = editor.draft
+        if what == "undo":
+            editor.undo()
+            if undo:
+                redo.append(before)
+                assert editor.draft == undo.pop()
+            continue
+        if what == "redo":
+            editor.redo()
+            if redo:
+                undo.append(before)
+                assert editor.draft == redo.pop()
+            continue
+        if what == "toggle":
+            editor.toggle_target((x, y))
+        elif what == "box":
+            editor.set_pattern([*editor.pattern, *shapes.box((x, y), (x + 1, y + 1))], "box")
+        else:
+            editor.set_pattern([p for p in editor.pattern if p[0] != x], "erase")
+        if editor.draft != before:
+            undo.append(before)
+            redo.clear()

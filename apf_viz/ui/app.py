@@ -373,7 +373,8 @@ class App:
         a run growing out of a framed box (robots, targets, the leader's frame) re-frames the browsers
         whose camera is framed — one moved by hand is left alone — and the initial camera of browsers
         yet to join, with room to grow; and a run that ends re-frames them on its end, which a camera
-        framed for the run's widest moment (the line) shows small."""
+        framed for the run's widest moment (the line) shows small. While a person draws (an Edit mode)
+        nothing is re-framed but by F."""
         b = self.renderer.bounds  # ``engine``'s, just drawn
         ended = engine.outcome is not None
         # A Compare begun or ended is a new picture too: both runs framed whole, not the first run's box
@@ -388,6 +389,10 @@ class App:
                     screen.frame(self.renderer)
             return
         self._framed_end = ended
+        if self.session.mode != "run":
+            # Drawing: the camera stays where the person put it (F frames). Re-framed to a drawing
+            # that grew, the pointer would land on other cells mid-stroke and paint far away.
+            return
         if not inside(b, self._initial_bounds):
             f = self._initial_bounds
             self._frame_initial(None if f is None else grown_box(b, f))

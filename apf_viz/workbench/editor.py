@@ -4,15 +4,54 @@ The shapes themselves are pure functions (core/shapes.py); workbench/studio.py t
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
 
-from apf_viz.core.formats import size_problem
+from apf_viz.core.formats import InputError, size_problem
 from apf_viz.core.grid import Point, as_point
 from apf_viz.core.pattern_match import matches_pattern
 from apf_viz.core.symmetry import describe_axis, unsolvable_axis
 
-UNDO_DEPTH = 200  # drafts kept for Undo
+UNDO_DEPTH = 200  # changes kept for Undo (each one what it changed, not a copy of the drafts)
+MAX_DRAWN = 10_000
+"""Cells a drawing holds at most, in the pattern and in the robots each (as many as the largest shape one
+gesture draws, core/shapes.MAX_SIZE): past it a change is refused in one line (docs/GUIDE.md). A run of
+more robots than a page plays is no drawing; tests/test_studio.py draws at the bound and measures."""
 
 Draft = tuple[tuple[Point, ...], tuple[bool, ...], tuple[Point, ...]]  # robots, their flips, pattern
+
+
+@dataclass(frozen=True)
+class Splice:
+    """What a change did to one list: at ``at``, ``before`` became ``after`` (the rest, before and after
+    them, unchanged). A cell painted or erased is a splice of one cell, whatever the drawing's size."""
+
+    at: int
+    before: tuple[Any, ...]
+    after: tuple[Any, ...]
+
+    @classmethod
+    def between(cls, old: Sequence[Any], new: Sequence[Any]) -> Splice | None:
+        """The smallest splice that makes ``new`` of ``old`` (None: they are equal)."""
+        n = min(len(old), len(new))
+        head = 0
+        while head < n and old[head] == new[head]:
+            head += 1
+        if head == len(old) == len(new):
+            return None
+        tail = 0
+        while tail < n - head and old[len(old) - 1 - tail] == new[len(new) - 1 - tail]:
+            tail += 1
+        return cls(head, tuple(old[head : len(old) - tail]), tuple(new[head : len(new) - tail]))
+
+    def undone(self, now: list[Any]) -> list[Any]:
+        return [*now[: self.at], *self.before, *now[self.at + len(self.after) :]]
+
+    def redone(self, then: list[Any]) -> list[Any]:
+        return [*then[: self.at], *self.after, *then[self.at + len(self.before) :]]
+
+
+Change = tuple[Splice | None, Splice | None, Splice | None]  # what one change did: robots, flips, pattern
 
 
 def draft_of(robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> Draft:
@@ -28,9 +67,10 @@ class Editor:
         self.robots: list[Point] = [as_point(p) for p in robots]
         self.y_up: list[bool] = list(y_up)
         self.pattern: list[Point] = [as_point(p) for p in pattern]
-        self._undo: list[Draft] = []
-        self._redo: list[Draft] = []
-        self._gesture: Draft | None = None  # the draft before a gesture in progress (a drag)
+        self._undo: list[Change] = []
+        self._redo: list[Change] = []
+        self._before: Draft | None = None  # the drafts before the change being made, until it is kept
+        self._gesture = False  # a drag in progress: its changes are one step of the history
 
     # ------------------------------------------------------------------ history
     @property
@@ -43,42 +83,65 @@ class Editor:
         self.robots, self.y_up, self.pattern = list(robots), list(y_up), list(pattern)
 
     def _record(self) -> None:
-        """Keep the draft as it is before a change (a new change forgets what Redo had). During a gesture
-        it was kept once, when the gesture began: one Undo takes back the whole drag."""
-        if self._gesture is not None:
+        """Before a change: keep what the change before it did (a new change forgets what Redo had).
+        During a gesture the drafts were kept once, when it began: one Undo takes back the whole drag."""
+        if self._gesture:
             return
-        self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], self.draft]
+        self._keep()
+        self._before = self.draft
         self._redo = []
+
+    def _keep(self) -> None:
+        """The change since :meth:`_record` as what it did (a change that did nothing is no step)."""
+        if self._before is None:
+            return
+        robots, y_up, pattern = self._before
+        self._before = None
+        change = (
+            Splice.between(robots, self.robots),
+            Splice.between(y_up, self.y_up),
+            Splice.between(pattern, self.pattern),
+        )
+        if change != (None, None, None):
+            self._undo = [*self._undo[-(UNDO_DEPTH - 1) :], change]
 
     def begin_gesture(self) -> None:
         """A drag begins: its changes, however many, are one step of the history."""
         self.end_gesture()
         self._record()
-        self._gesture = self.draft
+        self._gesture = True
 
     def end_gesture(self) -> None:
         """The drag ends; a drag that changed nothing leaves no step in the history."""
-        if self._gesture is None:
-            return
-        unchanged = self.draft == self._gesture
-        self._gesture = None
-        if unchanged and self._undo and self._undo[-1] == self.draft:
-            self._undo.pop()
+        self._gesture = False
 
     def undo(self) -> str:
         self.end_gesture()
+        self._keep()
         if not self._undo:
             return "nothing to undo"
-        self._redo.append(self.draft)
-        self._restore(self._undo.pop())
+        change = self._undo.pop()
+        self._apply(change, undo=True)
+        self._redo.append(change)
         return "undone"
 
     def redo(self) -> str:
+        self._keep()
         if not self._redo:
             return "nothing to redo"
-        self._undo.append(self.draft)
-        self._restore(self._redo.pop())
+        change = self._redo.pop()
+        self._apply(change, undo=False)
+        self._undo.append(change)
         return "redone"
+
+    def _apply(self, change: Change, undo: bool) -> None:
+        robots, y_up, pattern = change
+        if robots is not None:
+            self.robots = robots.undone(self.robots) if undo else robots.redone(self.robots)
+        if y_up is not None:
+            self.y_up = y_up.undone(self.y_up) if undo else y_up.redone(self.y_up)
+        if pattern is not None:
+            self.pattern = pattern.undone(self.pattern) if undo else pattern.redone(self.pattern)
 
     def start_from(self, robots: Sequence[Point], y_up: Sequence[bool], pattern: Sequence[Point]) -> bool:
         """A new run's start and pattern become the drafts; the drafts as they were go into the history,
@@ -97,6 +160,7 @@ class Editor:
         cells = [as_point(p) for p in dict.fromkeys(cells)]
         if cells == self.pattern:
             return f"{said}: nothing changed"
+        _bounded(len(cells), "the pattern")
         self._record()
         self.pattern = cells
         return said
@@ -106,6 +170,7 @@ class Editor:
         cells = [as_point(p) for p in dict.fromkeys(cells)]
         if cells == self.robots:
             return f"{said}: nothing changed"
+        _bounded(len(cells), "the robots")
         flips = dict(zip(self.robots, self.y_up, strict=True))
         self._record()
         self.robots = cells
@@ -164,3 +229,8 @@ class Editor:
                 "a horizontal line through no robot (Theorem 1); move or add a robot to break the symmetry"
             )
         return None
+
+
+def _bounded(cells: int, what: str) -> None:
+    if cells > MAX_DRAWN:
+        raise InputError(f"{what} would have {cells:,} cells; a drawing holds at most {MAX_DRAWN:,}")

@@ -19,7 +19,8 @@ TOOLS: dict[str, str] = {
     "cell": "click a cell: add or remove it; drag: paint",
     "eraser": "click or drag: erase cells",
     "fill": "click inside a closed outline: fill it",
-    "box": "drag a box: fill the cells it covers (Shift: erase them); a click toggles one cell",
+    "box": "drag from a cell to a cell: the box between, both included, filled (Shift: erased); a click "
+    "toggles one cell",
     "select": "drag a box: select the cells in it (then Copy, Cut, Delete; Move all moves them)",
     "paste": "click: the copied cells, their bottom-left corner there",
     "line": "click two cells: every cell of the digital line between them",
@@ -39,6 +40,18 @@ NUDGES = {"←": (-1, 0), "→": (1, 0), "↑": (0, 1), "↓": (0, -1)}  # the w
 Mode = Literal["edit-pattern", "edit-robots"]
 MIRRORS = {"off": (False, False), "x ↔": (True, False), "y ↕": (False, True), "both": (True, True)}
 PAINTING = ("cell", "eraser")  # the tools a drag paints with
+TOOL_KEYS = {
+    "cell": "C",
+    "eraser": "E",
+    "fill": "G",
+    "box": "U",
+    "select": "H",
+    "line": "L",
+    "text": "T",
+    "move": "V",
+}
+"""A key per tool a pixel editor has (Aseprite's E eraser, G bucket, U rectangle, L line, T text, V move;
+C the cell, H the selection: viser's camera takes W A S D Q, the run M, F, P, I, J, B and R)."""
 CAUTION_CELLS = 500
 """A fit that adds more robots than this takes seconds (each new robot keeps the start solvable): the
 first click says so, a second one goes on."""

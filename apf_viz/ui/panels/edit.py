@@ -11,13 +11,42 @@ from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.scene.camera import covered_cells
 from apf_viz.ui.scene.paint_surface import PaintSurface
 from apf_viz.workbench.selection import SELECTION_COMMANDS
-from apf_viz.workbench.studio import FIT_PATTERN, FIT_ROBOTS, MIRRORS, NUDGES, PAINTING, TOOLS, TRANSFORMS
+from apf_viz.workbench.studio import (
+    FIT_PATTERN,
+    FIT_ROBOTS,
+    MIRRORS,
+    NUDGES,
+    PAINTING,
+    TOOL_KEYS,
+    TOOLS,
+    TRANSFORMS,
+)
 from apf_viz.workbench.view_model import SessionView
-
-REFRAMED = ("Rotate 90°", "Scale ×2", "Mirror ↔", "Mirror ↕")  # transforms after which the camera reframes
 
 MODES = {"Run": "run", "Edit pattern": "edit-pattern", "Edit robots": "edit-robots"}
 MODE_LABELS = {v: k for k, v in MODES.items()}
+KEYS_LINE = (
+    "<small>Keys: "
+    + " · ".join(f"{key} {tool}" for tool, key in TOOL_KEYS.items())
+    + " · Ctrl+Z undo · Ctrl+Shift+Z redo · F frame</small>"
+)
+
+# While this page draws, E picks the eraser and must not also lift viser's camera (its W A S D Q E keys).
+# Viser's shortcuts listen on <html>, its camera on the document above it: a listener on <html> that
+# stops E there lets the shortcut through and keeps the camera still. One listener a page; the flag is
+# set by :meth:`EditFolder.refresh` (an image that fails to load runs its onerror).
+E_KEEPS_THE_CAMERA = (
+    '<img alt="" src="data:,drawing" style="display:none" onerror="'
+    "if(!window.apfDrawKeys){window.apfDrawKeys=1;document.documentElement.addEventListener('keydown',"
+    "function(e){if(window.apfDrawing&&e.code==='KeyE'){e.stopPropagation();}});}"
+    '">'
+)
+DRAWING_FLAG = '<img alt="" src="data:,drawing-{on}" style="display:none" onerror="window.apfDrawing={on}">'
+
+
+def tool_hint(tool: str) -> str:
+    key = TOOL_KEYS.get(tool)
+    return f"{TOOLS[tool]} (key {key})" if key else TOOLS[tool]
 
 
 class EditFolder:
@@ -28,7 +57,7 @@ class EditFolder:
             self.mode = gui.add_dropdown("Mode", tuple(MODES), initial_value="Run")
             self.mode.on_update(self._on_mode)
             self.counts = gui.add_markdown("")
-            self.tool = gui.add_dropdown("Tool", tuple(TOOLS), initial_value="cell", hint=TOOLS["cell"])
+            self.tool = gui.add_dropdown("Tool", tuple(TOOLS), initial_value="cell", hint=tool_hint("cell"))
             self.tool.on_update(ctx.from_browser(lambda e: self._on_tool(), "Tool"))
             self.size = gui.add_number(
                 "Size", initial_value=4, min=1, max=200, step=1, hint="radius, length, steps"
@@ -39,6 +68,10 @@ class EditFolder:
             )
             self.text.on_update(ctx.from_browser(self._on_text, "Text"))
             self.tool_hint = gui.add_markdown("")
+            gui.add_markdown(KEYS_LINE)
+            gui.add_html(E_KEEPS_THE_CAMERA)
+            self._drawing_flag = gui.add_html(DRAWING_FLAG.format(on=0))
+            self._drawing = False
             self.said = gui.add_markdown("")  # what the last edit did (Studio.said): not over the run
             self.mirror = gui.add_dropdown(
                 "Mirror", tuple(MIRRORS), initial_value="off", hint="copy every cell drawn across the middle"
@@ -68,6 +101,9 @@ class EditFolder:
                 "Saved", ("—", *s.saved), initial_value="—", hint="load a saved pattern"
             )
             self.saved.on_update(ctx.from_browser(self._on_saved, "Library"))
+        for tool, key in TOOL_KEYS.items():
+            command = gui.add_command(f"Tool: {tool}", description=TOOLS[tool], hotkey=key)
+            command.on_trigger(ctx.guard(lambda e, tool=tool: self._key_tool(tool), "Tool"))
         for label, key, modifier in (("Undo", "Z", "cmd/ctrl"), ("Redo", "Z", "cmd/ctrl+shift")):
             command = gui.add_command(
                 label, description=f"{label} the last edit", hotkey=key, modifier=modifier
@@ -97,11 +133,8 @@ class EditFolder:
             raise
 
     def _on_transform(self, event) -> str:
-        said = self.ctx.session.transform(event.target.value)
-        if event.target.value in REFRAMED and event.client is not None:
-            self.ctx.changed()
-            self.ctx.frame(event.client)  # the drawing moved or grew: show it whole again
-        return said
+        # The camera stays where the person put it, even when the drawing grows out of view: F frames it.
+        return self.ctx.session.transform(event.target.value)
 
     def _stroke(self, client, phase: str, screen: tuple[float, float] | None) -> None:
         """A drag on the paint surface: the cell under the pointer painted (or erased) along the way."""
@@ -120,9 +153,18 @@ class EditFolder:
         name = self.saved.value
         return self.ctx.session.load_saved_pattern(name) if name != "—" else None
 
+    def _key_tool(self, tool: str) -> str | None:
+        """A tool's key: in an Edit mode, that tool (the dropdown shows it at the next refresh)."""
+        s = self.ctx.session
+        if s.mode == "run":
+            return None  # the key is a tool's only while drawing
+        s.set_tool(tool)
+        self.ctx.changed()
+        return None
+
     def _on_tool(self) -> None:
         self.ctx.session.set_tool(self.tool.value)
-        self.tool.hint = TOOLS[self.tool.value]
+        self.tool.hint = tool_hint(self.tool.value)
         self.ctx.release_focus()  # a key typed next is a shortcut, not a search in the dropdown
 
     def _on_mode(self, event) -> None:
@@ -141,8 +183,8 @@ class EditFolder:
         self.ctx.changed()
 
     def _box(self, event, erase: bool) -> None:
-        """A box dragged on this browser's canvas: the cells whose centres it covers (what its preview
-        shows), then filled, erased or selected."""
+        """A box dragged on this browser's canvas: from the cell pressed in to the cell released in, both
+        included (as a pixel editor's rectangle), then filled, erased or selected."""
         a, b = (self.ctx.point_at(event.client, corner) for corner in (event.screen_min, event.screen_max))
         if a is None or b is None:
             tell(event.client, "Box", "drag the box over the grid", error=True)
@@ -171,7 +213,12 @@ class EditFolder:
         studio = self.ctx.session.screen.studio
         if self.tool.value != studio.tool:
             self.tool.value = studio.tool
-        hint = TOOLS[studio.tool]
+            self.tool.hint = tool_hint(studio.tool)
+        drawing = view.mode != "run"
+        if drawing != self._drawing:
+            self._drawing = drawing
+            put(self._drawing_flag, content=DRAWING_FLAG.format(on=int(drawing)))
+        hint = tool_hint(studio.tool)
         if view.anchor is not None:  # the first of two clicks is in: say what the second does
             second = "where it goes" if studio.tool == "move" else "the second"
             hint = f"**first click at {view.anchor}**: now click {second} ({hint})"

@@ -59,7 +59,7 @@ class FilesFolder:
                 button.on_upload(self._uploader(loader))
             for label, name, make in (
                 ("Download robots", "robots.json", "robots_file"),
-                ("Download pattern", "pattern.json", "pattern_file"),
+                ("Download pattern", "pattern_file_name", "pattern_file"),
                 ("Download trace", "trace.jsonl", "trace_file"),
                 ("Download schedule", "schedule.jsonl", "schedule_file"),
             ):
@@ -108,10 +108,14 @@ class FilesFolder:
         return on_upload
 
     def _downloader(self, filename: str, make: str) -> Callable:
+        """A download of ``make()``'s text, saved as ``filename`` (or, naming a method, what it says)."""
+
         def on_click(event) -> None:
             if event.client is not None:
                 text = getattr(self.ctx.session, make)()
-                event.client.send_file_download(filename, text.encode("utf-8"), save_immediately=True)
+                named = getattr(self.ctx.session, filename, None)
+                name = named() if callable(named) else filename
+                event.client.send_file_download(name, text.encode("utf-8"), save_immediately=True)
 
         return on_click
 

@@ -36,6 +36,18 @@ SLIDER_KEYS_STAY = (
     '">'
 )
 
+# A choice made in any dropdown (Scheduler, Algorithm, Demo pattern, Figure, …) gives the keyboard back to
+# the run: the dropdown would keep the focus, so Enter would do nothing and M would type into it. One
+# listener a page, installed as above; it acts once the dropdown has taken the option.
+DROPDOWNS_RELEASE = (
+    '<img alt="" src="data:,dropdowns" style="display:none" onerror="'
+    "if(!window.apfDropdowns){window.apfDropdowns=1;document.addEventListener('click',function(e){"
+    "var o=e.target&&e.target.closest&&e.target.closest('[role=option]');if(!o){return;}"
+    "setTimeout(function(){var a=document.activeElement;"
+    "if(a&&a!==document.body&&a.blur){a.blur();}},50);},true);}"
+    '">'
+)
+
 RELEASE_FOCUS = (
     '<img alt="" src="data:,{n}" style="display:none" '
     'onerror="document.activeElement && document.activeElement.blur && document.activeElement.blur()">'
@@ -84,6 +96,7 @@ class RunFolder:
             # a field has focus, and the dropdown keeps it. A constant handler in this browser's own panel
             # gives the focus up (an image that fails to load runs its onerror); a new count re-runs it.
             gui.add_html(ESCAPE_RELEASES)
+            gui.add_html(DROPDOWNS_RELEASE)
             gui.add_html(SLIDER_KEYS_STAY)
             gui.add_html(viser_compat.NOTICES_BESIDE_THE_RUN)  # notifications never cover the run
             self._release = gui.add_html("")

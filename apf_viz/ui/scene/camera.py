@@ -93,23 +93,12 @@ def cell_of_ray(origin, direction) -> tuple[int, int] | None:
     return None if point is None else (round(point[0]), round(point[1]))
 
 
-EDGE = 0.05
-"""Of a cell: a drag that ends on a centre, give or take the pointer's pixel, takes that cell."""
-
-
 def covered_cells(a: tuple[float, float], b: tuple[float, float]) -> tuple[tuple[int, int], tuple[int, int]]:
-    """The corners of the cells a dragged rectangle covers the centres of (what its preview shows
-    filled), a centre on its edge (within :data:`EDGE`) included; a rectangle narrower than a cell takes
-    the cells its corners are in."""
-    x0, x1 = sorted((a[0], b[0]))
-    y0, y1 = sorted((a[1], b[1]))
-    cx0, cx1 = math.ceil(x0 - EDGE), math.floor(x1 + EDGE)
-    cy0, cy1 = math.ceil(y0 - EDGE), math.floor(y1 + EDGE)
-    if cx0 > cx1:
-        cx0 = cx1 = round((x0 + x1) / 2)
-    if cy0 > cy1:
-        cy0 = cy1 = round((y0 + y1) / 2)
-    return (cx0, cy0), (cx1, cy1)
+    """The box a drag from ``a`` to ``b`` draws: from the cell the press was in to the cell the release
+    was in, both included (as a pixel editor's rectangle: a release short of the last cell's centre
+    still takes that cell)."""
+    (x0, x1), (y0, y1) = sorted((round(a[0]), round(b[0]))), sorted((round(a[1]), round(b[1])))
+    return (x0, y0), (x1, y1)
 
 
 def point_of_ray(origin, direction) -> tuple[float, float] | None:

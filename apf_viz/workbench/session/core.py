@@ -29,6 +29,14 @@ F = TypeVar("F", bound=Callable[..., Any])
 T = TypeVar("T")
 
 
+def shape_key(cells: Sequence[Point]) -> tuple[Point, ...]:
+    """A pattern's cells translated to min x = min y = 0, sorted: the same for the pattern wherever it is."""
+    if not cells:
+        return ()
+    mx, my = min(x for x, _ in cells), min(y for _, y in cells)
+    return tuple(sorted((x - mx, y - my) for x, y in cells))
+
+
 def shared_only(command: F) -> F:
     """A command refused in a page's run of its own (ui/own_runs.py): files and uploads, lectures, the
     pattern library on the server's disk, the class's permission. Refused here, in the session, so that
@@ -123,8 +131,17 @@ class SessionCore:
         self.polls: dict[tuple[str, int], Poll] = {}
         self.library = PatternLibrary()  # saved patterns (serve --library chooses the folder)
         self.saved = self.library.names()  # their names, read once and after each save
-        # A pattern's name, by its cells (sorted): the name it was saved or loaded under, for a download.
+        # A pattern's name, by its shape (:func:`shape_key`: where it is drawn does not matter, and the
+        # drawing is moved beside the robots): the name it was saved or loaded under, for a download.
         self.pattern_names: dict[tuple[Point, ...], str] = {}
+
+    def name_pattern(self, cells: Sequence[Point], name: str) -> None:
+        if name.strip():
+            self.pattern_names[shape_key(cells)] = name.strip()
+
+    def pattern_name(self, cells: Sequence[Point]) -> str | None:
+        """The name the pattern of these cells was saved or loaded under, wherever it is drawn now."""
+        return self.pattern_names.get(shape_key(cells))
 
     # ------------------------------------------------------------------ browsers
     def join(self, browser: Hashable, role: Role = "presenter") -> BrowserState:

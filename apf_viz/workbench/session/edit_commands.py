@@ -107,14 +107,14 @@ class EditCommands(SessionCore):
             cells = self.editor.pattern if self.mode != "run" else list(self.config.pattern)
             path = self.library.save(name, cells)
             self.saved = self.library.names()
-            self.pattern_names[tuple(sorted(cells))] = name.strip()
+            self.name_pattern(cells, name)
             return f"saved {len(cells)} cells as {name.strip()!r} ({path})"
 
     def load_saved_pattern(self, name: str) -> str:
         """A saved pattern becomes the pattern being drawn (Edit pattern), beside the robots."""
         cells = self.library.load(name)
         with self.lock:
-            self.pattern_names[tuple(sorted(cells))] = name
+            self.name_pattern(cells, name)
             self.run.pause()
             said = self.editor.set_pattern(
                 cells, f"loaded {name!r}: {len(cells)} cells for {self.engine.k} robots"

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 from apf_viz.core.files import read_bytes
 from apf_viz.core.formats import (
     MAX_INPUT_BYTES,
@@ -48,8 +50,10 @@ class FileCommands(SessionCore):
     def load_pattern(self, filename: str, content: bytes) -> str | None:
         """A pattern file; if its size fits the robots the run restarts with it, otherwise it becomes the
         pattern being drawn (Edit pattern), so nothing is lost; then what to do is returned."""
-        points = tuple(as_point(p) for p in loader.pattern_upload(filename, content).points)
+        read = loader.pattern_upload(filename, content)
+        points = tuple(as_point(p) for p in read.points)
         with self.lock:
+            self.name_pattern(points, read.name or "")
             if len(points) == len(self.config.robots):
                 self._start(self.config.but(pattern=points))
                 return None
@@ -180,8 +184,16 @@ class FileCommands(SessionCore):
         was saved or loaded, else by its size."""
         with self.lock:
             cells = list(self.editor.pattern if self.mode != "run" else self.config.pattern)
-            name = self.pattern_names.get(tuple(sorted(cells))) or f"pattern of {len(cells)} cells"
-            return pattern_json(cells, name)
+            return pattern_json(cells, self.pattern_name(cells) or f"pattern of {len(cells)} cells")
+
+    def pattern_file_name(self) -> str:
+        """The file a download of :meth:`pattern_file` is saved as: its name's (``APF.pattern.json``), else
+        ``pattern.json``."""
+        with self.lock:
+            cells = list(self.editor.pattern if self.mode != "run" else self.config.pattern)
+            name = self.pattern_name(cells)
+        stem = re.sub(r"[^A-Za-z0-9_.-]+", "-", name or "").strip("-.")[:80]
+        return f"{stem}.pattern.json" if stem else "pattern.json"
 
     def trace_file(self) -> str:
         """The run as a trace file, at any moment, with its verdict: while a trace or branch is followed,
