@@ -500,3 +500,21 @@ def test_a_dragged_box_takes_the_cells_it_was_pressed_and_released_in_both_inclu
     assert covered_cells((2.2, 5.1), (2.4, 5.3)) == ((2, 5), (2, 5))  # inside one cell: that cell
     # Released short of the last cell's centre: that cell's row and column are still the box's.
     assert covered_cells((9.3, 0.2), (13.6, 2.7)) == ((9, 0), (14, 3))
+
+
+def test_a_drawing_that_grew_far_and_shrank_back_gets_its_line_per_cell_again(renderer):
+    """A cell painted far away widens the grid past a line per cell; erased, the grid is laid out for the
+    drawing again (it kept the far one's coarse grid until a Demo was loaded)."""
+    s = Session([(0, 0), (3, 0), (1, 2)], [(0, 0), (1, 0), (2, 0)], seed=1)
+    s.set_mode("edit-pattern")
+
+    def cell_lines() -> int:
+        renderer.render(s.view())
+        node = renderer.nodes()["/grid/cells"]
+        return len(np.asarray(node.points)) if node.visible else 0
+
+    assert cell_lines() > 0
+    s.click((-30, 140))
+    assert cell_lines() == 0  # 170 cells tall: too small to rule each
+    s.click((-30, 140))  # erased again
+    assert cell_lines() > 0

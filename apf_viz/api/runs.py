@@ -79,14 +79,7 @@ def run(
     """
     start = start_of(robots, pattern)
     seed = _seed(seed)
-    for name, cap in (("max_events", max_events), ("max_moves", max_moves)):
-        if cap is not None:
-            whole_number(name, cap)
-    for name, given in (("scheduler", scheduler), ("then", then)):
-        if given is not None and given not in AUTOMATIC:
-            raise InputError(f"{name} {given!r}: choose from {', '.join(AUTOMATIC)}")
-    if light_semantics not in (None, "compute", "lc-atomic"):
-        raise InputError(f"light_semantics {light_semantics!r}: choose compute or lc-atomic")
+    _refuse_options(max_events, max_moves, scheduler, then, light_semantics)
     chosen, plugins = chosen_algorithm(algorithm)
     if not force:
         refuse_unsolvable(start)
@@ -120,6 +113,24 @@ def run(
             _advance(engine, then, seed, bar)
     outcome = "schedule-end" if then is None and not engine.finished else None
     return Run(engine, "schedule", seed, start, plugins, outcome)
+
+
+def _refuse_options(
+    max_events: int | None,
+    max_moves: int | None,
+    scheduler: str | None,
+    then: str | None,
+    semantics: str | None,
+) -> None:
+    """Every bad option of :func:`run` in one line, before the run."""
+    for name, cap in (("max_events", max_events), ("max_moves", max_moves)):
+        if cap is not None:
+            whole_number(name, cap)
+    for name, given in (("scheduler", scheduler), ("then", then)):
+        if given is not None and given not in AUTOMATIC:
+            raise InputError(f"{name} {given!r}: choose from {', '.join(AUTOMATIC)}")
+    if semantics not in (None, "compute", "lc-atomic"):
+        raise InputError(f"light_semantics {semantics!r}: choose compute or lc-atomic")
 
 
 STEPS_BETWEEN_REPORTS = 5_000

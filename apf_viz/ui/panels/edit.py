@@ -101,6 +101,13 @@ class EditFolder:
                 "Saved", ("—", *s.saved), initial_value="—", hint="load a saved pattern"
             )
             self.saved.on_update(ctx.from_browser(self._on_saved, "Library"))
+        self._commands(gui, ctx)
+        self._boxing = False
+        self._surface = PaintSurface(ctx.client, self._stroke) if ctx.client is not None else None
+
+    def _commands(self, gui, ctx: PanelContext) -> None:
+        """The studio's keys (viser's commands, listed by Ctrl+K too): a tool each, Undo and Redo."""
+        s = ctx.session
         for tool, key in TOOL_KEYS.items():
             command = gui.add_command(f"Tool: {tool}", description=TOOLS[tool], hotkey=key)
             command.on_trigger(ctx.guard(lambda e, tool=tool: self._key_tool(tool), "Tool"))
@@ -109,8 +116,6 @@ class EditFolder:
                 label, description=f"{label} the last edit", hotkey=key, modifier=modifier
             )
             command.on_trigger(ctx.guard(self._quietly(lambda e, label=label: s.transform(label)), "Edit"))
-        self._boxing = False
-        self._surface = PaintSurface(ctx.client, self._stroke) if ctx.client is not None else None
 
     def _quietly(self, fn):
         """An edit's words go to the line under the tool (this browser's), not to a notification: the

@@ -24,10 +24,14 @@ class GridLayer(Canvas):
     def _grid(self) -> None:
         x0, y0, x1, y1 = self.bounds
         key = (int(np.floor(x0)) - 6, int(np.floor(y0)) - 6, int(np.ceil(x1)) + 6, int(np.ceil(y1)) + 6)
+        old = self._grid_key
         if (
-            self._grid_key is not None
-            and all(a <= b for a, b in zip(self._grid_key[:2], key[:2], strict=True))
-            and all(a >= b for a, b in zip(self._grid_key[2:], key[2:], strict=True))
+            old is not None
+            and all(a <= b for a, b in zip(old[:2], key[:2], strict=True))
+            and all(a >= b for a, b in zip(old[2:], key[2:], strict=True))
+            # A run (or drawing) that shrank far inside the grid drawn gets its own again: a grid laid out
+            # for a far cell since erased would keep no line per cell.
+            and max(old[2] - old[0], old[3] - old[1]) <= 2 * max(key[2] - key[0], key[3] - key[1]) + 24
         ):
             return
         key = (key[0] - 6, key[1] - 6, key[2] + 6, key[3] + 6)  # grow with room to spare
