@@ -1337,6 +1337,57 @@ def test_the_pattern_studio_by_gestures_then_played_to_formed(browser, app):
     page.close()
 
 
+def test_a_slow_drag_and_a_click_paint_exactly_their_cells_and_the_camera_never_moves(browser, app):
+    """At 1024×768, as a designer draws: a slow drag up five cells paints those five and no other, a click
+    paints its cell, the camera stays exactly where it was and the grid keeps a line per cell; E picks the
+    eraser without lifting the camera; U the box, which takes both end rows though released short of the
+    last cell's centre; a choice in a dropdown gives the keys back to the canvas."""
+    s = app.session
+    page, cid, screen = blank_drawing(browser, app, "cell")
+    settled(app, screen)
+    before = np.asarray(screen.client.camera.position, dtype=float).copy()
+
+    def camera_kept() -> bool:
+        return bool(np.abs(np.asarray(screen.client.camera.position, dtype=float) - before).max() < 1e-6)
+
+    (x0, y0), (x1, y1) = screen_of(app, page, (9, 0)), screen_of(app, page, (9, 4))
+    page.mouse.move(x0, y0)
+    page.mouse.down()
+    for i in range(1, 41):  # slowly: about two seconds for five cells
+        page.mouse.move(x0 + (x1 - x0) * i / 40, y0 + (y1 - y0) * i / 40)
+        time.sleep(0.05)
+    page.mouse.up()
+    wait_for(lambda: len(s.editor.pattern) >= 5)
+    time.sleep(1.0)  # any re-frame would have reached the page by now
+    assert set(s.editor.pattern) == {(9, y) for y in range(5)}
+    x, y = screen_of(app, page, (12, 2))
+    page.mouse.click(x, y)
+    wait_for(lambda: (12, 2) in s.editor.pattern)
+    drawn_there(app, page)
+    assert set(s.editor.pattern) == {(9, y) for y in range(5)} | {(12, 2)}
+    assert camera_kept() and screen.state.camera == "framed"
+    assert app.renderer.nodes()["/grid/cells"].visible  # a line per cell, as before the stroke
+    shot(page, "studio-slow-drag")
+    page.keyboard.press("e")
+    wait_for(lambda: s.screen.studio.tool == "eraser")
+    page.get_by_text("E eraser").first.wait_for()  # the keys line says it
+    time.sleep(0.5)
+    assert camera_kept()  # E is viser's camera lift in Run, not while drawing
+    page.keyboard.press("u")
+    wait_for(lambda: s.screen.studio.tool == "box")
+    drawn_there(app, page)
+    _drag(page, app, (14, 0), (15.7, 1.7))  # released short of (16, 2)'s centre
+    wait_for(lambda: len(s.editor.pattern) == 6 + 9)
+    assert {(x, y) for x in range(14, 17) for y in range(3)} <= set(s.editor.pattern)
+    _choose(page, "Mirror", "x ↔")
+    wait_for(lambda: s.screen.studio.mirror == "x ↔")
+    wait_for(lambda: page.evaluate("document.activeElement === document.body"))
+    page.keyboard.press("g")  # a key, not a letter typed into the dropdown
+    wait_for(lambda: s.screen.studio.tool == "fill")
+    assert camera_kept()
+    page.close()
+
+
 def test_in_edit_robots_a_robot_moves_with_the_move_tool(browser, app):
     s = app.session
     page = open_page(browser, app, {"width": 1024, "height": 768})
