@@ -134,3 +134,46 @@ def test_worst_reports_progress_as_it_goes_not_only_every_20000_states(monkeypat
         progress=lambda states, frontier, seconds: said.append(states),
     )  # fmt: skip
     assert found.verdict == "worst" and len(said) > 10 and said == sorted(said)
+
+
+def test_a_check_worst_schedule_loaded_on_the_page_says_what_it_is_and_its_moves_per_kD(tmp_path, capsys):
+    """``check --worst --schedule-out``'s file names the exact worst in its header, as the adversary's
+    names its worst found: Load the worst found then shows the moves/(k·D) line for it too; the header
+    names the y-axes it used, and for robots given without them check and adversary draw the same ones
+    by default (seed 1 both)."""
+    from apf_viz.cli import main
+    from apf_viz.core.schedule import load_schedule
+    from apf_viz.ui.panels.adversary import found_words
+    from apf_viz.workbench.session.demo import demo_session
+
+    robots, pattern = tmp_path / "r.json", tmp_path / "p.json"
+    robots.write_text(json.dumps({"robots": [[0, 0], [2, 0], [2, 2]]}))  # no y_up: the seed draws them
+    pattern.write_text(json.dumps({"points": [[0, 0], [1, 0], [2, 0]]}))
+    files = ["--robots", str(robots), "--pattern", str(pattern)]
+    out = tmp_path / "worst.schedule"
+    main(["check", *files, "--worst", "moves", "--schedule-out", str(out)])
+    schedule = load_schedule(out)
+    assert schedule.found is not None and schedule.found.by == "check" and schedule.y_up is not None
+    session = demo_session()
+    session.load_robots("r.json", robots.read_bytes())
+    session.load_pattern("p.json", pattern.read_bytes())
+    session.load_schedule("worst.schedule", out.read_bytes())
+    while session.step():
+        pass
+    said = found_words(session.view())
+    value = schedule.found.value
+    assert f"The worst any schedule forces, by apf-viz check --worst: {value} moves" in said
+    assert f"moves/(k·D) = {value / 9:.3f}" in said and "FORMED" in said  # k = D = 3
+    adversary = tmp_path / "adversary.schedule"
+    main(["adversary", *files, "--budget", "4", "--schedule-out", str(adversary)])
+    assert load_schedule(adversary).y_up == schedule.y_up
+
+
+def test_the_largest_exact_worst_docs_adversary_states_is_the_checks():
+    """docs/ADVERSARY.md's largest moves/(k·D): 28 moves (3.111 per k·D) over every schedule and flip."""
+    import apf_viz
+
+    w = apf_viz.check(
+        [(0, 0), (0, 2), (2, 1)], [(0, 0), (0, 1), (0, 2)], worst="moves", flips="all", progress=False
+    )
+    assert (w.verdict, w.value, w.k * w.D) == ("worst", 28, 9) and w.replay().moves == 28

@@ -67,7 +67,7 @@ def adversary(
     *,
     maximize: str = "moves",
     budget: int = 2_000,
-    seed: int = 0,
+    seed: int = 1,
     algorithm: str | None = None,
     light_semantics: str = "compute",
     width: int | None = None,

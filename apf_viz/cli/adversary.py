@@ -44,7 +44,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "(0: no beam)",
     )  # fmt: skip
     p.add_argument(
-        "--seed", type=seed, default=0, help="the search's seed (and the flips', if the file has none)"
+        "--seed",
+        type=seed,
+        default=1,
+        help="the search's seed (and the flips', if the file has none: the same as check's and run's)",
     )
     p.add_argument(
         "--schedule-out", type=Path, help="write the costliest schedule found here (replay plays it)"

@@ -41,19 +41,28 @@ MAX_SCHEDULE_BYTES = 200_000_000
 
 
 class Found(BaseModel):
-    """What ``apf-viz adversary`` says of the schedule it wrote: it maximised ``maximize`` and reached
-    ``value``, against the built-in schedulers' ``built_ins`` over seeds 0–19 (explore/adversary.py)."""
+    """What the search that wrote a schedule says of it: ``apf-viz adversary`` maximised ``maximize`` and
+    reached ``value``, against the built-in schedulers' ``built_ins`` over seeds 0–19, in ``tried``
+    schedules (explore/adversary.py); ``apf-viz check --worst`` (``by`` "check") found ``value`` to be the
+    exact worst over every schedule, in ``states`` states (explore/worst.py)."""
 
     model_config = ConfigDict(extra="forbid")
     maximize: Literal["moves", "events"]
     value: StrictInt = Field(ge=0)
-    built_ins: StrictInt = Field(ge=0)
-    tried: StrictInt = Field(ge=0, description="schedules the search tried")
+    by: Literal["adversary", "check"] = "adversary"
+    built_ins: StrictInt | None = Field(default=None, ge=0)
+    tried: StrictInt | None = Field(default=None, ge=0, description="schedules the search tried")
+    states: StrictInt | None = Field(default=None, ge=0, description="states the exact search explored")
 
     def words(self) -> str:
+        if self.by == "check":
+            return (
+                f"the worst any schedule forces, by apf-viz check --worst: {self.value:,} {self.maximize} "
+                f"(exact: every schedule explored, {self.states or 0:,} states)"
+            )
         return (
             f"the worst found by apf-viz adversary: {self.value:,} {self.maximize} "
-            f"(the built-in schedulers' most: {self.built_ins:,}; {self.tried:,} schedules tried)"
+            f"(the built-in schedulers' most: {self.built_ins or 0:,}; {self.tried or 0:,} schedules tried)"
         )
 
 

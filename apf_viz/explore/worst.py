@@ -202,10 +202,12 @@ def worst_schedule_text(
 ) -> tuple[str, int, int]:
     """The schedule that forces the worst as a schedule file (its flips in the header), replayed in the
     real engine: (the file, the moves, the events) the replay counted."""
-    from apf_viz.core.schedule import schedule_of_steps, schedule_text
+    from apf_viz.core.schedule import Found, schedule_of_steps, schedule_text
     from apf_viz.explore.check import counterexample_engine
 
     result = Result("verified", found.states, 0, found.seconds, found.schedule)
     e = counterexample_engine(algorithm, robots, pattern, found.y_up, scheduler, result, light_semantics)
-    text = schedule_text(e.k, schedule_of_steps(e.history.steps), e.y_up, e.light_semantics)
+    # Its header says what it is (the page's Load the worst found shows it, with moves per k·D).
+    said = Found(maximize=found.measure, value=found.value or 0, by="check", states=found.states)
+    text = schedule_text(e.k, schedule_of_steps(e.history.steps), e.y_up, e.light_semantics, said)
     return text, e.state.moves, e.state.events

@@ -113,7 +113,7 @@ class AdversaryFolder:
 
 def found_words(view: SessionView) -> str:
     """A worst found being played: what the search says of it, and the run's moves per k·D so far."""
-    if "the worst found" not in view.trace_note:
+    if not view.trace_note.startswith("the worst "):  # adversary's, or check --worst's (core/schedule.Found)
         return ""
     state = (view.outcome or "running").upper()
     return (
