@@ -266,6 +266,8 @@ class Portrayed(Protocol):
 
     def title(self) -> str: ...
 
+    def rules(self) -> dict[str, str]: ...
+
 
 def title_of(algorithm: Algorithm) -> str:
     """The algorithm in words, for a room (Compare's titles): its own ``title`` where it gives one, else
@@ -303,6 +305,13 @@ def stage_of(algorithm: Algorithm, config: Configuration) -> str:
     move)."""
     own = getattr(algorithm, "stage", None)
     return own(config) if callable(own) else overlays_of(algorithm, config).stage
+
+
+def rules_of(algorithm: Algorithm) -> dict[str, str]:
+    """Every rule id the algorithm's decisions carry, with its words (a lecture's ``until.rule`` names
+    one); empty for an algorithm that lists none."""
+    own = getattr(algorithm, "rules", None)
+    return dict(own()) if callable(own) else {}
 
 
 def explain(algorithm: Algorithm, view: Snapshot, pattern: Pattern) -> Explanation:

@@ -27,6 +27,17 @@ def unsolvable_axis(robots: Iterable[Point]) -> Fraction | None:
     return None
 
 
+def mirror_axis(robots: Iterable[Point]) -> Fraction | None:
+    """The horizontal line y = c the robots are mirror-symmetric about, through robots or not (None:
+    none). Through no robot it is Theorem 1's unsolvable axis; through robots, the paper's K."""
+    pts = set(robots)
+    if not pts:
+        return None
+    ys = [y for _, y in pts]
+    c2 = min(ys) + max(ys)
+    return Fraction(c2, 2) if all((x, c2 - y) in pts for x, y in pts) else None
+
+
 def describe_axis(c: Fraction) -> str:
     """``y = c`` written exactly (the axis lies halfway between two rows: c is a whole number plus ½)."""
     if c.denominator == 1:

@@ -140,6 +140,12 @@ class ApfOpaqueGrid:
     def stage(self, config: Configuration) -> str:
         return portrayal.stage(config.positions, config.lights)
 
+    def rules(self) -> dict[str, str]:
+        """Every rule id a decision carries, with its words (rules.py)."""
+        from apf_viz.algorithms.apf_opaque_grid.rules import RULE_IDS
+
+        return dict(RULE_IDS)
+
     def pseudocode(self) -> Pseudocode:
         """The paper's algorithms with this variant's resolutions in place (the Paper panel)."""
         return paper.pseudocode(self.resolutions)
