@@ -31,6 +31,27 @@ State = Literal["running", "formed", "collision", "stuck", "limit"]  # a run's s
 _PANEL_WORDS = re.compile(r"\b(?:(?:the )?\w+ (?:panel|folder)|the panel)\b", re.I)
 
 
+_OPENS = {"\u202a": "\u202c", "\u202b": "\u202c", "\u202d": "\u202c", "\u202e": "\u202c",
+          "\u2066": "\u2069", "\u2067": "\u2069", "\u2068": "\u2069"}  # fmt: skip
+_CLOSES = {"\u202c", "\u2069"}
+_RTL = re.compile("[\u0590-\u08ff\ufb1d-\ufdff\ufe70-\ufeff]")
+
+
+def isolated(text: str) -> str:
+    """An author's text that cannot reorder the page's words around it: every direction control it opens
+    (an embedding, override or isolate) closed at its end, and the whole set apart as an isolate (FSI …
+    PDI) when it holds right-to-left letters or such controls. Left-to-right text is returned as it is."""
+    if not _RTL.search(text) and not any(c in _OPENS or c in _CLOSES for c in text):
+        return text
+    pending: list[str] = []
+    for c in text:
+        if c in _OPENS:
+            pending.append(_OPENS[c])
+        elif c in _CLOSES and pending and pending[-1] == c:
+            pending.pop()
+    return "\u2068" + text + "".join(reversed(pending)) + "\u2069"
+
+
 # Every model here is strict: a lecture's author writes 0 for a number; "0", true or 0.0 is a mistake
 # said in one line, never read as 0 (tests/test_lecture.py).
 class Until(BaseModel):
@@ -149,6 +170,11 @@ class Question(BaseModel):
     robot: int | None = Field(default=None, ge=0, le=100_000)
     text: str | None = Field(default=None, min_length=1, max_length=160)  # else the kind's own words
 
+    @field_validator("text")
+    @classmethod
+    def _set_apart(cls, text: str | None) -> str | None:
+        return None if text is None else isolated(text)
+
     @model_validator(mode="after")
     def _robot_where_asked(self) -> Question:
         if self.kind in ("cell", "light") and self.robot is None:
@@ -184,6 +210,11 @@ class Stop(BaseModel):
             raise ValueError(f"no Demo scenario called {self.scenario[:80]!r}")
         return self
 
+    @field_validator("title", "say")
+    @classmethod
+    def _set_apart(cls, text: str) -> str:
+        return isolated(text)
+
     @field_validator("say")
     @classmethod
     def _fits_the_caption(cls, say: str) -> str:
@@ -198,6 +229,11 @@ class Lecture(BaseModel):
     version: Literal[1]
     title: str = Field(min_length=1, max_length=200)
     stops: list[Stop] = Field(min_length=1, max_length=200)
+
+    @field_validator("title")
+    @classmethod
+    def _set_apart(cls, title: str) -> str:
+        return isolated(title)
 
     @model_validator(mode="after")
     def _starts_somewhere(self) -> Lecture:

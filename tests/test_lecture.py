@@ -472,3 +472,24 @@ def test_words_that_agree_with_the_stage_line_and_name_their_frame_pass(tmp_path
         )
     )
     assert main(["lecture", "check", str(good)]) == 0
+
+
+def test_an_authors_right_to_left_controls_never_reorder_the_pages_own_words():
+    """A stop's words with an unclosed right-to-left override (U+202E) are closed and set apart as an
+    isolate: the caption's words after them (the stage line, the stop's number) keep their order. Plain
+    left-to-right words are kept exactly; right-to-left words are kept, set apart."""
+    evil = "look \u202eright here"
+    text = lecture_json(say=evil, title="ti\u2067tle", ask={"kind": "outcome", "text": "\u202bwhat?"})
+    lecture = parse_lecture(text, "evil.json")
+    stop = lecture.stops[1]
+    assert stop.say == "\u2068" + evil + "\u202c\u2069" and stop.title == "\u2068ti\u2067tle\u2069\u2069"
+    assert stop.ask is not None and stop.ask.text == "\u2068\u202bwhat?\u202c\u2069"
+    assert lecture.stops[0].say == "words"  # left-to-right: as written
+    hebrew = parse_lecture(lecture_json(say="שלום לכולם"), "he.json").stops[1].say
+    assert hebrew == "\u2068שלום לכולם\u2069"
+    s = demo_session()
+    s.load_lecture("evil.json", text.encode())
+    s.next_stop()
+    s.next_stop()
+    shown = " ".join(s.view().lecture or ())
+    assert "\u2068" + evil + "\u202c\u2069" in shown
