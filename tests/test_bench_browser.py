@@ -293,3 +293,33 @@ def test_a_lecture_stop_shows_the_class_address_until_the_lecture_moves_on(brows
     app.request_render()
     address.wait_for(state="detached")  # the lecture moved on: closed
     page.close()
+
+
+def test_j_at_a_lan_address_shows_it_on_one_line_and_escape_closes_it(browser):
+    """Served to the room (--host 0.0.0.0: a LAN address, its five-digit port), J shows the address on one
+    line, whole, inside its window at 1024×768; Escape closes the window (as the GUIDE says)."""
+    app = App(demo_session(), host="0.0.0.0", port=free_port(), verbose=False)
+    try:
+        page = browser.new_page(viewport={"width": 1024, "height": 768})
+        page.set_default_timeout(60_000)
+        page.goto(app.addresses[0].replace("0.0.0.0", "127.0.0.1"))
+        page.get_by_label("Event").wait_for()
+        page.wait_for_function("document.activeElement === document.body")
+        page.keyboard.press("j")
+        address = page.locator("[data-apf=class-address]")
+        address.wait_for()
+        assert address.inner_text() == app.addresses[1] and ":" in app.addresses[1][7:]
+        box = address.bounding_box()
+        window = page.locator(".mantine-Modal-content").bounding_box()
+        size = float(address.evaluate("e => parseFloat(getComputedStyle(e).fontSize)"))
+        assert box["height"] < 1.6 * size  # one line: never broken inside the port
+        assert window["x"] <= box["x"] and box["x"] + box["width"] <= window["x"] + window["width"]
+        assert size >= 32  # read from the back of the room
+        shot(page, "join-one-line")
+        page.keyboard.press("Escape")
+        address.wait_for(state="detached")
+        page.keyboard.press("j")  # and it opens again
+        address.wait_for()
+        page.close()
+    finally:
+        app.stop()
