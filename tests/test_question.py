@@ -217,3 +217,31 @@ def test_a_stop_visited_again_keeps_the_rooms_answers():
     assert session.screen.poll is None  # stop 4 asks nothing
     session.previous_stop()
     assert session.screen.poll is poll and poll.given("a") == "1"  # PageUp back: nobody answers twice
+
+
+def test_a_class_pages_caption_says_its_own_answer_and_after_the_reveal_whether_it_was_right():
+    """Found by a lecturer: after R a student in presentation mode saw only the run's answer, and after a
+    reload the caption said "answer in the panel" though the answer was kept. Each class page's caption
+    now says its own answer (under its seat: a reload keeps it), then right or not; never another's."""
+    from apf_viz.workbench.view_model.caption import caption_html
+
+    session = heart_at_question()
+    poll = session.screen.poll
+    assert poll is not None
+    right = min(poll.answer.right, key=int)
+    wrong = next(c for c in poll.choices or () if c not in poll.answer.right)
+    session.answer_question("seat a", right)
+    session.answer_question("seat b", wrong)
+
+    def caption(seat: str, page: str = "following") -> str:
+        return caption_html(session.view(), page, mine=poll.told(seat) if page != "presenting" else "")
+
+    assert f"Your answer: robot {right}" in caption("seat a")  # a reload asks again, by its seat
+    assert "answer in the panel" in caption("seat c")  # not answered
+    assert f"robot {right}" not in caption("seat b").split("Question:")[1].split("(change")[0]
+    session.reveal()
+    assert f"You answered robot {right}: right" in caption("seat a")
+    assert f"You answered robot {wrong}: not this time" in caption("seat b")
+    assert "You did not answer" in caption("seat c")
+    presenting = caption("seat a", "presenting")
+    assert "You answered" not in presenting and "gave it" in presenting

@@ -80,6 +80,10 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     pages[0].locator("p").filter(has_text="Your answer: robot 1").wait_for()
     wait_for(lambda: len(app.screens) == 4)
     assert poll.count == 3
+    pages[0].keyboard.press("p")  # a student in presentation mode: the caption says the answer kept
+    pages[0].locator("[data-apf=mine]").filter(has_text="Your answer: robot 1").wait_for()
+    pages[0].keyboard.press("p")  # the panel back
+    pages[1].keyboard.press("p")  # another student follows the reveal in presentation mode
 
     projector.keyboard.press("p")  # presentation mode: the caption on the canvas
     projector.locator("[data-apf=answered]").filter(has_text="3 answered").wait_for()
@@ -102,6 +106,8 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     assert "✔" in right.inner_text()
     shot(projector, "question-revealed-1024")
     pages[0].locator("p").filter(has_text="You answered robot 1: right").wait_for()
+    pages[1].locator("[data-apf=mine]").filter(has_text="You answered robot 1: right").wait_for()
+    shot(pages[1], "question-revealed-class-page")
     pages[2].locator("p").filter(has_text="You answered robot 0: not this time").wait_for()
     for page in (*pages, projector):
         page.close()

@@ -93,6 +93,17 @@ class Poll:
         """``who``'s answer (its page shows it; no other page is shown it)."""
         return self._given.get(who)
 
+    def told(self, who: str) -> str:
+        """What ``who``'s own page says of its answer: the answer held (a reload keeps it), and after the
+        reveal whether it was the run's ("" before an answer)."""
+        mine = self._given.get(who)
+        said = choice_words(self.kind, mine) if mine is not None else None
+        if self.revealed:
+            if said is None:
+                return "you did not answer"
+            return f"you answered {said}: {'right' if mine in self.answer.right else 'not this time'}"
+        return f"your answer: {said}" if said is not None else ""
+
     def forget(self, who: str) -> None:
         self._given.pop(who, None)
 

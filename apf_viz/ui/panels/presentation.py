@@ -124,12 +124,19 @@ class Presentation:
             return "presenting"
         return "class-drives" if self.ctx.drives() else "following"
 
+    def _mine(self) -> str:
+        """This page's own answer to the stop's question (kept under its seat: a reload keeps it)."""
+        shared = getattr(self.ctx.session, "shared", self.ctx.session)
+        poll = shared.screen.poll
+        return poll.told(self.ctx.answer_key()) if poll is not None else ""
+
     def refresh(self, view: SessionView) -> None:
         if self.html is not None:
             stop = view.lecture[:2] if view.lecture is not None else None
             if stop != self._stop:
                 self._stop, self.details = stop, False
-            words = caption_html(view, self._page(), self.details)
+            page = self._page()
+            words = caption_html(view, page, self.details, self._mine() if page != "presenting" else "")
             content = words + TO_TOP.format(key=zlib.crc32(words.encode()))
             if self.html.content != content:
                 self.html.content = content

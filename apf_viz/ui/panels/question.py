@@ -74,8 +74,8 @@ class QuestionFolder:
         mine = poll.given(self.ctx.answer_key())
         said = choice_words(poll.kind, mine) if mine is not None else ""
         if poll.revealed:
-            right = mine is not None and mine in poll.answer.right
-            verdict = f"You answered {said}: {'right' if right else 'not this time'}." if mine else ""
+            told = poll.told(self.ctx.answer_key())
+            verdict = f"{told[:1].upper()}{told[1:]}." if mine else ""
             text = f"**{poll.question}**\n\nThe run's answer: **{poll.answer.words()}**. {verdict}"
         else:
             how = {"robot": "Click a robot, or choose it", "cell": "Click the cell, or type it"}.get(

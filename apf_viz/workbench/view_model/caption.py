@@ -43,19 +43,20 @@ _PAGE_NAMES = {
 }
 
 
-def caption_html(view: SessionView, page: str = "presenting", details: bool = False) -> str:
+def caption_html(view: SessionView, page: str = "presenting", details: bool = False, mine: str = "") -> str:
     """The caption: a lecture stop's words (or, without a lecture, the run's state and its lights), else
-    with ``details`` everything else the run has to say. ``page``: a key of :data:`KEYS`."""
-    body = _details(view, page) if details else _words(view, page)
+    with ``details`` everything else the run has to say. ``page``: a key of :data:`KEYS`; ``mine``: a
+    class page's own answer to the stop's question, and whether it was right once revealed."""
+    body = _details(view, page) if details else _words(view, page, mine)
     kind = "details" if details else "words"
     return f'<div data-apf="{kind}" style="font-size:{WORDS_PX}px;line-height:1.3">{body}</div>'
 
 
-def _words(view: SessionView, page: str) -> str:
+def _words(view: SessionView, page: str, mine: str = "") -> str:
     hint = f"{DETAILS_KEY}: details"
     if view.lecture is not None:
         where, title, say = view.lecture
-        asked = poll_html(view.poll, page == "presenting")
+        asked = poll_html(view.poll, page == "presenting", mine)
         # The bars take the words' room: the room has heard them by the time it sees how it answered.
         words = (
             ""

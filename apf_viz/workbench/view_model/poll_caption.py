@@ -16,20 +16,23 @@ _RIGHT = "#2b8a3e"
 _GIVEN = "#4c6ef5"
 
 
-def poll_html(poll: PollView | None, presenting: bool) -> str:
-    """The question's block of the caption (``""``: no question)."""
+def poll_html(poll: PollView | None, presenting: bool, mine: str = "") -> str:
+    """The question's block of the caption (``""``: no question). ``mine``: on a class page, what its own
+    answer is and, after the reveal, whether it was right (workbench/poll.Poll.told)."""
     if poll is None:
         return ""
     asked = f"<b>Question:</b> {html.escape(poll.question)}"
+    own = f' · <span data-apf="mine">{html.escape(mine[:1].upper() + mine[1:])}</span>' if mine else ""
     if poll.answer:
         told = f" <b>The run's answer: {html.escape(poll.answer)}</b>"
-        if presenting:
-            told += f" · {poll.right} of {poll.count} gave it"
+        told += f" · {poll.right} of {poll.count} gave it" if presenting else own
     elif presenting:
         told = (
             f' · <span data-apf="answered">{poll.count} answered</span> · {SPREAD_KEY} the answers · '
             f"{REVEAL_KEY} reveal"
         )
+    elif mine:
+        told = f"{own} (change it in the panel, P, or on the canvas)"
     else:
         told = " · answer in the panel (P), or click the canvas"
     bars = bars_html(poll.bars, poll.kind) if presenting else ""
