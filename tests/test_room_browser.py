@@ -39,6 +39,12 @@ def test_the_room_lists_the_laptops_shows_one_beside_and_hands_the_run_to_anothe
     listing.wait_for()
     projector.get_by_text("laptop 1: follows the lecture").wait_for()
     projector.get_by_text("laptop 2: its own run, event 6, running").wait_for()
+    # Each laptop shows its own number, as the Room lists it: "laptop 1, your hand" is answerable.
+    follower.get_by_text("laptop 1").first.wait_for()
+    trier.get_by_text("laptop 2").first.wait_for()
+    follower.keyboard.press("p")  # in presentation mode, first on its caption's top line
+    follower.locator("[data-apf=words]").filter(has_text="laptop 1 ·").wait_for()
+    follower.keyboard.press("p")
 
     _choose(projector, "Laptop", "laptop 2")
     projector.get_by_role("button", name="Show its run beside").click()

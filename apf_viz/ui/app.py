@@ -196,6 +196,7 @@ class App:
         screen.panels.ctx.try_alone = lambda: self.own_runs.try_alone(screen)
         screen.panels.ctx.back_to_lecture = lambda: self.own_runs.back(screen)
         screen.panels.ctx.room = self.room
+        screen.panels.ctx.laptop = lambda: self.room.laptop(screen) if screen.state.role == "class" else None
         with self._screens_lock:
             self.screens[client.client_id] = screen
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is

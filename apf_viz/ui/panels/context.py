@@ -124,6 +124,9 @@ class PanelContext:
     try_alone: Callable[[], str] = lambda: "no runs of one's own here"
     back_to_lecture: Callable[[], str] = lambda: "this page follows the lecture"
     room: Room | None = None  # the class pages, for the presenter's Room folder (ui/room.py)
+    # This page's number in the Room's list, for a class page (None: a presenter, or no room): shown on
+    # the page, so that the lecturer can hand the run to the laptop whose student raised a hand.
+    laptop: Callable[[], int | None] = lambda: None
 
     def drives(self) -> bool:
         """Whether this browser may change the shared run (a presenter page, or the class when the

@@ -136,7 +136,14 @@ class Presentation:
             if stop != self._stop:
                 self._stop, self.details = stop, False
             page = self._page()
-            words = caption_html(view, page, self.details, self._mine() if page != "presenting" else "")
+            laptop = self.ctx.laptop()
+            words = caption_html(
+                view,
+                page,
+                self.details,
+                self._mine() if page != "presenting" else "",
+                f"laptop {laptop}" if laptop is not None else "",
+            )
             content = words + TO_TOP.format(key=zlib.crc32(words.encode()))
             if self.html.content != content:
                 self.html.content = content

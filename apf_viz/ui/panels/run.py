@@ -263,12 +263,14 @@ class RunFolder:
         s, browser = self.ctx.session, self.ctx.browser
         own = s.private
         presenter = s.role(browser) == "presenter" and not own
+        laptop = self.ctx.laptop()
+        seat = f" · **laptop {laptop}**" if laptop is not None else ""
         if own:
-            said = "**Your own run** · the projector is untouched"
+            said = f"**Your own run**{seat} · the projector is untouched"
         elif presenter:
             said = "**Presenting**" + (" · the class may drive" if s.class_may_drive else "")
         else:
-            said = "**Following the lecture**" + (
+            said = f"**Following the lecture**{seat}" + (
                 " · the presenter lets the class drive" if s.class_may_drive else " · the presenter drives"
             )
         if self.role.content != said:

@@ -43,17 +43,21 @@ _PAGE_NAMES = {
 }
 
 
-def caption_html(view: SessionView, page: str = "presenting", details: bool = False, mine: str = "") -> str:
+def caption_html(
+    view: SessionView, page: str = "presenting", details: bool = False, mine: str = "", who: str = ""
+) -> str:
     """The caption: a lecture stop's words (or, without a lecture, the run's state and its lights), else
     with ``details`` everything else the run has to say. ``page``: a key of :data:`KEYS`; ``mine``: a
-    class page's own answer to the stop's question, and whether it was right once revealed."""
-    body = _details(view, page) if details else _words(view, page, mine)
+    class page's own answer to the stop's question, and whether it was right once revealed; ``who``: the
+    page's name in the room ("laptop 7"), first on its top line."""
+    body = _details(view, page) if details else _words(view, page, mine, who)
     kind = "details" if details else "words"
     return f'<div data-apf="{kind}" style="font-size:{WORDS_PX}px;line-height:1.3">{body}</div>'
 
 
-def _words(view: SessionView, page: str, mine: str = "") -> str:
+def _words(view: SessionView, page: str, mine: str = "", who: str = "") -> str:
     hint = f"{DETAILS_KEY}: details"
+    named = f"<b>{html.escape(who)}</b> · " if who else ""
     if view.lecture is not None:
         where, title, say = view.lecture
         asked = poll_html(view.poll, page == "presenting", mine)
@@ -64,11 +68,11 @@ def _words(view: SessionView, page: str, mine: str = "") -> str:
             else f'<div data-apf="say">{symbol_html(say)}</div>'
         )
         return (
-            f'<div style="{_QUIET}">{html.escape(where)} · {hint}</div>'
+            f'<div style="{_QUIET}">{named}{html.escape(where)} · {hint}</div>'
             f"{_title(symbol_html(title))}{words}{asked}{_status(view)}"
         )
     return (
-        f'<div style="{_QUIET}">{_PAGE_NAMES.get(page, page)} · {hint}, and the keys</div>'
+        f'<div style="{_QUIET}">{named}{_PAGE_NAMES.get(page, page)} · {hint}, and the keys</div>'
         f"{_title(symbol_html(view.stage_line))}"
         f"<div>{_event_line(view)}</div>{_compared(view)}{_lights(view, meanings=False)}"
     )
