@@ -25,6 +25,11 @@ The accesses, and what each costs when it is missing:
   (:data:`NOTICES_BESIDE_THE_RUN`), moved from over the canvas to the bottom-right corner, over the panel.
   Without it notifications stand where viser puts them, over the canvas's top-left corner. Its contract
   test is a browser's (tests/test_bench_browser.py).
+- ``class address window`` (in the page): the class of viser's windows (Mantine's modal), widened while it
+  holds the class address (:data:`WIDE_CLASS_ADDRESS`) and closed by Escape through its Close button
+  (:data:`ESCAPE_CLOSES_CLASS_ADDRESS`). Without it the window stays narrow (the address, made to fit on
+  one line, is smaller) and Escape leaves it open. Its contract test is a browser's
+  (tests/test_bench_browser.py, J at a LAN address).
 """
 
 from __future__ import annotations
@@ -166,6 +171,25 @@ NOTICES_BESIDE_THE_RUN = (
     "right:12px!important;bottom:12px!important;max-width:360px}"
     ".mantine-Notification-root{pointer-events:none!important;opacity:0.94}"
     ".mantine-Notification-closeButton{pointer-events:auto!important}</style>"
+)
+
+
+# CSS and a listener for the class address's window (panels/join.py): wide enough for the address on one
+# line at 40 px (viser's windows are narrow), and closed by Escape as by its Close button (a window
+# opened by J holds no focus, so its own Escape never hears the key). The listener is installed once a
+# page, by an image that fails to load.
+WIDE_CLASS_ADDRESS = (
+    "<style>.mantine-Modal-content:has([data-apf=class-address])"
+    "{flex:0 0 min(94vw,980px) !important;max-width:none !important}</style>"
+)
+ESCAPE_CLOSES_CLASS_ADDRESS = (
+    '<img alt="" src="data:,join" style="display:none" onerror="'
+    "if(!window.apfJoinEscape){window.apfJoinEscape=1;document.addEventListener('keydown',function(e){"
+    "if(e.key!=='Escape'){return;}var a=document.querySelector('[data-apf=class-address]');if(!a){return;}"
+    "var m=a.closest('.mantine-Modal-content');var b=m&&Array.prototype.find.call("
+    "m.querySelectorAll('button'),function(x){return x.textContent.trim()==='Close';});"
+    "if(b){b.click();}},true);}"
+    '">'
 )
 
 

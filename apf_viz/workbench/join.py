@@ -11,23 +11,6 @@ import segno
 QR_SCALE = 10  # pixels a module: a version-3 code is about 330 px, read from the back of a room
 ADDRESS_PX = 40  # the address's size where it fits on one line; a longer one is made smaller to fit
 CHAR_EM = 0.62  # a bold character's width, in ems, in the page's font (measured at 1024×768: 0.58–0.61)
-
-# The window is made wide enough for the address on one line (viser's windows are narrow), and Escape
-# closes it as its Close button does (a window opened by J holds no focus, so the window's own Escape
-# never hears the key). One listener a page, installed by an image that fails to load.
-WIDE_WINDOW = (
-    "<style>.mantine-Modal-content:has([data-apf=class-address])"
-    "{flex:0 0 min(94vw,980px) !important;max-width:none !important}</style>"
-)
-ESCAPE_CLOSES = (
-    '<img alt="" src="data:,join" style="display:none" onerror="'
-    "if(!window.apfJoinEscape){window.apfJoinEscape=1;document.addEventListener('keydown',function(e){"
-    "if(e.key!=='Escape'){return;}var a=document.querySelector('[data-apf=class-address]');if(!a){return;}"
-    "var m=a.closest('.mantine-Modal-content');var b=m&&Array.prototype.find.call("
-    "m.querySelectorAll('button'),function(x){return x.textContent.trim()==='Close';});"
-    "if(b){b.click();}},true);}"
-    '">'
-)
 LOOPBACK = ("127.0.0.1", "localhost", "::1")
 
 
@@ -51,10 +34,11 @@ def join_html(address: str) -> str:
             '<div style="font-size:20px;color:#a00;margin-top:8px">This server listens on this machine '
             "only: start it with <code>apf-viz serve --host 0.0.0.0</code> for the class's laptops.</div>"
         )
-    # One line, never broken inside the port: as large as ADDRESS_PX, smaller when the address is long.
-    size = f"min({ADDRESS_PX}px, calc((min(94vw, 980px) - 64px) / {CHAR_EM * len(address):.1f}))"
+    # One line, never broken inside the port: as large as ADDRESS_PX, smaller when the address is long
+    # for the width it is shown in (cqw: a hundredth of the block holding it, whatever its window).
+    size = f"min({ADDRESS_PX}px, calc(100cqw / {CHAR_EM * len(address):.1f}))"
     return (
-        f'{WIDE_WINDOW}{ESCAPE_CLOSES}<div style="text-align:center">'
+        '<div style="text-align:center;container-type:inline-size">'
         f'<div style="font-size:{size};font-weight:bold;white-space:nowrap" data-apf="class-address">{words}'
         "</div>"
         f'<img alt="QR code of {words}" data-apf="class-qr" src="{qr_svg_uri(address)}" '

@@ -4,6 +4,7 @@ that asks for it (``"class_address": true``), on the presenter's page, until the
 
 from __future__ import annotations
 
+from apf_viz.ui import viser_compat
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.workbench.join import join_html
 from apf_viz.workbench.view_model import SessionView
@@ -31,7 +32,11 @@ class Join:
         self.close()
         address = self.ctx.class_address()
         with self.gui.add_modal("Join this class") as modal:
-            self.gui.add_html(join_html(address))
+            self.gui.add_html(
+                viser_compat.WIDE_CLASS_ADDRESS
+                + viser_compat.ESCAPE_CLOSES_CLASS_ADDRESS
+                + join_html(address)
+            )
             self.gui.add_button("Close").on_click(lambda event: self.close())
         self._modal = modal
 
