@@ -58,6 +58,24 @@ def class_page(browser, app: App):
     return page
 
 
+def within_the_caption(page) -> None:
+    """At 1024×768 the bars (their counts and names) and the stop's state line below them are on screen,
+    inside the caption: nothing cut, no scrollbar (found: 243 px of words in a 215 px box)."""
+    height = page.viewport_size["height"]
+    status = page.locator("[data-apf=status]").last
+    status.wait_for()
+    box = status.bounding_box()
+    assert box is not None and box["y"] + box["height"] <= height, box
+    for bar in page.locator("[data-apf=bar]").all():
+        b = bar.bounding_box()
+        assert b is not None and b["y"] + b["height"] <= box["y"], b  # above the state line, whole
+    scrolled = page.locator("[data-apf=words]").evaluate(
+        "e => { for (let n = e; n; n = n.parentElement) { if (n.scrollHeight > n.clientHeight + 1 && "
+        "getComputedStyle(n).overflowY !== 'visible') return n.scrollHeight - n.clientHeight; } return 0; }"
+    )
+    assert scrolled == 0, f"the caption scrolls by {scrolled} px"
+
+
 def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_plays_to_it(browser, app):
     poll = app.session.screen.poll
     assert poll is not None and poll.answer.right == {"1"}  # the run: robot 1 moves first
@@ -93,6 +111,7 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     spread = {b.get_attribute("data-choice"): int(b.get_attribute("data-count")) for b in bars.all()}
     assert spread["1"] == 2 and spread["0"] == 1 and sum(spread.values()) == 3
     shot(projector, "question-spread-1024")
+    within_the_caption(projector)
     for page in pages:  # a class page is never sent the others' answers
         drawn_there(app, page)
         assert page.locator("[data-apf=bar]").count() == 0 and "answered" not in page.inner_text("body")
@@ -105,6 +124,7 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     right = projector.locator("[data-apf=bar][data-choice='1']")
     assert "✔" in right.inner_text()
     shot(projector, "question-revealed-1024")
+    within_the_caption(projector)
     pages[0].locator("p").filter(has_text="You answered robot 1: right").wait_for()
     pages[1].locator("[data-apf=mine]").filter(has_text="You answered robot 1: right").wait_for()
     shot(pages[1], "question-revealed-class-page")

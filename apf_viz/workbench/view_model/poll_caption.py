@@ -10,7 +10,8 @@ from apf_viz.workbench.poll import Bar, PollView
 
 SPREAD_KEY = "B"  # the bars: how the room answered
 REVEAL_KEY = "R"
-BAR_PX = 70  # the tallest bar
+BAR_PX = 32  # the tallest bar: the bars, their counts and names fit the caption at 1024×768 (a test)
+BAR_TEXT_PX = 18  # a bar's count and name: smaller than the words, read from the back all the same
 MOST_CELLS = 8  # a cell question's bars: the cells most given (the rest counted as one)
 _RIGHT = "#2b8a3e"
 _GIVEN = "#4c6ef5"
@@ -50,9 +51,10 @@ def bars_html(bars: tuple[Bar, ...], kind: str) -> str:
     top = max(1, *(b.count for b in bars))
     columns = "".join(
         f'<div data-apf="bar" data-choice="{html.escape(b.choice)}" data-count="{b.count}" '
-        f'style="display:flex;flex-direction:column;align-items:center;min-width:44px">'
+        f'style="display:flex;flex-direction:column;align-items:center;min-width:40px;'
+        f'font-size:{BAR_TEXT_PX}px;line-height:1.1">'
         f"<div>{b.count}</div>"
-        f'<div style="width:36px;height:{max(2, round(BAR_PX * b.count / top))}px;'
+        f'<div style="width:30px;height:{max(2, round(BAR_PX * b.count / top))}px;'
         f'background:{_RIGHT if b.right else _GIVEN}"></div>'
         f'<div style="white-space:nowrap">{"✔ " if b.right else ""}{html.escape(_short(b, kind))}</div></div>'
         for b in bars
