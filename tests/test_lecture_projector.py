@@ -443,6 +443,9 @@ def test_the_exported_lecture_asks_its_question_and_reveals_the_answer_from_disk
         caption.locator("[data-choice=collision]").click()  # changed before the reveal
         verdict = caption.locator("[data-apf=verdict]")
         assert "Your answer: collision" in verdict.inner_text()
+        status = caption.locator(".status")
+        before = status.inner_text()
+        assert "event 41" not in before
         page.keyboard.press("r")
         page.wait_for_function(
             "() => document.querySelector('[data-apf=verdict]').innerText.includes(\"The run's answer\")"
@@ -450,6 +453,7 @@ def test_the_exported_lecture_asks_its_question_and_reveals_the_answer_from_disk
         assert (
             verdict.inner_text() == "The run's answer: collision (event 41). You answered collision: right."
         )
+        assert status.inner_text().endswith("event 41")  # the state line follows the run to the answer
         reveal_at = page.evaluate(
             "() => JSON.parse(document.getElementById('apf-stops').textContent).stops[0].question.reveal_at"
         )

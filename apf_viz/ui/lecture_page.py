@@ -31,6 +31,7 @@ class PageQuestion:
     right: tuple[str, ...]
     answer: str  # the run's answer in words
     reveal_at: float
+    revealed_status: str = ""  # the state line where the run shows the answer (its stage, its event)
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,9 @@ _SCRIPT = r"""
     var s = stops[i];
     box.innerHTML = '<div class="where">' + s.where + ' · PageDown / PageUp: next / previous stop</div>' +
       '<div class="title" data-apf="title">' + s.title + '</div>' +
-      '<div data-apf="say">' + s.say + '</div>' + asked(i) + '<div class="status">' + s.status + '</div>' +
+      '<div data-apf="say">' + s.say + '</div>' + asked(i) + '<div class="status">' +
+      (s.question && revealed[i] && s.question.revealed_status ? s.question.revealed_status : s.status) +
+      '</div>' +
       (paced ? '' : '<div class="where">' + data.unpaced + '</div>');
     box.scrollTop = 0;
     document.title = data.title + ' · stop ' + (i + 1);
@@ -115,6 +118,8 @@ _SCRIPT = r"""
     if (!q) return;
     revealed[index] = true;
     told(index);
+    var line = box.querySelector('.status');  // the state line follows the run to the answer's event
+    if (line && q.revealed_status) line.innerHTML = q.revealed_status;
     var f = field();
     if (f) playAt(f, q.reveal_at);
   }
@@ -191,6 +196,7 @@ def _question(q: PageQuestion | None) -> dict | None:
         "right": [esc(r) for r in q.right],
         "answer": esc(q.answer),
         "reveal_at": q.reveal_at,
+        "revealed_status": symbol_html(q.revealed_status),
     }
 
 

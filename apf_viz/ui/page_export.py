@@ -149,7 +149,8 @@ def _asked(session: Session, recorder: _Recorder) -> PageQuestion | None:
     here = session.engine.step_index
     session.seek(poll.answer.step)
     reveal_at = recorder.clock
-    recorder.frame(session.view(), [], STOP_SECONDS, session.config)
+    there = session.view()
+    recorder.frame(there, [], STOP_SECONDS, session.config)
     session.seek(here)  # where the stop left the run: the next stop goes on from there
     choices = (
         tuple((c, choice_words(poll.kind, c)) for c in poll.choices) if poll.choices is not None else None
@@ -161,6 +162,7 @@ def _asked(session: Session, recorder: _Recorder) -> PageQuestion | None:
         tuple(sorted(poll.answer.right)),
         f"{poll.answer.words()} (event {poll.answer.event})",
         reveal_at,
+        f"{there.stage_line} · event {there.event}",
     )
 
 
