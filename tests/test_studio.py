@@ -440,3 +440,24 @@ def test_undo_and_redo_by_differences_restore_exactly_what_copies_would(steps):
         if editor.draft != before:
             undo.append(before)
             redo.clear()
+
+
+def test_the_selection_outline_and_the_edit_line_never_outlive_what_they_describe():
+    """Found drawing: after a Clear (or an Undo) that took every selected cell, the outline stayed; back
+    in an Edit mode, the line under the tool still told the last edit of before."""
+    s = session()
+    s.set_mode("edit-pattern")
+    s.clear_pattern()
+    s.draw_box((0, 0), (2, 2), erase=False)
+    s.set_tool("select")
+    s.draw_box((0, 0), (1, 1), erase=False)  # the select tool: the box selects
+    assert s.view().selection_box == ((0, 0), (1, 1))
+    s.transform("Undo")  # the drawn box undone: nothing the selection took is drawn
+    assert s.view().selection_box is None
+    s.transform("Redo")
+    assert s.view().selection_box == ((0, 0), (1, 1))
+    s.clear_pattern()
+    assert s.view().selection_box is None
+    s.screen.studio.said = "cleared"  # as the panel says an edit (ui/panels/edit.py)
+    s.set_mode("edit-robots")
+    assert s.screen.studio.said == ""

@@ -28,6 +28,14 @@ class Selection:
     def clear(self) -> None:
         self.cells, self.box = (), None
 
+    def box_over(self, drawn: list[Point]) -> tuple[Point, Point] | None:
+        """The box outlined: while some cell it selected is still drawn (after an erase, an Undo or a
+        clear that took them all, an outline would describe nothing)."""
+        if self.box is None:
+            return None
+        here = set(drawn)
+        return self.box if any(c in here for c in self.cells) else None
+
     def copy(self) -> str:
         if not self.cells:
             return "nothing selected: choose the select tool and drag a box"

@@ -76,6 +76,7 @@ class EditCommands(SessionCore):
                 self._place_draft_beside_robots()
             self.mode = mode
             self.screen.studio.selection.clear()  # a selection is of one draft
+            self.screen.studio.said = ""  # the last edit's words were of the mode left
             return None
 
     def _place_draft_beside_robots(self) -> None:

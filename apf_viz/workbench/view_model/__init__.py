@@ -117,7 +117,7 @@ def _screen_fields(run: RunSource, screen: SharedScreen) -> dict[str, Any]:
         "axis": screen.editor.axis() if screen.mode == "edit-robots" else None,
         "anchor": screen.studio.anchor if editing else None,
         "fit_preview": screen.studio.fit_preview(screen.editor) if editing else "",
-        "selection_box": screen.studio.selection.box if editing else None,
+        "selection_box": _selection_box(screen) if editing else None,
         "mirror_axes": screen.studio.axes if editing else (None, None),
         "click_advances": screen.click_advances,
         "scenario_note": screen.scenario_note,
@@ -140,6 +140,13 @@ def _told(view: SessionView, run: RunSource, crash: str | None, stuck: bool) -> 
         view = replace(view, endless=story.endless_words(run.trace_options))
     mirrored = view.outcome == "formed" and matches_only_mirrored(e.current_points(), run.config.pattern)
     return replace(view, **_sentences(view, crash, stuck, mirrored))
+
+
+def _selection_box(screen: SharedScreen) -> tuple[Point, Point] | None:
+    """The selection's outline, while a cell it took is still in the draft being edited."""
+    editor = screen.editor
+    drawn = editor.robots if screen.mode == "edit-robots" else editor.pattern
+    return screen.studio.selection.box_over(drawn)
 
 
 def lecture_words(stop: LectureStop | None, engine: Engine, playing: bool) -> tuple[str, str, str] | None:
