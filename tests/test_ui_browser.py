@@ -1001,6 +1001,27 @@ def test_a_camera_nobody_moved_keeps_the_whole_run_in_view_to_formed(browser, ap
     page.close()
 
 
+def test_after_play_pauses_the_camera_frames_the_run_again(browser, app):
+    """Found at the back of a room: Play grew the framing with room to spare, and after a pause the
+    robots stayed drawn at 60 % of their size. Paused, a camera that follows the run frames it tightly
+    again (the run's own box, not the grown one)."""
+    page, cid, screen = projector_page(browser, app)
+    page.wait_for_function("document.activeElement === document.body")
+    s = app.session
+    s.set_speed(400)
+    page.keyboard.press("Space")
+    wait_for(lambda: s.engine.state.events > 250)
+    page.keyboard.press("Space")
+    wait_for(lambda: not s.playing)
+    settled(app, screen)
+    wait_for(lambda: screen.state.framed_bounds == app.renderer.bounds)
+    assert screen.state.camera == "framed"
+    cells = [r.position for r in s.view().robots] + list(s.view().targets)
+    assert not inside_canvas(app, page, cid, cells)  # the whole run in view
+    shot(page, "paused-framed-again")
+    page.close()
+
+
 def test_at_1024x768_step_event_last_event_and_why_show_together(browser, app):
     for _ in range(20):
         app.session.step()

@@ -124,6 +124,7 @@ class App:
         self._initial_bounds: tuple[float, float, float, float] | None = None
         self._framed_end = False  # the cameras were framed on the run's end
         self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
+        self._framed_playing = False  # the run was playing when the cameras were last kept framed
         self.frames = 0
         self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
         self.room = Room(session, self._screens, self.seat_of)  # the class pages, for the presenter
@@ -373,9 +374,9 @@ class App:
         """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;
         a run growing out of a framed box (robots, targets, the leader's frame) re-frames the browsers
         whose camera is framed — one moved by hand is left alone — and the initial camera of browsers
-        yet to join, with room to grow; and a run that ends re-frames them on its end, which a camera
-        framed for the run's widest moment (the line) shows small. While a person draws (an Edit mode)
-        nothing is re-framed but by F."""
+        yet to join, with room to grow; a run that ends re-frames them on its end, which a camera
+        framed for the run's widest moment (the line) shows small, and so does a run paused. While a
+        person draws (an Edit mode) nothing is re-framed but by F."""
         b = self.renderer.bounds  # ``engine``'s, just drawn
         ended = engine.outcome is not None
         # A Compare begun or ended is a new picture too: both runs framed whole, not the first run's box
@@ -390,6 +391,16 @@ class App:
                     screen.frame(self.renderer)
             return
         self._framed_end = ended
+        paused = self._framed_playing and not self.session.playing
+        self._framed_playing = self.session.playing
+        if paused and self.session.mode == "run":
+            # Play grew the framing with room to spare (robots drawn small); paused, the run fills the
+            # cameras that follow it again, as it did before Play.
+            self._frame_initial()
+            for screen in screens:
+                if screen.state.camera == "framed":
+                    screen.frame(self.renderer)
+            return
         if self.session.mode != "run":
             # Drawing: the camera stays where the person put it (F frames). Re-framed to a drawing
             # that grew, the pointer would land on other cells mid-stroke and paint far away.
