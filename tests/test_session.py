@@ -844,3 +844,23 @@ def test_step_at_the_end_of_a_followed_branch_says_so_and_a_canvas_edit_is_said(
     s.set_mode("edit-pattern")
     said = s.click((40, 40))
     assert said == "added target (40, 40)" == s.screen.studio.said  # the line under the tool
+
+
+def test_a_manual_click_that_is_the_traces_next_step_follows_it_still():
+    """Found replaying a breaking schedule: a click on the robot the trace moves next took the "Following
+    the trace" line away, though the run was still the trace's; a click on another robot leaves it."""
+    from pathlib import Path
+
+    path = Path(__file__).parent / "literal_traces" / "collision.jsonl"
+    s = demo_session()
+    s.load_trace(path.name, path.read_bytes())
+    s.set_scheduler("Manual")
+    assert s.step()
+    recorded = s.engine.history.steps[s.engine.step_index]  # the trace's next step
+    (robot,) = recorded.record.robots
+    s.click(s.engine.current_points()[robot])
+    assert s.view().trace_position is not None and s.run.following
+    nxt = s.engine.history.steps[s.engine.step_index].record.robots[0]
+    other = next(r for r in range(s.engine.k) if r != nxt)
+    s.click(s.engine.current_points()[other])
+    assert s.view().trace_position is None and not s.run.following

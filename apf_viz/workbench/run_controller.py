@@ -182,8 +182,11 @@ class RunController:
         """Manual: run this robot's next phase. Returns the phase run."""
         with self.lock:
             phase = self.engine.next_event(robot)
+            generation = self.engine.history.generation
             self._branching_step([robot], None)
-            if self.following:  # a person's choice leaves the trace, and what its header said
+            # A person's choice that leaves the trace leaves what its header said too; one that is the
+            # trace's own next step (its future kept) follows it still.
+            if self.following and self.engine.history.generation != generation:
                 self.following, self.trace_options = False, {}
             return phase
 
