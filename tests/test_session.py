@@ -864,3 +864,22 @@ def test_a_manual_click_that_is_the_traces_next_step_follows_it_still():
     other = next(r for r in range(s.engine.k) if r != nxt)
     s.click(s.engine.current_points()[other])
     assert s.view().trace_position is None and not s.run.following
+
+
+def test_a_branch_keeps_its_number_whichever_line_is_the_runs():
+    """Found comparing lines: each time the line changed, the branches were numbered anew (#1 entered
+    came back as #3). A line keeps its number: entering #1 sets the line left aside as #2; entering #2
+    again sets #1 aside, by the same number."""
+    s = session(scheduler="manual")
+    for r in (0, 0, 0, 1, 1):
+        s.click(s.engine.current_points()[r])
+    s.back()
+    s.back()
+    s.click(s.engine.current_points()[2])
+    assert [b.split(":")[0] for b in s.view().branches] == ["#1"]
+    s.return_to_set_aside(1)
+    assert [b.split(":")[0] for b in s.view().branches] == ["#2"]
+    s.return_to_set_aside(2)
+    assert [b.split(":")[0] for b in s.view().branches] == ["#1"]
+    s.return_to_set_aside(1)
+    assert [b.split(":")[0] for b in s.view().branches] == ["#2"]

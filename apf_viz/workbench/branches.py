@@ -52,7 +52,11 @@ class Branches:
 
     def __init__(self) -> None:
         self._kept: list[Branch] = []
-        self._numbered = 0
+        # A line keeps its number whichever line is the run's: the run's own is #1 until a step from the
+        # past sets its future aside (that future is #1 then, the run's new line the next number), and a
+        # line entered gives its number back to the run's line (the line left keeps its own).
+        self.line = 1
+        self._numbered = 1
         self.forgotten = 0  # branches dropped past :data:`KEPT`
 
     def __len__(self) -> int:
@@ -66,8 +70,9 @@ class Branches:
         that hung off the run's line after ``at`` hang off that tail now."""
         if not records:
             return None
+        tail = Branch(self.line, None, at, tuple(records), ends)
         self._numbered += 1
-        tail = Branch(self._numbered, None, at, tuple(records), ends)
+        self.line = self._numbered
         for b in self._kept:
             if b.parent is None and b.at > at:
                 b.parent = tail
@@ -129,6 +134,7 @@ class Branches:
                 node.records, node.parent, node.at = node.records[cut - node.at :], None, cut
                 if not node.records:
                     self._kept.remove(node)
+        self.line = branch.number  # the run's line is that line now, by its own number
         return branch
 
     def labels(self) -> tuple[str, ...]:
