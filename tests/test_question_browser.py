@@ -11,7 +11,7 @@ from collections.abc import Iterator
 import pytest
 
 from apf_viz.ui.app import App, demo_session, free_port
-from tests.test_ui_browser import _choose, drawn_there, open_page, screen_of, shot, wait_for
+from tests.test_ui_browser import drawn_there, open_page, screen_of, shot, wait_for
 
 pytest.importorskip("playwright.sync_api")
 pytestmark = pytest.mark.browser
@@ -84,7 +84,7 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     pages = [class_page(browser, app) for _ in range(3)]
     for page in pages[:2]:
         page.get_by_text("Which robot moves next?").first.wait_for()
-        _choose(page, "Your answer", "robot 1")
+        page.get_by_role("button", name="robot 1", exact=True).click()  # one tap
     pages[2].mouse.click(*robot0)  # the third answers by a click on robot 0, the canvas as the projector's
     wait_for(lambda: poll.count == 3)
     keys = [app.seat_of(cid) for cid in app.screens]

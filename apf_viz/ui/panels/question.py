@@ -14,6 +14,9 @@ from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.poll_caption import REVEAL_KEY, SPREAD_KEY
 
 NONE = "—"
+TAP_MOST = 12
+"""A question of at most this many choices is answered by one tap on its button (a phone, a laptop alike);
+more go in a dropdown."""
 
 
 def shared_session(ctx: PanelContext) -> Session:
@@ -28,12 +31,15 @@ class QuestionFolder:
         self.folder = gui.add_folder("Question", order=-1.0, visible=False)
         with self.folder:
             self.text = gui.add_markdown("")
+            self.tap = gui.add_button_group("Tap your answer", (NONE,), visible=False)
             self.choice = gui.add_dropdown("Your answer", (NONE,), initial_value=NONE)
             self.cell = gui.add_text(
                 "Your cell", initial_value="", hint="x, y on the grid; or click the cell"
             )
             self.give_cell = gui.add_button("Answer this cell")
         self.choice.on_update(ctx.from_browser(self._chosen, "Question", mine=True))
+        self.tap.on_click(ctx.guard(lambda e: self._give(self._words.get(e.target.value, NONE)), "Question",
+                                    mine=True))  # fmt: skip
         self.give_cell.on_click(ctx.guard(lambda e: self._give(self.cell.value), "Question", mine=True))
         self._words: dict[str, str] = {}  # a choice's words on the dropdown -> the choice
         self._kind: tuple | None = None  # the poll the controls were last laid out for
@@ -78,13 +84,17 @@ class QuestionFolder:
             verdict = f"{told[:1].upper()}{told[1:]}." if mine else ""
             text = f"**{poll.question}**\n\nThe run's answer: **{poll.answer.words()}**. {verdict}"
         else:
-            how = {"robot": "Click a robot, or choose it", "cell": "Click the cell, or type it"}.get(
-                poll.kind, "Choose"
+            tap = poll.choices is not None and len(poll.choices) <= TAP_MOST
+            robot = "Tap a robot, or its button" if tap else "Click a robot, or choose it"
+            how = {"robot": robot, "cell": "Tap the cell, or type it"}.get(
+                poll.kind, "Tap one" if tap else "Choose"
             )
             held = f"Your answer: **{said}** (change it until the reveal)." if mine else "Not answered yet."
             text = f"**{poll.question}**\n\n{how}. {held}"
         put(self.text, content=text)
-        put(self.choice, visible=poll.choices is not None and not poll.revealed)
+        few = poll.choices is not None and len(poll.choices) <= TAP_MOST
+        put(self.tap, visible=few and not poll.revealed)
+        put(self.choice, visible=poll.choices is not None and not few and not poll.revealed)
         put(self.cell, visible=poll.choices is None and not poll.revealed)
         put(self.give_cell, visible=poll.choices is None and not poll.revealed)
         if poll.choices is not None:
@@ -98,5 +108,7 @@ class QuestionFolder:
         self._kind = key
         self._words = {choice_words(poll.kind, c): c for c in poll.choices or ()}
         self.choice.options = (NONE, *self._words)
+        if self._words:
+            self.tap.options = tuple(self._words)
         self.choice.value = NONE
         self.cell.value = ""

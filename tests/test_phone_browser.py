@@ -1,0 +1,92 @@
+"""A class page on a phone (Chromium's phone emulation: touch, a 390 × 844 screen and its landscape
+844 × 390): it reaches its seat, shows the stop's question first and takes the answer by one tap on a
+button, and never scrolls sideways; held sideways, its caption in presentation mode is readable (16 px
+at least). (Upright, viser's panel floats over the lower half and the caption does not show: not yet
+made for a phone.)"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Iterator
+
+import pytest
+
+from apf_viz.ui.app import App, demo_session, free_port
+from tests.test_ui_browser import shot, wait_for
+
+pytest.importorskip("playwright.sync_api")
+pytestmark = pytest.mark.browser
+
+LECTURE = {
+    "format": "apf-viz-lecture",
+    "version": 1,
+    "title": "Who moves?",
+    "stops": [
+        {"title": "Ten robots", "scenario": "Heart from 10 robots", "say": "Every light off.",
+         "ask": {"kind": "robot"}},
+        {"title": "Later", "until": {"event": 20}, "say": "On."},
+    ],
+}  # fmt: skip
+PHONES = {"portrait": {"width": 390, "height": 844}, "landscape": {"width": 844, "height": 390}}
+
+
+@pytest.fixture
+def app() -> Iterator[App]:
+    a = App(demo_session(), port=free_port(), verbose=False)
+    a.session.load_lecture("who.json", json.dumps(LECTURE).encode())
+    yield a
+    a.stop()
+
+
+@pytest.mark.parametrize("held", sorted(PHONES))
+def test_a_class_page_on_a_phone_answers_by_one_tap_and_never_scrolls_sideways(browser, app, held):
+    poll = app.session.screen.poll
+    assert poll is not None
+    context = browser.new_context(
+        viewport=PHONES[held], device_scale_factor=3, is_mobile=True, has_touch=True
+    )
+    try:
+        page = context.new_page()
+        page.set_default_timeout(60_000)
+        page.goto(app.addresses[1])
+        page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
+        question = page.get_by_text("Which robot moves next?").first
+        question.wait_for()  # the page is not blank: the question, first in its panel
+        wait_for(lambda: len(app.screens) == 1)
+        (cid,) = app.screens
+        button = page.get_by_role("button", name="robot 1", exact=True)
+        button.scroll_into_view_if_needed()
+        button.tap()  # one tap
+        wait_for(lambda: poll.given(app.seat_of(cid)) == "1")
+        page.get_by_text("Your answer: robot 1").first.wait_for()
+        assert page.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
+        shot(page, f"phone-{held}")
+        assert poll.count == 1
+    finally:
+        context.close()
+
+
+def test_held_sideways_a_phones_caption_says_its_answer_readably(browser, app):
+    context = browser.new_context(
+        viewport=PHONES["landscape"], device_scale_factor=3, is_mobile=True, has_touch=True
+    )
+    try:
+        page = context.new_page()
+        page.set_default_timeout(60_000)
+        page.goto(app.addresses[1])
+        page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
+        button = page.get_by_role("button", name="robot 1", exact=True)
+        button.scroll_into_view_if_needed()
+        button.tap()
+        presentation = page.get_by_role("button", name="Presentation mode")
+        presentation.scroll_into_view_if_needed()
+        presentation.tap()
+        words = page.locator("[data-apf=words]")
+        words.wait_for()
+        assert float(words.evaluate("e => parseFloat(getComputedStyle(e).fontSize)")) >= 16
+        page.locator("[data-apf=mine]").filter(has_text="Your answer: robot 1").wait_for()
+        assert page.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
+        shot(page, "phone-landscape-caption")
+    finally:
+        context.close()
