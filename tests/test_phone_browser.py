@@ -1,8 +1,6 @@
 """A class page on a phone (Chromium's phone emulation: touch, a 390 × 844 screen and its landscape
 844 × 390): it reaches its seat, shows the stop's question first and takes the answer by one tap on a
-button, and never scrolls sideways; held sideways, its caption in presentation mode is readable (16 px
-at least). (Upright, viser's panel floats over the lower half and the caption does not show: not yet
-made for a phone.)"""
+button, and never scrolls sideways; its caption in presentation mode is readable (16 px at least)."""
 
 from __future__ import annotations
 
@@ -67,9 +65,12 @@ def test_a_class_page_on_a_phone_answers_by_one_tap_and_never_scrolls_sideways(b
         context.close()
 
 
-def test_held_sideways_a_phones_caption_says_its_answer_readably(browser, app):
+@pytest.mark.parametrize("held", sorted(PHONES))
+def test_a_phones_caption_says_its_answer_readably(browser, app, held):
+    """Presentation mode on a phone: the caption (upright, first in the bottom sheet, where viser shows
+    no floating panel) at 16 px at least, with the page's own answer."""
     context = browser.new_context(
-        viewport=PHONES["landscape"], device_scale_factor=3, is_mobile=True, has_touch=True
+        viewport=PHONES[held], device_scale_factor=3, is_mobile=True, has_touch=True
     )
     try:
         page = context.new_page()
@@ -87,6 +88,6 @@ def test_held_sideways_a_phones_caption_says_its_answer_readably(browser, app):
         assert float(words.evaluate("e => parseFloat(getComputedStyle(e).fontSize)")) >= 16
         page.locator("[data-apf=mine]").filter(has_text="Your answer: robot 1").wait_for()
         assert page.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
-        shot(page, "phone-landscape-caption")
+        shot(page, f"phone-{held}-caption")
     finally:
         context.close()

@@ -34,6 +34,17 @@ def steady_size(seen: tuple[int, int] | None, reported: tuple[int, int]) -> tupl
 
 
 CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of a room
+PHONE_PX = 576
+"""A page at most this many CSS pixels wide is a phone held upright: viser's client shows its panel as a
+sheet at the bottom and no floating panel (Mantine's ``xs`` breakpoint), so the caption goes first in
+that sheet instead. The canvas is reported in device pixels (viser caps their ratio at 2), so a canvas
+taller than wide and at most twice this wide is taken for one."""
+
+
+def upright_phone(height: int, width: int) -> bool:
+    return 16 < width <= 2 * PHONE_PX and height > width
+
+
 MARGIN = 10  # px between the caption and the canvas's edges
 
 # Runs in the page each time the caption changes (an image that fails to load runs its onerror; a new
@@ -50,6 +61,7 @@ class Presentation:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.gui, self.ctx = gui, ctx
         self.panel: viser.PanelHandle | None = None
+        self.inline: viser.GuiHtmlHandle | None = None  # the caption first in the panel, on a phone
         self.html: viser.GuiHtmlHandle | None = None
         self._placed: tuple[int, int] | None = None  # the caption's (width, height) last sent
         self._canvas: tuple[int, int] | None = None  # the canvas laid out for (steady_size)
@@ -90,7 +102,7 @@ class Presentation:
 
     @property
     def on(self) -> bool:
-        return self.panel is not None
+        return self.panel is not None or self.inline is not None
 
     def toggle(self, event=None) -> None:
         self.present(not self.on, event.client if event is not None else None)
@@ -99,7 +111,9 @@ class Presentation:
         """Presentation mode on or off in this browser (``client``: its canvas, to size the caption)."""
         if on == self.on:
             return
-        if on:
+        if on and client is not None and upright_phone(*canvas_size(client)):  # first in the phone's sheet
+            self.inline = self.html = self.gui.add_html("", order=-2.0)
+        elif on:
             self.gui.main_panel.minimize()
             self.panel = panel = self.gui.add_panel()
             with panel.add_tab("Caption"):
@@ -109,8 +123,10 @@ class Presentation:
         else:
             if self.panel is not None:
                 self.panel.remove()
-            self.panel = self.html = None
-            self.gui.main_panel.expand()
+                self.gui.main_panel.expand()
+            if self.inline is not None:
+                self.inline.remove()
+            self.panel = self.inline = self.html = None
         if client is not None:
             self.ctx.frame(client)  # the caption's room at the bottom comes and goes
         self.ctx.changed()
