@@ -69,9 +69,10 @@ def within_the_caption(page) -> None:
     for bar in page.locator("[data-apf=bar]").all():
         b = bar.bounding_box()
         assert b is not None and b["y"] + b["height"] <= box["y"], b  # above the state line, whole
-    scrolled = page.locator("[data-apf=words]").evaluate(
-        "e => { for (let n = e; n; n = n.parentElement) { if (n.scrollHeight > n.clientHeight + 1 && "
-        "getComputedStyle(n).overflowY !== 'visible') return n.scrollHeight - n.clientHeight; } return 0; }"
+    scrolled = page.locator("[data-apf=words]").last.evaluate(  # its own scroll box: the nearest
+        "e => { for (let n = e.parentElement; n; n = n.parentElement) { if (/(auto|scroll)/.test("
+        "getComputedStyle(n).overflowY)) return Math.max(0, n.scrollHeight - n.clientHeight - 1); }"
+        " return 0; }"
     )
     assert scrolled == 0, f"the caption scrolls by {scrolled} px"
 

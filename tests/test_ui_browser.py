@@ -1365,7 +1365,9 @@ def test_a_slow_drag_and_a_click_paint_exactly_their_cells_and_the_camera_never_
     last cell's centre; a choice in a dropdown gives the keys back to the canvas."""
     s = app.session
     page, cid, screen = blank_drawing(browser, app, "cell")
-    settled(app, screen)
+    drawn_there(app, page)
+    wait_for(lambda: screen._reported is not None)  # the page has reported where its camera is
+    time.sleep(1.0)  # and any pose sent before has arrived
     before = np.asarray(screen.client.camera.position, dtype=float).copy()
 
     def camera_kept() -> bool:

@@ -37,12 +37,14 @@ CAPTION_MAX_WIDTH = 1100  # px: wider lines are hard to follow from the back of 
 PHONE_PX = 576
 """A page at most this many CSS pixels wide is a phone held upright: viser's client shows its panel as a
 sheet at the bottom and no floating panel (Mantine's ``xs`` breakpoint), so the caption goes first in
-that sheet instead. The canvas is reported in device pixels (viser caps their ratio at 2), so a canvas
-taller than wide and at most twice this wide is taken for one."""
+that sheet instead. The canvas is reported in device pixels (viser caps their ratio at 2) and, on a
+phone, takes the whole screen: at most twice this wide and half as tall again as wide (a projector's
+canvas beside the docked panel, 640 × 768 at 1024 × 768, is not one)."""
+PHONE_TALL = 1.5
 
 
 def upright_phone(height: int, width: int) -> bool:
-    return 16 < width <= 2 * PHONE_PX and height > width
+    return 16 < width <= 2 * PHONE_PX and height >= PHONE_TALL * width
 
 
 MARGIN = 10  # px between the caption and the canvas's edges
