@@ -20,6 +20,7 @@ from apf_viz.api import progress_bars
 from apf_viz.cli import main
 from apf_viz.core.adversarial_starts import FAMILIES, generate
 from apf_viz.core.formats import InputError
+from tests.test_api import _cli_json
 
 ROOT = Path(__file__).resolve().parent.parent
 SMALL = [(family, seed) for family in sorted(FAMILIES) for seed in range(2)]  # 10 starts of k = 3
@@ -31,12 +32,6 @@ def _files(tmp_path: Path, family: str, seed: int, k: int = 3) -> tuple[Path, Pa
     robots.write_text(json.dumps({"robots": case.robots, "y_up": case.y_up}))
     pattern.write_text(json.dumps({"points": case.pattern}))
     return robots, pattern
-
-
-def _cli_json(capsys, *argv: str) -> dict:
-    capsys.readouterr()
-    main(list(argv))
-    return json.loads(capsys.readouterr().out)
 
 
 @pytest.mark.parametrize(("family", "seed"), SMALL)

@@ -11,21 +11,12 @@ from collections.abc import Iterator
 import pytest
 
 from apf_viz.ui.app import App, demo_session, free_port
+from tests.test_question_browser import LECTURE
 from tests.test_ui_browser import shot, wait_for
 
 pytest.importorskip("playwright.sync_api")
 pytestmark = pytest.mark.browser
 
-LECTURE = {
-    "format": "apf-viz-lecture",
-    "version": 1,
-    "title": "Who moves?",
-    "stops": [
-        {"title": "Ten robots", "scenario": "Heart from 10 robots", "say": "Every light off.",
-         "ask": {"kind": "robot"}},
-        {"title": "Later", "until": {"event": 20}, "say": "On."},
-    ],
-}  # fmt: skip
 PHONES = {"portrait": {"width": 390, "height": 844}, "landscape": {"width": 844, "height": 390}}
 
 
@@ -37,18 +28,24 @@ def app() -> Iterator[App]:
     a.stop()
 
 
+def phone_page(browser, app: App, held: str):
+    """A class page on a phone held ``held`` (touch, its pixel ratio), at its seat: (its context, page)."""
+    context = browser.new_context(
+        viewport=PHONES[held], device_scale_factor=3, is_mobile=True, has_touch=True
+    )
+    page = context.new_page()
+    page.set_default_timeout(60_000)
+    page.goto(app.addresses[1])
+    page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
+    return context, page
+
+
 @pytest.mark.parametrize("held", sorted(PHONES))
 def test_a_class_page_on_a_phone_answers_by_one_tap_and_never_scrolls_sideways(browser, app, held):
     poll = app.session.screen.poll
     assert poll is not None
-    context = browser.new_context(
-        viewport=PHONES[held], device_scale_factor=3, is_mobile=True, has_touch=True
-    )
+    context, page = phone_page(browser, app, held)
     try:
-        page = context.new_page()
-        page.set_default_timeout(60_000)
-        page.goto(app.addresses[1])
-        page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
         question = page.get_by_text("Which robot moves next?").first
         question.wait_for()  # the page is not blank: the question, first in its panel
         wait_for(lambda: len(app.screens) == 1)
@@ -69,14 +66,8 @@ def test_a_class_page_on_a_phone_answers_by_one_tap_and_never_scrolls_sideways(b
 def test_a_phones_caption_says_its_answer_readably(browser, app, held):
     """Presentation mode on a phone: the caption (upright, first in the bottom sheet, where viser shows
     no floating panel) at 16 px at least, with the page's own answer."""
-    context = browser.new_context(
-        viewport=PHONES[held], device_scale_factor=3, is_mobile=True, has_touch=True
-    )
+    context, page = phone_page(browser, app, held)
     try:
-        page = context.new_page()
-        page.set_default_timeout(60_000)
-        page.goto(app.addresses[1])
-        page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
         button = page.get_by_role("button", name="robot 1", exact=True)
         button.scroll_into_view_if_needed()
         button.tap()

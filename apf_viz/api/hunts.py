@@ -13,7 +13,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM
 from apf_viz.api.inputs import whole_numbers
 from apf_viz.api.progress_bars import ProgressBar
 from apf_viz.api.tables import pandas_for
-from apf_viz.api.workers import refuse_unstartable_workers, unguarded
+from apf_viz.api.workers import local_workers
 from apf_viz.core.formats import InputError
 
 if TYPE_CHECKING:
@@ -53,8 +53,6 @@ def hunt(
     pandas = pandas_for("hunt's table")
     _check_arguments(count, max_states, algorithm, flips)
     chosen = list(FAMILIES) if families is None else list(families)
-    if cluster is None:
-        refuse_unstartable_workers("hunt()")
     try:
         starts = hunt_starts(whole_numbers("ks", ks), count, seed, chosen)
     except ValueError as e:
@@ -65,17 +63,15 @@ def hunt(
             raise InputError(f"out {path}: write .parquet")
         folder = path.with_name(path.stem + "-counterexamples")
         folder = Path(counterexamples) if counterexamples is not None else folder
-        with ProgressBar("apf-viz hunt", len(starts), "starts", progress) as bar:
-            try:
-                rows = run_hunt(
-                    starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder,
-                    flips=flips, workers=workers, cluster=cluster,
-                    progress=lambda p: bar.to(p.finished, f"{p.failures} failing, {p.budget} out of budget"),
-                )  # fmt: skip
-            except RuntimeError as e:
-                if cluster is None and "failed to start" in str(e):
-                    raise unguarded("hunt()") from None
-                raise
+        with (
+            ProgressBar("apf-viz hunt", len(starts), "starts", progress) as bar,
+            local_workers("hunt()", cluster),
+        ):
+            rows = run_hunt(
+                starts, path, algorithm=algorithm, max_states=max_states, counterexamples=folder,
+                flips=flips, workers=workers, cluster=cluster,
+                progress=lambda p: bar.to(p.finished, f"{p.failures} failing, {p.budget} out of budget"),
+            )  # fmt: skip
         mine = [r for r in rows if r["algorithm"] == algorithm and r["flips"] == flips]
         table = pandas.DataFrame(mine, columns=list(COLUMNS))
     return table

@@ -13,7 +13,7 @@ from apf_viz.algorithms import DEFAULT_ALGORITHM
 from apf_viz.api.inputs import whole_numbers
 from apf_viz.api.progress_bars import ProgressBar
 from apf_viz.api.tables import pandas_for
-from apf_viz.api.workers import refuse_unstartable_workers, unguarded
+from apf_viz.api.workers import local_workers
 from apf_viz.core.formats import InputError
 from apf_viz.core.schedulers import DEFAULT_SCHEDULER
 
@@ -51,8 +51,6 @@ def sweep(
     """
     pandas = pandas_for("sweep's table")
     ks, seeds = whole_numbers("ks", ks), whole_numbers("seeds", seeds, 0)
-    if cluster is None:
-        refuse_unstartable_workers("sweep()")
     from apf_viz import sweeps as driver
 
     cells = driver.grid(
@@ -70,7 +68,7 @@ def sweep(
         path = Path(out) if out is not None else Path(scratch) / "results.parquet"
         if path.suffix not in (".parquet", ".csv"):
             raise InputError(f"out {path}: write .parquet or .csv")
-        try:
+        with local_workers("sweep()", cluster):
             rows = driver.run_sweep(
                 cells,
                 path,
@@ -80,8 +78,4 @@ def sweep(
                 progress=lambda p: bar.to(p.finished, f"{p.failed} not formed"),
                 run_timeout=run_timeout,
             )
-        except RuntimeError as e:
-            if cluster is None and "failed to start" in str(e):
-                raise unguarded("sweep()") from None
-            raise
     return pandas.DataFrame(rows, columns=list(driver.COLUMNS))

@@ -8,9 +8,11 @@ This module says it in one line instead, before any worker starts (and, in a wor
 
 from __future__ import annotations
 
+import contextlib
 import inspect
 import os
 import sys
+from collections.abc import Iterator
 
 from apf_viz.core.formats import InputError
 
@@ -47,3 +49,19 @@ def _called_from_a_worker_import() -> bool:
             return True
         frame = frame.f_back
     return False
+
+
+@contextlib.contextmanager
+def local_workers(call: str, cluster: str | None) -> Iterator[None]:
+    """Around a call that starts local workers (none with ``cluster``): refused first where they could
+    not start, and Dask's "Nanny failed to start" said as :func:`unguarded`'s one line."""
+    if cluster is not None:
+        yield
+        return
+    refuse_unstartable_workers(call)
+    try:
+        yield
+    except RuntimeError as e:
+        if "failed to start" in str(e):
+            raise unguarded(call) from None
+        raise

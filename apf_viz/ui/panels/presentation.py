@@ -18,6 +18,7 @@ import viser
 
 from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.panels.context import PanelContext
+from apf_viz.ui.panels.question import shared_session
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.caption import DETAILS_KEY, caption_html
@@ -144,8 +145,7 @@ class Presentation:
 
     def _mine(self) -> str:
         """This page's own answer to the stop's question (kept under its seat: a reload keeps it)."""
-        shared = getattr(self.ctx.session, "shared", self.ctx.session)
-        poll = shared.screen.poll
+        poll = shared_session(self.ctx).screen.poll
         return poll.told(self.ctx.answer_key()) if poll is not None else ""
 
     def refresh(self, view: SessionView) -> None:
