@@ -115,7 +115,7 @@ def test_on_a_dask_cluster_the_search_finds_what_it_finds_here(capsys):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("k", "seed"), [(5, 5), (10, 1), (20, 1)])
+@pytest.mark.parametrize(("k", "seed"), [(5, 5), (10, 1)])  # k = 20 and more: docs/ADVERSARY.md's campaign
 def test_the_search_beats_every_built_in_scheduler_over_seeds_0_to_19(k, seed):
     """Generated starts where the adversary can do worse than any built-in: the beam finds it at a
     budget of one schedule (the beam's path, replayed from its file to its cost)."""

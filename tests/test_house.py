@@ -394,3 +394,41 @@ def test_every_package_says_what_it_exports():
         }
         listed = set(_exported(tree))
         assert again <= listed, (str(init.relative_to(ROOT)), sorted(again - listed))
+
+
+IMPORT_NAME = {"pillow": "PIL", "pytest-xdist": "xdist"}
+
+
+def _third_party(path: Path) -> set[str]:
+    """The top-level names of every module ``path`` imports (at any depth of its code)."""
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            out.add(node.module.split(".")[0])
+        elif isinstance(node, ast.Import):
+            out.update(a.name.split(".")[0] for a in node.names)
+    return out
+
+
+def test_the_lowest_versions_run_tests_that_reach_every_dependency():
+    """scripts/test_lowest.sh runs a list of test files, not the whole quick suite: each dependency of
+    scripts/lowest.txt is imported by one of them or by a module of ours one of them imports (pytest and
+    its plugin run them). A dependency dropped from that reach would be installed at its lowest version
+    and never used there."""
+    import re
+
+    script = (ROOT / "scripts" / "test_lowest.sh").read_text()
+    listed = [ROOT / name for name in re.search(r"LOWEST_TESTS=\((.*?)\)", script, re.S).group(1).split()]
+    assert all(p.is_file() for p in listed), [p.name for p in listed if not p.is_file()]
+    modules = _modules()
+    reached = set().union(*(_third_party(p) for p in listed))
+    for test in listed:
+        reached |= set().union(*(_third_party(modules[m]) for m in _imports(test, modules)))
+    wanted = {
+        IMPORT_NAME.get(name, name)
+        for line in (ROOT / "scripts" / "lowest.txt").read_text().splitlines()
+        if line and not line.startswith("#")
+        for name in [re.sub(r"\[.*\]", "", line.split("==")[0])]
+        if name not in ("pytest", "pytest-xdist")
+    }
+    assert wanted - reached == set()

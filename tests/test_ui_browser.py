@@ -18,6 +18,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 from PIL import Image, ImageSequence
+from playwright.sync_api import Error as PlaywrightError
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import shapes
@@ -401,12 +402,20 @@ def test_the_moves_plot_reads_events_on_its_x_axis_not_dates(browser, app):
     app.request_render()
     page = open_page(browser, app)
     open_folder(page, "Moves over events")
-    plot = page.locator(".uplot .u-over").first
-    plot.scroll_into_view_if_needed()
-    plot.hover()  # the legend shows the values under the cursor
-    legend = page.locator(".uplot .u-legend").first
-    wait_for(lambda: "moves" in legend.inner_text() and any(c.isdigit() for c in legend.inner_text()))
-    text = " ".join(legend.inner_text().split())
+    seen: list[str] = []
+
+    def legend_under_the_cursor() -> bool:
+        """Hover the plot (its legend shows the values under the cursor) and read the legend. The plot
+        may be mounted again while its data arrives, detaching the one found: then hover the new one."""
+        try:
+            page.locator(".uplot .u-over").first.hover(timeout=10_000)
+            seen.append(" ".join(page.locator(".uplot .u-legend").first.inner_text(timeout=10_000).split()))
+        except PlaywrightError:
+            return False
+        return "moves" in seen[-1] and any(c.isdigit() for c in seen[-1])
+
+    wait_for(legend_under_the_cursor)
+    text = seen[-1]
     event = text.split("event")[1].split("moves")[0].strip(" :")
     assert event.isdigit() and int(event) <= app.session.view().event, text
     page.close()
@@ -1142,7 +1151,7 @@ def test_presentation_mode_collapses_the_panel_and_narrates_on_the_canvas(browse
     last = app.session.view().last_events[0]
     page.get_by_text(f"Event 3 · {last}").wait_for()
     shot(page, "presentation-1024x768")
-    assert not page.get_by_role("button", name="Step").is_visible()  # the panel is collapsed
+    page.get_by_role("button", name="Step").wait_for(state="hidden")  # the panel collapses (a frame later)
     assert other.get_by_role("button", name="Step").is_visible()  # only in the browser that asked
     page.keyboard.press("P")
     page.get_by_role("button", name="Step").wait_for(state="visible")
