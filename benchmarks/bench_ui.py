@@ -31,12 +31,15 @@
   each playing a run of its own; then how long the presenting projector takes to count one answer more;
 - with ``--churn N``: N pages that connect and read nothing (laptops asleep) while the run plays, then
   vanish without a goodbye (their process killed), three times: the server's memory after each round;
+- with ``--short N``: N class pages that each stay a moment (a camera sent, 0.3 s read, a clean goodbye),
+  20 at a time, each with a seat of its own: the server's memory before and after, and the pages held;
 - with ``--wake N [--asleep S]``: N pages that read nothing for S seconds (default 60) while the run
   plays, then wake: how long until each shows the run's event, the server's frames/s meanwhile.
 
 Run: python benchmarks/bench_ui.py [--robots 1000] [--stage pattern|targets] [--window 1024x768];
 python benchmarks/bench_ui.py --robots 100 --to-formed; python benchmarks/bench_ui.py --class 60;
-python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --wake 20;
+python benchmarks/bench_ui.py --churn 200; python benchmarks/bench_ui.py --short 2000;
+python benchmarks/bench_ui.py --wake 20;
 python benchmarks/bench_ui.py --own 24; python benchmarks/bench_ui.py --room 60,20
 """
 
@@ -125,6 +128,7 @@ def main() -> None:
         help="A,O: A class pages that answered a stop's question, O trying runs of their own",
     )
     ap.add_argument("--churn", type=int, default=None, help="N pages connected, asleep, then killed")
+    ap.add_argument("--short", type=int, default=None, help="N class pages that each stay a moment")
     ap.add_argument("--wake", type=int, default=None, help="N pages asleep while the run plays, then awake")
     ap.add_argument("--asleep", type=float, default=60.0, help="with --wake: seconds asleep")
     args = ap.parse_args()
@@ -143,6 +147,11 @@ def main() -> None:
         from bench_class import churn
 
         churn(args.churn)
+        return
+    if args.short is not None:
+        from bench_class import short_stays
+
+        short_stays(args.short)
         return
     if args.wake is not None:
         from bench_class import sleep_and_wake

@@ -55,6 +55,7 @@ def demo_app():
     """A visualiser on the Demo heart, on a free port, stopped after the test (a browser test's server)."""
     from apf_viz.ui.app import App, demo_session, free_port
 
-    a = App(demo_session(), port=free_port(), verbose=False)
+    # Several class pages from this one machine, each a laptop of its own (a hall behind one router).
+    a = App(demo_session(), port=free_port(), verbose=False, seats_per_address=8)
     yield a
     a.stop()

@@ -184,6 +184,23 @@ def _distance(box, point) -> float:
     return float(np.hypot(dx, dy))
 
 
+def settled_label_problems(app: App, page, screen, others, where: str, timeout: float = 10.0) -> list[str]:
+    """The labels' problems on the projector and the pages beside it, read until there are none or
+    ``timeout`` s have passed: labels are laid out anew for the zoom a page reports, and a loaded machine
+    was once read while a page's report was on its way (the numbers over a region's name for a frame)."""
+    end = time.time() + timeout
+    while True:
+        labels, cell, em = scene_labels(app, page, screen)
+        found = [f"{where}: robot numbers at {em:.1f} px"] if em < NUMBER_PX else []
+        found += [f"{where}: {p}" for p in label_problems(labels, cell)]
+        for laptop, its_screen in others:
+            labels, cell, _ = scene_labels(app, laptop, its_screen)
+            found += [f"{where} at 1400×900: {p}" for p in label_problems(labels, cell)]
+        if not found or time.time() > end:
+            return found
+        time.sleep(0.5)
+
+
 def label_problems(labels: list[Label], cell: float) -> list[str]:
     """Two labels' boxes that overlap (by more than a pixel's sliver), a label farther than a cell from
     what it names."""
@@ -289,13 +306,7 @@ def test_every_stop_reads_from_the_back_row_with_labels_on_their_robots_at_1024x
             problems.append(f"{where}: its words are not on the page")
         if " I shows " in f" {stop.say} " or " I lists " in f" {stop.say} ":  # the words send the room to I
             problems += [f"{where}: {p}" for p in _details_shown(page, app, i, slug)]
-        labels, cell, em = scene_labels(app, page, screen)
-        if em < NUMBER_PX:
-            problems.append(f"{where}: robot numbers at {em:.1f} px")
-        problems += [f"{where}: {p}" for p in label_problems(labels, cell)]
-        for laptop, its_screen in others:
-            labels, cell, _ = scene_labels(app, laptop, its_screen)
-            problems += [f"{where} at 1400×900: {p}" for p in label_problems(labels, cell)]
+        problems += settled_label_problems(app, page, screen, others, where)
     assert not problems, "\n".join(problems)
 
 

@@ -36,7 +36,7 @@ def phone_page(browser, app: App, held: str):
     page = context.new_page()
     page.set_default_timeout(60_000)
     page.goto(app.addresses[1])
-    page.wait_for_url(re.compile(r"/seat/[0-9a-f]{32}$"))
+    page.wait_for_url(re.compile(r"/seat/[0-9a-f]{16}-[0-9a-f]{16}$"))
     return context, page
 
 
@@ -82,3 +82,30 @@ def test_a_phones_caption_says_its_answer_readably(browser, app, held):
         shot(page, f"phone-{held}-caption")
     finally:
         context.close()
+
+
+def test_two_phones_at_one_address_are_one_seat_and_a_made_up_seat_is_none(browser, app):
+    """The server issues one seat to an address (here every page's: this machine): a second phone, with
+    storage of its own, is given the same seat, and their answers are one, the last given. A page that
+    opens at a seat it made up is sent to the issued one."""
+    poll = app.session.screen.poll
+    assert poll is not None
+    first, a = phone_page(browser, app, "portrait")
+    second, b = phone_page(browser, app, "portrait")
+    third = browser.new_context()
+    try:
+        assert a.url == b.url  # the same seat, issued to the address
+        for page, robot in ((a, "1"), (b, "0")):
+            button = page.get_by_role("button", name=f"robot {robot}", exact=True)
+            button.scroll_into_view_if_needed()
+            button.tap()
+        wait_for(lambda: poll.given(app.seat_of(max(app.screens))) == "0")
+        assert poll.count == 1
+        made_up = third.new_page()
+        made_up.goto(a.url.split("?")[0] + "?websocket=" + a.url.split("websocket=")[1][:-33] + "0" * 16
+                     + "-" + "0" * 16)  # fmt: skip
+        made_up.wait_for_url(a.url)  # sent to the seat the server issued
+        assert poll.count == 1
+    finally:
+        for context in (first, second, third):
+            context.close()

@@ -5,6 +5,7 @@ reveal, and the reveal plays the run to the answer."""
 from __future__ import annotations
 
 import json
+import random
 
 import pytest
 
@@ -199,13 +200,53 @@ def test_a_cell_answer_is_read_as_the_grid_reads_it():
     cells.give("0", "1,1")  # a page that answered may still change its answer
 
 
-def test_a_seat_is_read_only_from_a_seat_path_with_a_whole_token():
-    from apf_viz.ui.seat import seat_key
+def test_a_seat_is_read_only_from_a_seat_path_signed_by_this_server():
+    from apf_viz.ui.seat import seat_token
+    from apf_viz.workbench.seats import Seats
 
-    token = "0123456789abcdef" * 2
-    assert seat_key(f"/seat/{token}", 7) == f"seat {token}"
-    for path in (None, "/", f"/present/{token}", f"/seat/{token}x", "/seat/../x", f"/seat/{token.upper()}"):
-        assert seat_key(path, 7) == "page 7"
+    seats, other = Seats(), Seats()
+    token = seats.issue("10.0.0.7")
+    assert seat_token(f"/seat/{token}") == token and seats.key(token) == "seat " + token.split("-")[0]
+    number = token.split("-")[0]
+    forged = [f"{number}-{'0' * 16}", other.issue("10.0.0.7"), token.upper(), token + "x", "../x", "", None]
+    for made_up in forged:  # a page's own, another run's, a token bent: no seat
+        assert seats.key(made_up) is None, made_up
+    for path in (None, "/", f"/present/{token}"):
+        assert seat_token(path) is None
+
+
+def test_two_thousand_pages_from_one_address_with_fresh_or_forged_tokens_answer_as_one():
+    """A client opening connection after connection: each comes with a token of its own making (no
+    seat) or none, and is issued one; one address is issued one seat, so every page's answer lands on it."""
+    from apf_viz.workbench.seats import Seats
+
+    session = heart_at_question()
+    seats = Seats()
+    rng = random.Random(5)
+    for i in range(2_000):
+        made_up = f"{rng.getrandbits(64):016x}-{rng.getrandbits(64):016x}" if i % 2 else None
+        key = seats.key(made_up) or seats.key(seats.issue("203.0.113.9"))  # the page goes to its seat
+        session.answer_question(key, str(i % 3))
+    assert session.screen.poll is not None and session.screen.poll.count == 1
+    for address in ("203.0.113.10", "203.0.113.11"):  # another laptop: a seat of its own
+        session.answer_question(seats.key(seats.issue(address)), "1")
+    assert session.screen.poll.count == 3
+    with pytest.raises(InputError, match="no seat yet"):
+        session.answer_question(None, "1")
+
+
+def test_a_hall_behind_one_router_has_the_seats_it_is_given_and_no_more():
+    from apf_viz.workbench.seats import MAX_ADDRESSES, Seats
+
+    seats = Seats(per_address=3)
+    issued = [seats.issue("192.0.2.1") for _ in range(10)]
+    assert len(set(issued)) == 3 and all(seats.key(t) for t in issued)  # a fourth page gets one of them
+    assert len({seats.issue(None), seats.issue(None)}) == 2  # an unknown address is one address
+    for n in range(MAX_ADDRESSES + 5):  # a scan from many addresses: the oldest forgotten
+        seats.issue(f"a{n}")
+    assert len(seats._issued) == MAX_ADDRESSES
+    with pytest.raises(ValueError):
+        Seats(per_address=0)
 
 
 def test_a_stop_visited_again_keeps_the_rooms_answers():

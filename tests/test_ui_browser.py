@@ -18,7 +18,6 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 from PIL import Image, ImageSequence
-from playwright.sync_api import Error as PlaywrightError
 
 from apf_viz.algorithms.apf_opaque_grid.audit import random_pattern, random_solvable_start
 from apf_viz.core import shapes
@@ -50,7 +49,8 @@ if not Path(CHROMIUM).exists():  # the README's test command installs it; say so
 
 @pytest.fixture
 def app() -> Iterator[App]:
-    a = App(demo_session(), port=free_port(), verbose=False)
+    # Several class pages from this one machine, each a laptop of its own (a hall behind one router).
+    a = App(demo_session(), port=free_port(), verbose=False, seats_per_address=8)
     yield a
     a.stop()
 
@@ -401,6 +401,8 @@ def test_the_moves_plot_reads_events_on_its_x_axis_not_dates(browser, app):
         app.session.step()
     app.request_render()
     page = open_page(browser, app)
+    from playwright.sync_api import Error as PlaywrightError
+
     open_folder(page, "Moves over events")
     seen: list[str] = []
 

@@ -26,7 +26,8 @@ def test_this_viser_offers_every_inside_apf_viz_uses():
 
 
 def test_the_websocket_path_of_a_live_connection_is_read():
-    """What roles stand on: the path a page opened its websocket at, read off viser's live connection."""
+    """What roles and seats stand on: the path a page opened its websocket at, and the address it came
+    from, read off viser's live connection."""
     from websockets.sync.client import connect
 
     port = free_port()
@@ -37,7 +38,9 @@ def test_the_websocket_path_of_a_live_connection_is_read():
             while viser_compat.websocket_path(server, 0) is None and time.time() < end:
                 time.sleep(0.05)
             assert viser_compat.websocket_path(server, 0) == "/present/abc"
+            assert viser_compat.remote_address(server, 0) == "127.0.0.1"  # what seats are issued to
         assert viser_compat.websocket_path(server, 99) is None  # no such page: no path, no error
+        assert viser_compat.remote_address(server, 99) is None
     finally:
         server.stop()
 

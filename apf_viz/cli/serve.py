@@ -26,6 +26,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument("--port", type=port, default=8080, help="port")
     p.add_argument(
+        "--seats-per-address",
+        type=seats,
+        default=1,
+        help="class pages from one network address that answer a question as pages of their own "
+        "(default 1: one a laptop or phone; a hall behind one router needs its size)",
+    )
+    p.add_argument(
         "--robots", type=Path, help="start file, or a shipped start's name (default: the built-in demo)"
     )
     p.add_argument(
@@ -73,4 +80,15 @@ def run(args: argparse.Namespace) -> int:
     config = session_config(args)
     from apf_viz.ui.app import serve  # viser is imported only when the UI is wanted
 
-    return serve(config, host=args.host, port=args.port)
+    return serve(config, host=args.host, port=args.port, seats_per_address=args.seats_per_address)
+
+
+def seats(text: str) -> int:
+    """``--seats-per-address``: a whole number from 1 to 10,000."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if not 1 <= n <= 10_000:
+        raise argparse.ArgumentTypeError(f"{n} is not between 1 and 10000")
+    return n

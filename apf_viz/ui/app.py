@@ -27,9 +27,10 @@ from apf_viz.ui.roles import Roles
 from apf_viz.ui.room import Room
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
-from apf_viz.ui.seat import seat_key
+from apf_viz.ui.seat import seat_token
 from apf_viz.workbench.config import SessionConfig, session_from_config
 from apf_viz.workbench.screen_state import Role
+from apf_viz.workbench.seats import Seats
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.session.demo import demo_session as demo_session  # where tests and scripts find it
 
@@ -95,9 +96,11 @@ class App:
         verbose: bool = True,
         present: bool = False,
         roles: Roles | None = None,
+        seats_per_address: int = 1,
     ) -> None:
         self.session = session
         self.roles = roles or Roles()  # which pages present: those opened at the presenter address
+        self.seats = Seats(seats_per_address)  # the class pages' seats, issued here (workbench/seats.py)
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
@@ -118,6 +121,10 @@ class App:
         self.verifier = SharedVerifier(session, self.request_render)
         self.screens: dict[int, BrowserScreen] = {}
         self._screens_lock = threading.Lock()
+        # Pages that left before their screen was made: viser runs a page's connect and disconnect
+        # callbacks on a pool of threads, so a page that stays a moment (a reload, a script) can be gone
+        # while its panels are still being built. Each id here is taken out by its own connect callback.
+        self._gone: set[int] = set()
         self._dirty = threading.Event()
         self._stop = threading.Event()
         self._framed_engine = session.engine  # the run the cameras were last framed on
@@ -152,9 +159,20 @@ class App:
         class page where viser does not say (the presenter code stands in: :meth:`claim_presenter`)."""
         return self.roles.role_of(viser_compat.websocket_path(self.server, client.client_id))
 
-    def seat_of(self, client_id: int) -> str:
-        """The key a page's answers are held under: its seat (ui/seat.py), which a reload keeps."""
-        return seat_key(viser_compat.websocket_path(self.server, client_id), client_id)
+    def seat_of(self, client_id: int) -> str | None:
+        """The key a page's answers are held under: its seat (ui/seat.py), which a reload keeps; None for
+        a page the server has not issued one yet. Where viser does not say the path, the page's
+        connection (a reload is a new page: the startup line says what else is missing then)."""
+        if self.by_code:
+            return f"page {client_id}"
+        return self.seats.key(seat_token(viser_compat.websocket_path(self.server, client_id)))
+
+    def seat_offer(self, client) -> str | None:
+        """A seat's token for a class page that has none (issued to the address it came from); None for a
+        page that has one, a presenter's page, or where viser does not say the path."""
+        if self.by_code or self.role_of(client) != "class" or self.seat_of(client.client_id) is not None:
+            return None
+        return self.seats.issue(viser_compat.remote_address(self.server, client.client_id))
 
     @property
     def by_code(self) -> bool:
@@ -193,13 +211,24 @@ class App:
             return self.screens.get(client.client_id) if client is not None else None
 
     def _connect(self, client) -> None:
+        cid = client.client_id
+        with self._screens_lock:
+            if cid in self._gone:  # it left before this callback ran: nothing to make
+                self._gone.discard(cid)
+                return
         screen = BrowserScreen(self, client)
         screen.panels.ctx.try_alone = lambda: self.own_runs.try_alone(screen)
         screen.panels.ctx.back_to_lecture = lambda: self.own_runs.back(screen)
         screen.panels.ctx.room = self.room
         screen.panels.ctx.laptop = lambda: self.room.laptop(screen) if screen.state.role == "class" else None
         with self._screens_lock:
-            self.screens[client.client_id] = screen
+            left = cid in self._gone
+            self._gone.discard(cid)
+            if not left:
+                self.screens[cid] = screen
+        if left:  # it left while its screen was made: let go of what the making joined
+            self._let_go(cid)
+            return
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
         if self.present and self.session.lecturer is not None:  # serve --lecture: the room's view
             screen.panels.presentation.present(True, client)
@@ -207,9 +236,14 @@ class App:
 
     def _disconnect(self, client) -> None:
         with self._screens_lock:
-            self.screens.pop(client.client_id, None)
-        self.session.leave(client.client_id)
-        self.room.left(client.client_id)
+            if self.screens.pop(client.client_id, None) is None:
+                self._gone.add(client.client_id)  # its connect callback has not finished: it lets go
+                return
+        self._let_go(client.client_id)
+
+    def _let_go(self, client_id: int) -> None:
+        self.session.leave(client_id)
+        self.room.left(client_id)
 
     def request_render(self) -> None:
         self._dirty.set()
@@ -419,14 +453,21 @@ class App:
         self._dirty.set()  # labels are laid out for the framed zoom (scene.text_cells): once more
 
 
-def serve(config: SessionConfig, *, host: str, port: int) -> int:
+def serve(config: SessionConfig, *, host: str, port: int, seats_per_address: int = 1) -> int:
     """``apf-viz serve``: the session ``config`` describes, served until Ctrl+C. A bad address, file or
     lecture is one line before the server starts; a lecture's pages open presenting it."""
     check_listen(host, port)
     session = session_from_config(config)
     app = None
     try:  # Ctrl+C stops it quietly, however early: while the server starts, or at any time after
-        app = App(session, host=host, port=port, verbose=False, present=config.lecture is not None)
+        app = App(
+            session,
+            host=host,
+            port=port,
+            verbose=False,
+            present=config.lecture is not None,
+            seats_per_address=seats_per_address,
+        )
         presenter, follower = app.addresses
         print(f"apf-viz: serving on {host}:{app.port}  (Ctrl+C to stop)", flush=True)
         print(f"presenter: {presenter}", flush=True)

@@ -60,7 +60,10 @@ class Room:
     """The app's class pages, as the presenter's Room folder lists and acts on them."""
 
     def __init__(
-        self, session: Session, screens: Callable[[], Sequence[BrowserScreen]], seat_of: Callable[[int], str]
+        self,
+        session: Session,
+        screens: Callable[[], Sequence[BrowserScreen]],
+        seat_of: Callable[[int], str | None],
     ) -> None:
         self.session = session
         self._screens = screens
@@ -74,7 +77,7 @@ class Room:
         cid = screen.client.client_id
         seat = self._keys.get(cid)
         if seat is None:
-            seat = self._keys[cid] = self._seat_of(cid)
+            seat = self._keys[cid] = self._seat_of(cid) or f"page {cid}"  # no seat yet: its connection
         number = self._numbers.get(seat)
         if number is None:
             used = set(self._numbers.values())

@@ -1,35 +1,39 @@
-"""A class page's seat: the key its answers are held under (workbench/poll.py), the same after a reload.
+"""A class page's seat (workbench/seats.py) carried to the page and back: the same after a reload.
 
-A laptop keeps a random token in its browser's storage and opens its websocket at ``/seat/<token>``: the
-page it first loads (the class address, with no ``websocket`` in it) goes once to the same address with
-``?websocket=…/seat/<token>``, which viser's client connects at (as the presenter address does with
-its secret), and a reload keeps it. The server reads the seat from that path (ui/viser_compat.py); where
-it cannot, a page's key is its connection's, and a reload is a new page."""
+A page opens its websocket at ``/seat/<token>``, a token the server issued: the page it first loads (the
+class address, with no ``websocket`` in it) is given a token in its panel and goes to the same address
+with ``?websocket=…/seat/<token>``, which viser's client connects at (as the presenter address does with
+its secret); the browser keeps the token and a reload keeps the seat. The server reads the token from
+that path (ui/viser_compat.py) and checks its signature: a token the page made up, or one of another run
+of the server, is no seat, and the page is given one (a reload later, it has it)."""
 
 from __future__ import annotations
 
-import re
+import json
 
 SEAT_PATH = "/seat/"
-_TOKEN = re.compile(r"[0-9a-f]{32}")
-
-# Runs once in each page (the image fails to load, and its onerror runs): a page opened at an address
-# with no websocket in it goes to its seat's. 128 random bits: a seat cannot be guessed from another.
-SEAT_JS = (
-    '<img alt="" src="data:,seat" style="display:none" onerror="'
-    "if(!/[?&amp;]websocket=/.test(location.search)){var k='apfSeat',t=null;"
-    "try{t=localStorage.getItem(k);}catch(e){}"
-    "if(!t||!/^[0-9a-f]{32}$/.test(t)){var a=new Uint8Array(16);crypto.getRandomValues(a);"
-    "t=Array.prototype.map.call(a,function(b){return ('0'+b.toString(16)).slice(-2);}).join('');"
-    "try{localStorage.setItem(k,t);}catch(e){}}"
-    "var w=(location.protocol==='https:'?'wss://':'ws://')+location.host+'/seat/'+t;"
-    "location.replace(location.pathname+'?websocket='+w);}"
-    '">'
-)
 
 
-def seat_key(path: str | None, client_id: int) -> str:
-    """The key a page's answers are held under: its seat's, else its connection's."""
-    if path is not None and path.startswith(SEAT_PATH) and _TOKEN.fullmatch(path[len(SEAT_PATH) :]):
-        return f"seat {path[len(SEAT_PATH) :]}"
-    return f"page {client_id}"
+def seat_token(path: str | None) -> str | None:
+    """The token in a page's websocket path, as the page sent it (workbench/seats.py checks it)."""
+    if path is not None and path.startswith(SEAT_PATH):
+        return path[len(SEAT_PATH) :] or None
+    return None
+
+
+def seat_js(offer: str) -> str:
+    """Runs once in a page without a seat (the image fails to load, and its onerror runs): it keeps the
+    token ``offer`` the server issued it and goes to its seat's address. A page opened at the class
+    address with a token kept from before tries that one first (the server gives it another if it is no
+    longer a seat). A page already at that seat's address stays (never a loop of reloads)."""
+    issued = json.dumps(offer).replace('"', "&quot;")
+    return (
+        '<img alt="" src="data:,seat" style="display:none" onerror="'
+        f"var k='apfSeat',o={issued},t=null;"
+        "if(!/[?&amp;]websocket=/.test(location.search)){try{t=localStorage.getItem(k);}catch(e){}}"
+        "if(!t||!/^[0-9a-f]{16}-[0-9a-f]{16}$/.test(t)){t=o;}"
+        "try{localStorage.setItem(k,t);}catch(e){}"
+        "var w=(location.protocol==='https:'?'wss://':'ws://')+location.host+'/seat/'+t;"
+        "if(location.search!=='?websocket='+w){location.replace(location.pathname+'?websocket='+w);}"
+        '">'
+    )

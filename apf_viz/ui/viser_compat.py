@@ -10,6 +10,9 @@ The accesses, and what each costs when it is missing:
   [id].request.path``), which tells a presenter page from a class page. Without it every page opens as a
   class page; a presenter takes control by typing the presenter code (printed in the terminal) into the
   page's ``Presenter code`` field.
+- ``remote address``: the network address a page connected from (``…_live_connections[id]
+  .remote_address``), to which the class's seats are issued (workbench/seats.py). Without it every page
+  counts as from one unknown address: ``apf-viz serve --seats-per-address N`` gives the class N seats.
 - ``shared producer``: viser's per-page message producer (``viser.infra._infra._message_producer``, and
   ``_append_aligned_buffers``), replaced by a copy that serialises a broadcast window once for all pages
   (ui/broadcast.py). Without it each page's windows are serialised for that page: slower with many pages.
@@ -75,6 +78,20 @@ def websocket_path(server: viser.ViserServer, client_id: int) -> str | None:
     request = getattr(connections.get(client_id), "request", None)
     path = getattr(request, "path", None)
     return path if isinstance(path, str) else None
+
+
+def remote_address(server: viser.ViserServer, client_id: int) -> str | None:
+    """The network address a page connected from (its host, no port), or None when viser does not say."""
+    connections = getattr(getattr(server, "_websock_server", None), "_live_connections", None)
+    if not isinstance(connections, dict):
+        return None
+    address = getattr(connections.get(client_id), "remote_address", None)
+    host = address[0] if isinstance(address, tuple) and address else None
+    return host if isinstance(host, str) else None
+
+
+def _has_remote_addresses() -> bool:
+    return "remote_address" in dir(getattr(_infra, "ServerConnection", None)) and _has_websocket_paths()
 
 
 def _has_websocket_paths() -> bool:
@@ -197,6 +214,8 @@ ESCAPE_CLOSES_CLASS_ADDRESS = (
 ACCESSES = (
     Access("websocket path", _has_websocket_paths,
            "every page opens as a class page; a presenter types the presenter code into Presenter code"),
+    Access("remote address", _has_remote_addresses,
+           "every page counts as from one address: the class has --seats-per-address seats"),
     Access("shared producer", lambda: producer_is_the_copied_one() or _installed(),
            "class pages are serialised once each: slower with many pages"),
     Access("timeline marks", _has_slider_marks, "the timeline shows no stage marks"),

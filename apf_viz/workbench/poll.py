@@ -64,8 +64,11 @@ class Poll:
     def question(self) -> str:
         return self.answer.question.words()
 
-    def give(self, who: str, choice: str) -> str:
-        """Page ``who`` answers ``choice`` (its earlier answer replaced); what its page is told."""
+    def give(self, who: str | None, choice: str) -> str:
+        """Page ``who`` answers ``choice`` (its earlier answer replaced); what its page is told. A page
+        with no seat (None: the server has not issued it one yet) cannot answer."""
+        if who is None:
+            raise InputError("this page has no seat yet: reload it, then answer")
         if self.revealed:
             raise InputError("the answer is out: this question takes no more answers")
         choice = self.read(choice)
@@ -89,14 +92,14 @@ class Poll:
             raise InputError(f"({x}, {y}): a cell's |x| and |y| are at most {COORD_LIMIT:,}")
         return cell_choice(x, y)
 
-    def given(self, who: str) -> str | None:
+    def given(self, who: str | None) -> str | None:
         """``who``'s answer (its page shows it; no other page is shown it)."""
-        return self._given.get(who)
+        return self._given.get(who) if who is not None else None
 
-    def told(self, who: str) -> str:
+    def told(self, who: str | None) -> str:
         """What ``who``'s own page says of its answer: the answer held (a reload keeps it), and after the
         reveal whether it was the run's ("" before an answer)."""
-        mine = self._given.get(who)
+        mine = self.given(who)
         said = choice_words(self.kind, mine) if mine is not None else None
         if self.revealed:
             if said is None:

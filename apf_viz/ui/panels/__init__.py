@@ -88,7 +88,8 @@ class Panels:
         frame_all: Callable[[], None] = lambda: None,
         point_at: Callable | None = None,
         class_address: Callable[[], str] | None = None,
-        answer_key: Callable[[], str] | None = None,
+        answer_key: Callable[[], str | None] | None = None,
+        seat_offer: Callable[[], str | None] | None = None,
         claim_presenter: Claim | None = None,
     ) -> None:
         self.session = session
@@ -102,6 +103,8 @@ class Panels:
             self.ctx.class_address = class_address
         if answer_key is not None:
             self.ctx.answer_key = answer_key
+        if seat_offer is not None:
+            self.ctx.seat_offer = seat_offer
         self.presentation = Presentation(owner.gui, self.ctx)
         self.folders: list[Folder] = [folder(owner.gui, self.ctx) for folder in FOLDERS]
         self.join = Join(owner.gui, self.ctx)

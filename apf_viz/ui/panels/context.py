@@ -116,7 +116,8 @@ class PanelContext:
     # The grid point under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     point_at: Callable[[object, tuple[float, float]], tuple[float, float] | None] = lambda client, point: None
     class_address: Callable[[], str] = lambda: ""  # the address the class's laptops open (ui/roles.py)
-    answer_key: Callable[[], str] = lambda: "this page"  # its answers' key: its seat (ui/seat.py)
+    answer_key: Callable[[], str | None] = lambda: "this page"  # its answers' key: its seat (ui/seat.py)
+    seat_offer: Callable[[], str | None] = lambda: None  # a seat's token for a class page that has none
     driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
     shared_handles: list = field(default_factory=list)  # shown only where it drives the shared run
     # Try it yourself (ui/own_runs.py): a class page branches a run of its own, and comes back; the App

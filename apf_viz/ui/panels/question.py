@@ -6,7 +6,7 @@ sent to it. On the presenter's page, two keys: B shows the room's answers on the
 from __future__ import annotations
 
 from apf_viz.ui.panels.context import PanelContext, put
-from apf_viz.ui.seat import SEAT_JS
+from apf_viz.ui.seat import seat_js
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.question import choice_words
 from apf_viz.workbench.session import Session
@@ -27,7 +27,9 @@ def shared_session(ctx: PanelContext) -> Session:
 class QuestionFolder:
     def __init__(self, gui, ctx: PanelContext) -> None:
         self.ctx = ctx
-        gui.add_html(SEAT_JS)  # a class page's answers are kept under its seat, which a reload keeps
+        offer = ctx.seat_offer()
+        if offer is not None:  # a class page without a seat: it keeps this one and goes to its address
+            gui.add_html(seat_js(offer))
         self.folder = gui.add_folder("Question", order=-1.0, visible=False)
         with self.folder:
             self.text = gui.add_markdown("")

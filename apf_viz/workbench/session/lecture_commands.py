@@ -75,14 +75,14 @@ class LectureCommands(RunCommands, FileCommands):
         return poll
 
     # ------------------------------------------------------------------ a stop's question
-    def answer_question(self, who: str, choice: str) -> str:
+    def answer_question(self, who: str | None, choice: str) -> str:
         """Page ``who`` answers the stop's question (again: its answer changes); for that page only."""
         with self.lock:
             if self.screen.poll is None:
                 raise InputError("no question is asked now")
             return self.screen.poll.give(who, choice)
 
-    def answer_by_click(self, who: str, cell: tuple[int, int]) -> str | None:
+    def answer_by_click(self, who: str | None, cell: tuple[int, int]) -> str | None:
         """A class page clicked ``cell`` while a question that a click answers is asked: the robot on it
         (which robot moves next) or the cell itself (where it moves); None if the click answers nothing."""
         with self.lock:
