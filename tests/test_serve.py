@@ -328,3 +328,11 @@ def test_one_line_holds_back_what_comes_within_its_interval():
     assert one.filter(later) and "2 more since" in later.getMessage()
     plain = logging.LogRecord("asyncio", logging.INFO, "x", 1, "no exception", None, None)
     assert one.filter(plain) and plain.getMessage() == "no exception"
+    from websockets.exceptions import ConnectionClosedError
+
+    try:  # a page that left without a goodbye (here: its move to its seat) is not a bad message
+        raise ConnectionClosedError(None, None)
+    except ConnectionClosedError:
+        gone = logging.LogRecord("websockets.server", logging.ERROR, "x", 1, "failed", None, sys.exc_info())
+    now[0] += EVERY
+    assert not one.filter(gone)

@@ -29,8 +29,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--seats-per-address",
         type=seats,
         default=1,
-        help="class pages from one network address that answer a question as pages of their own "
-        "(default 1: one a laptop or phone; a hall behind one router needs its size)",
+        help="class pages from one network address that answer a question as pages of their own: one "
+        "for each laptop or phone; a hall behind one router needs its size",
     )
     p.add_argument(
         "--robots", type=Path, help="start file, or a shipped start's name (default: the built-in demo)"

@@ -5,7 +5,9 @@ dispatch it; websockets logs "connection handler failed" with the whole tracebac
 handler's exception as "Task exception was never retrieved": a screenful on the lecturer's terminal for
 each message, while nothing changed (the page is let go, the run untouched). This filter, on those two
 loggers, keeps the exception's type and first words in one line and drops the traceback; it says at most
-one line every :data:`EVERY` seconds, counting those it held back. Nothing reaches the page.
+one line every :data:`EVERY` seconds, counting those it held back. Nothing reaches the page. A page
+that left without a goodbye (a reload, its move to its seat, a closed lid: websockets' ConnectionClosed)
+sent nothing wrong and is let go as any page that leaves: nothing is said of it.
 """
 
 from __future__ import annotations
@@ -13,6 +15,8 @@ from __future__ import annotations
 import logging
 import threading
 import time
+
+from websockets.exceptions import ConnectionClosed
 
 EVERY = 10.0
 LOGGERS = ("websockets.server", "websockets", "asyncio")
@@ -33,6 +37,8 @@ class OneLine(logging.Filter):
         if not record.exc_info or record.exc_info[1] is None:
             return True
         error = record.exc_info[1]
+        if isinstance(error, ConnectionClosed):
+            return False
         with self._lock:
             now = self._clock()
             if now - self._last < EVERY:
