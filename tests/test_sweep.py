@@ -50,7 +50,10 @@ def test_a_sweep_resumes_without_duplicates_and_keeps_what_was_done(tmp_path):
 
 
 def test_a_run_that_kills_its_worker_is_recorded_as_error_and_the_sweep_goes_on(tmp_path, monkeypatch):
+    # distributed's config loaded before the set below: an older dask (2024.1) restores a key the set
+    # made by deleting it whole, with every default distributed put under it meanwhile
     import dask
+    import dask.distributed
 
     from tests.sweep_helpers import crash_on_k4_seed2
 
