@@ -286,3 +286,17 @@ def test_a_class_pages_caption_says_its_own_answer_and_after_the_reveal_whether_
     assert "You did not answer" in caption("seat c")
     presenting = caption("seat a", "presenting")
     assert "You answered" not in presenting and "gave it" in presenting
+
+
+def test_the_presenters_caption_counts_the_answers_of_the_seats_here():
+    """"2 of 5 answered": the seats connected now, and a seat that answered and left still among them;
+    with no seats known (no server: an exported page, a script) the count alone."""
+    from apf_viz.workbench.view_model.caption import caption_html
+
+    session = heart_at_question()
+    session.answer_question("seat a", "1")
+    session.answer_question("seat gone", "0")
+    assert "2 answered" in caption_html(session.view(), "presenting")
+    session.seat_the_room(frozenset({"seat a", "seat b", "seat c", "seat d"}))
+    assert "2 of 5 answered" in caption_html(session.view(), "presenting")
+    assert "answered" not in caption_html(session.view(), "following")  # a class page never sees the count

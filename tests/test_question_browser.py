@@ -121,7 +121,7 @@ def test_three_class_pages_answer_the_projector_shows_two_to_one_and_the_reveal_
     pages[1].keyboard.press("p")  # another student follows the reveal in presentation mode
 
     projector.keyboard.press("p")  # presentation mode: the caption on the canvas
-    projector.locator("[data-apf=answered]").filter(has_text="3 answered").wait_for()
+    projector.locator("[data-apf=answered]").filter(has_text="3 of 3 answered").wait_for()  # seats here
     projector.keyboard.press("b")  # the room's answers
     bars = projector.locator("[data-apf=bar]")
     bars.first.wait_for()

@@ -229,6 +229,7 @@ class App:
         if left:  # it left while its screen was made: let go of what the making joined
             self._let_go(cid)
             return
+        self._count_seats()
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
         if self.present and self.session.lecturer is not None:  # serve --lecture: the room's view
             screen.panels.presentation.present(True, client)
@@ -244,6 +245,17 @@ class App:
     def _let_go(self, client_id: int) -> None:
         self.session.leave(client_id)
         self.room.left(client_id)
+        self._count_seats()
+
+    def _count_seats(self) -> None:
+        """Tell the run which class pages' seats are here (a question's "3 of 5 answered")."""
+        seats = frozenset(
+            seat
+            for screen in self._screens()
+            if screen.state.role == "class" and (seat := self.seat_of(screen.client.client_id)) is not None
+        )
+        self.session.seat_the_room(seats)
+        self.request_render()
 
     def request_render(self) -> None:
         self._dirty.set()

@@ -42,6 +42,7 @@ class PollView:
     bars: tuple[Bar, ...] = ()  # the spread, when shown
     answer: str = ""  # the run's answer in words, once revealed
     right: int = 0  # how many gave it, once revealed
+    present: int = 0  # seats in the room or that answered (0: not known, as on an exported page)
 
 
 class Poll:
@@ -130,7 +131,9 @@ class Poll:
             for c in shown
         ]
 
-    def view(self) -> PollView:
+    def view(self, here: frozenset[str] = frozenset()) -> PollView:
+        """What the screen says of it; ``here``: the seats connected now (a seat that answered and left
+        still counts among those asked)."""
         shown = self.spread_shown or self.revealed
         return PollView(
             self.question,
@@ -139,4 +142,5 @@ class Poll:
             tuple(self.spread()) if shown else (),
             self.answer.words() if self.revealed else "",
             self.right_count if self.revealed else 0,
+            len(here | self._given.keys()) if here else 0,
         )

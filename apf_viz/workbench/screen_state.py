@@ -35,6 +35,7 @@ class SharedScreen:
     studio: Studio = field(default_factory=Studio)  # Edit: the tool, its size and text, a gesture begun
     lecture: LectureStop | None = None  # a guided lecture's stop, as it was reached
     poll: Poll | None = None  # its question to the room, and the room's answers
+    seats_here: frozenset[str] = frozenset()  # the class pages' seats connected now (ui/app.py says)
 
 
 @dataclass(frozen=True)

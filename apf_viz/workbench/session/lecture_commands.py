@@ -95,6 +95,11 @@ class LectureCommands(RunCommands, FileCommands):
             return poll.give(who, str(on[0])) if on else None
 
     @shared_only
+    def seat_the_room(self, seats: frozenset[str]) -> None:
+        """The class pages' seats connected now: the question's count says how many of them answered."""
+        with self.lock:
+            self.screen.seats_here = seats
+
     def toggle_spread(self) -> str:
         """Show or hide, on the presenter's caption, how the room answered (a bar per choice)."""
         with self.lock:

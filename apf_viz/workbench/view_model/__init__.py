@@ -123,7 +123,7 @@ def _screen_fields(run: RunSource, screen: SharedScreen) -> dict[str, Any]:
         "scenario_note": screen.scenario_note,
         "lecture": lecture_words(screen.lecture, run.engine, run.playing),
         "lecture_title": screen.lecture.lecture if screen.lecture is not None else "",
-        "poll": screen.poll.view() if screen.poll is not None else None,
+        "poll": screen.poll.view(screen.seats_here) if screen.poll is not None else None,
     }
 
 

@@ -17,6 +17,11 @@ _RIGHT = "#2b8a3e"
 _GIVEN = "#4c6ef5"
 
 
+def answered(poll: PollView) -> str:
+    """How many answered, of the seats asked when the server knows them ("12 of 30 answered")."""
+    return f"{poll.count} of {poll.present} answered" if poll.present else f"{poll.count} answered"
+
+
 def poll_html(poll: PollView | None, presenting: bool, mine: str = "") -> str:
     """The question's block of the caption (``""``: no question). ``mine``: on a class page, what its own
     answer is and, after the reveal, whether it was right (workbench/poll.Poll.told)."""
@@ -29,7 +34,7 @@ def poll_html(poll: PollView | None, presenting: bool, mine: str = "") -> str:
         told += f" · {poll.right} of {poll.count} gave it" if presenting else own
     elif presenting:
         told = (
-            f' · <span data-apf="answered">{poll.count} answered</span> · {SPREAD_KEY} the answers · '
+            f' · <span data-apf="answered">{answered(poll)}</span> · {SPREAD_KEY} the answers · '
             f"{REVEAL_KEY} reveal"
         )
     elif mine:
