@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import json
 
+from apf_viz.workbench.seats import TOKEN_PATTERN
+
 SEAT_PATH = "/seat/"
 
 
@@ -31,7 +33,7 @@ def seat_js(offer: str) -> str:
         '<img alt="" src="data:,seat" style="display:none" onerror="'
         f"var k='apfSeat',o={issued},t=null;"
         "if(!/[?&amp;]websocket=/.test(location.search)){try{t=localStorage.getItem(k);}catch(e){}}"
-        "if(!t||!/^[0-9a-f]{16}-[0-9a-f]{16}$/.test(t)){t=o;}"
+        f"if(!t||!/^{TOKEN_PATTERN}$/.test(t)){{t=o;}}"
         "try{localStorage.setItem(k,t);}catch(e){}"
         "var w=(location.protocol==='https:'?'wss://':'ws://')+location.host+'/seat/'+t;"
         "if(location.search!=='?websocket='+w){location.replace(location.pathname+'?websocket='+w);}"

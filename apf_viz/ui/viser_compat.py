@@ -69,23 +69,23 @@ class Access:
 
 
 # ---------------------------------------------------------------- the websocket path (roles)
+def _live_connection(server: viser.ViserServer, client_id: int) -> object | None:
+    """A page's websocket connection, as viser keeps it (None: no such page, or viser keeps none there)."""
+    connections = getattr(getattr(server, "_websock_server", None), "_live_connections", None)
+    return connections.get(client_id) if isinstance(connections, dict) else None
+
+
 def websocket_path(server: viser.ViserServer, client_id: int) -> str | None:
     """The path a page opened its websocket at, or None when viser does not say (see the module's
     docstring: the presenter code then stands in)."""
-    connections = getattr(getattr(server, "_websock_server", None), "_live_connections", None)
-    if not isinstance(connections, dict):
-        return None
-    request = getattr(connections.get(client_id), "request", None)
+    request = getattr(_live_connection(server, client_id), "request", None)
     path = getattr(request, "path", None)
     return path if isinstance(path, str) else None
 
 
 def remote_address(server: viser.ViserServer, client_id: int) -> str | None:
     """The network address a page connected from (its host, no port), or None when viser does not say."""
-    connections = getattr(getattr(server, "_websock_server", None), "_live_connections", None)
-    if not isinstance(connections, dict):
-        return None
-    address = getattr(connections.get(client_id), "remote_address", None)
+    address = getattr(_live_connection(server, client_id), "remote_address", None)
     host = address[0] if isinstance(address, tuple) and address else None
     return host if isinstance(host, str) else None
 

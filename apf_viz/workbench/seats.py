@@ -24,6 +24,8 @@ SEAT_PREFIX = "seat "
 MAX_ADDRESSES = 10_000
 """Addresses remembered, at most (the oldest forgotten first): a scan from many addresses cannot grow the
 server without bound."""
+TOKEN_PATTERN = "[0-9a-f]{16}-[0-9a-f]{16}"
+"""A seat's token: its number, a dash, its signature (the page's script checks a kept one's shape by it)."""
 _TOKEN = re.compile(r"([0-9a-f]{16})-([0-9a-f]{16})")
 UNKNOWN_ADDRESS = "unknown"
 
