@@ -336,3 +336,19 @@ def test_one_line_holds_back_what_comes_within_its_interval():
         gone = logging.LogRecord("websockets.server", logging.ERROR, "x", 1, "failed", None, sys.exc_info())
     now[0] += EVERY
     assert not one.filter(gone)
+
+
+def test_arrow_keys_on_the_speed_slider_climb_a_ladder_and_a_drag_lands_anywhere():
+    """The slider's step is one of 5000: an arrow key (a change of exactly one) is read as the next rung
+    of 1, 2, 5, 10, … 5000 that way, from any speed; any other change is the value sent."""
+    from apf_viz.workbench.run_controller import MAX_SPEED, SPEED_LADDER, slider_speed
+
+    up, down = [1.0], [MAX_SPEED]
+    while up[-1] < MAX_SPEED:
+        up.append(slider_speed(up[-1], up[-1] + 1))
+    while down[-1] > 1:
+        down.append(slider_speed(down[-1], down[-1] - 1))
+    assert tuple(up) == SPEED_LADDER and tuple(down) == SPEED_LADDER[::-1]
+    assert slider_speed(13, 14) == 20 and slider_speed(13, 12) == 10  # off the ladder: the next rung
+    assert slider_speed(MAX_SPEED, MAX_SPEED + 1) == MAX_SPEED and slider_speed(1, 0) == 1
+    assert slider_speed(10, 437) == 437 and slider_speed(10, 12) == 12  # dragged or typed

@@ -24,6 +24,21 @@ from apf_viz.workbench.stage_log import StageLog
 # (ui/app.py STEP_SHARE), so a speed the engine cannot reach plays as fast as it can at full frame rate.
 MAX_SPEED = 5000.0
 
+# The rungs an arrow key climbs on the Speed slider: its range spans four decades, and a step of one
+# (5000 presses from end to end) is no step at all. A drag or a typed value still lands anywhere.
+SPEED_LADDER = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, MAX_SPEED)
+
+
+def slider_speed(shown: float, sent: float) -> float:
+    """The speed meant by a Speed slider that showed ``shown`` and now sends ``sent``: one unit up or
+    down is an arrow key (the slider's step), read as the next rung of SPEED_LADDER that way; anything
+    else is the value itself."""
+    if abs(sent - shown) != 1:
+        return sent
+    if sent > shown:
+        return next((rung for rung in SPEED_LADDER if rung > shown), MAX_SPEED)
+    return next((rung for rung in reversed(SPEED_LADDER) if rung < shown), SPEED_LADDER[0])
+
 
 class RunController:
     """One run, its adversary and whether it plays."""

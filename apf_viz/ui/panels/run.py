@@ -11,7 +11,7 @@ from apf_viz.lecture import lectures
 from apf_viz.ui import viser_compat
 from apf_viz.ui.panels.context import PanelContext, put, tell
 from apf_viz.ui.panels.shortcuts import NOTE_TITLES
-from apf_viz.workbench.run_controller import MAX_SPEED
+from apf_viz.workbench.run_controller import MAX_SPEED, slider_speed
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.legend import symbol_html
 from apf_viz.workbench.view_model.story import MAX_TRAIL
@@ -329,7 +329,8 @@ class HistoryFolder:
                     "Speed", min=1, max=int(MAX_SPEED), step=1, initial_value=10, hint="steps per second"
                 )
             )
-            self.speed.on_update(ctx.from_browser(lambda e: s.set_speed(self.speed.value)))
+            self._speed_shown = float(self.speed.value)  # what this page's slider showed before a change
+            self.speed.on_update(ctx.from_browser(self._on_speed))
             self.timeline = ctx.driving(gui.add_slider(
                 "Timeline", min=0, max=1, step=1, initial_value=0,
                 hint="scrub the history; stepping from the past branches",
@@ -358,6 +359,17 @@ class HistoryFolder:
             ))  # fmt: skip
             self.trails.on_update(ctx.from_browser(lambda e: s.set_trails(self.trails.value)))
 
+    def _on_speed(self, event) -> None:
+        """An arrow key climbs SPEED_LADDER (1, 2, 5, 10, … 5000), a drag or a typed value is taken as
+        it is; the slider then shows the speed the run took."""
+        s = self.ctx.session
+        s.set_speed(slider_speed(self._speed_shown, float(self.speed.value)))
+        self._show_speed(s.speed)
+
+    def _show_speed(self, speed: float) -> None:
+        self._speed_shown = speed
+        put(self.speed, value=int(speed))
+
     def _enter(self, event) -> str:
         chosen = self.branches.value
         if not chosen.startswith("#"):
@@ -378,6 +390,8 @@ class HistoryFolder:
 
     def refresh(self, view: SessionView) -> None:
         self._refresh_branches(view)
+        if self.ctx.session.speed != self._speed_shown:  # another page (or a lecture) set it
+            self._show_speed(self.ctx.session.speed)
         put(self.timeline, max=max(1, view.history_length))
         put(self.timeline, value=view.steps)
         log = "  \n".join(f"<small>{e}</small>" for e in view.last_events[1:6])

@@ -8,6 +8,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from apf_viz.ui.scene.style import FULL_CANVAS_MATERIAL
+
 PLANE_SIDE = 1e6  # cells: wider than any canvas shows
 NAME = "/paint-surface"
 
@@ -35,10 +37,7 @@ class PaintSurface:
             color=(255, 255, 255),
             dimensions=(PLANE_SIDE, PLANE_SIDE, 0.001),
             opacity=0.0,
-            # Not viser's default lit (PBR) material: the plane fills the canvas, and in software GL (a
-            # projector laptop, Chromium without a GPU) a lit full-canvas plane cost 350-480 ms a frame
-            # and a 5 s stall when shown (docs/PERFORMANCE.md); the toon material is unlit enough.
-            material="toon3",
+            material=FULL_CANVAS_MATERIAL,  # the plane fills the canvas: no lit pass over every pixel
             cast_shadow=False,
             receive_shadow=False,
             position=(0.0, 0.0, -0.05),

@@ -8,7 +8,16 @@ import numpy as np
 from apf_viz.core.portrayal import Band, HalfPlane, Line
 from apf_viz.ui.scene.canvas import Canvas
 from apf_viz.ui.scene.labels import free_label_spot, label_box, place_near, robot_discs
-from apf_viz.ui.scene.style import GHOST_BADGE_OFFSET, LAYER, REGION_OPACITY, SIZE, Z, light_colors, xyz
+from apf_viz.ui.scene.style import (
+    FULL_CANVAS_MATERIAL,
+    GHOST_BADGE_OFFSET,
+    LAYER,
+    REGION_OPACITY,
+    SIZE,
+    Z,
+    light_colors,
+    xyz,
+)
 from apf_viz.workbench.palette import MARK_COLORS, region_color
 from apf_viz.workbench.view_model import SessionView
 
@@ -197,6 +206,7 @@ class SelectionRenderer(Canvas):
                 np.array([(0, 1, 2), (0, 2, 3)], dtype=np.uint32),
                 color=region_color(i),
                 opacity=REGION_OPACITY,
+                material=FULL_CANVAS_MATERIAL,
                 side="double",
                 cast_shadow=False,
                 receive_shadow=False,

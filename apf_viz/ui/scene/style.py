@@ -69,6 +69,11 @@ def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
 
 
 REGION_OPACITY = 0.13
+FULL_CANVAS_MATERIAL = "toon3"
+"""The material of a surface that may fill much of the canvas (a region's shading, the paint surface):
+not viser's lit default, whose every pixel costs a physically based lighting pass. In software GL (a
+projector laptop, Chromium without a GPU) a canvas-wide lit quad cost 300-480 ms a frame and a 7-8 s
+stall when first shown (docs/PERFORMANCE.md)."""
 # The canvas a new browser is framed for before it reports its own: 1024×768 with the panel docked
 # (about 640×768). A wider canvas then shows a margin; a narrower guess would cut a 1024 projector's view.
 NARROW_ASPECT = 0.83
