@@ -61,16 +61,18 @@ def test_a_figure_draws_each_robot_in_its_lights_colour_and_the_selected_robots_
     view = s.view()
     d = drawing_of(view, "caption")
     root = ET.fromstring(to_svg(d))
-    fills = [c.get("fill") for c in root.iter(f"{SVG}circle")]
-    for r in view.robots:
-        c = view.legend[r.light].color
-        assert f"rgb({c[0]},{c[1]},{c[2]})" in fills
+    fills = {"disc": [c.get("fill") for c in root.iter(f"{SVG}circle")]}
+    fills["square"] = [c.get("fill") for c in root.iter(f"{SVG}rect")]
+    for r in view.robots:  # each in its light's colour and shape (the leader a square)
+        style = view.legend[r.light]
+        assert f"rgb({style.color[0]},{style.color[1]},{style.color[2]})" in fills[style.shape]
     assert len(d.rays) == len(view.rays) > 0 and d.selected == view.robots[1].position
     assert set(d.hidden) == {view.robots[j].position for j in view.hidden}
     texts = [t.text for t in root.iter(f"{SVG}text")]
     assert {r.light for r in view.robots} <= set(texts)  # the legend names the lights shown
     tikz = to_tikz(d)
-    assert tikz.count(r"circle (0.34);") == len(view.robots) + len(d.hidden)
+    squares = sum(view.legend[r.light].shape == "square" for r in view.robots)
+    assert tikz.count(r"circle (0.34);") == len(view.robots) - squares + len(d.hidden)
     assert tikz.count(r"\draw[apf") >= len(d.rays)
 
 

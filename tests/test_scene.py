@@ -71,7 +71,7 @@ def test_many_robots_are_one_point_cloud_per_light(renderer):
     clouds = {
         n: h
         for n, h in renderer.nodes().items()
-        if n.startswith("/robots/") and n not in ("/robots/y_axes", "/robots/outline")
+        if n.startswith("/robots/") and n != "/robots/y_axes" and not n.startswith("/robots/outline")
     }
     assert set(clouds) == {"/robots/off"}
     assert len(clouds["/robots/off"].points) == DENSE + 50
@@ -518,3 +518,37 @@ def test_a_drawing_that_grew_far_and_shrank_back_gets_its_line_per_cell_again(re
     assert cell_lines() == 0  # 170 cells tall: too small to rule each
     s.click((-30, 140))  # erased again
     assert cell_lines() > 0
+
+
+def test_the_leader_is_a_square_robot_on_the_canvas_in_the_legend_and_in_a_figure(renderer):
+    """Told from a done robot (green, perhaps ringed orange) by more than hue: the leader's light has
+    shape "square" in the algorithm's legend, and each renderer draws that shape, the others discs."""
+    from apf_viz.figure.drawing import drawing_of
+    from apf_viz.figure.svg import to_svg
+    from apf_viz.figure.tikz import to_tikz
+    from apf_viz.workbench.view_model.legend import legend_html, slide_legend
+
+    s = session_of(7)
+    for _ in range(20_000):
+        if any(r.light == "leader" for r in s.view().robots):
+            break
+        s.step()
+    view = s.view()
+    lights = [r.light for r in view.robots]
+    assert "leader" in lights and view.legend["leader"].shape == "square"
+    renderer.render(view)
+    nodes = renderer.nodes()
+    leader = nodes["/robots/leader-square"]
+    assert leader.point_shape == "square" and len(leader.points) == lights.count("leader")
+    assert "/robots/leader" not in nodes or len(nodes["/robots/leader"].points) == 0
+    assert len(nodes["/robots/outline-square"].points) == lights.count("leader")  # its rim is square too
+    assert len(nodes["/robots/outline"].points) == len(lights) - lights.count("leader")
+    for light in set(lights) - {"leader"}:
+        assert nodes[f"/robots/{light}"].point_shape == "circle"
+    assert "border-radius:1px;background:rgb(213, 94, 0);border:1.5px" in legend_html(view)
+    assert {e.label: e.shape for e in slide_legend(view)}["leader"] == "tile"
+    drawing = drawing_of(view)
+    assert drawing.square_lights == ("leader",)
+    svg = to_svg(drawing)
+    assert svg.count('fill="rgb(213,94,0)"') >= 1 and "<rect" in svg
+    assert "rectangle" in to_tikz(drawing)

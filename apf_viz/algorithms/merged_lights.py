@@ -129,7 +129,9 @@ class MergedLights:
             style = base[light]
             merged = [b for b, a in self._as.items() if a == light]
             if merged:
-                style = LightStyle(style.color, f"{light} = {', '.join(merged)} (merged): {style.meaning}")
+                style = LightStyle(
+                    style.color, f"{light} = {', '.join(merged)} (merged): {style.meaning}", style.shape
+                )
             out[light] = style
         return out
 

@@ -44,10 +44,13 @@ PALETTE: tuple[RGB, ...] = (
 
 @dataclass(frozen=True)
 class LightStyle:
-    """How a light looks and what it means."""
+    """How a light looks and what it means. ``shape``: a disc, or a square for a light that must be told
+    apart by more than its hue (by a colour-blind reader, or from the back of a room where a ring's
+    colour bleeds into the disc's); every renderer draws it, canvas, legend, slide and figure."""
 
     color: RGB
     meaning: str = ""
+    shape: Literal["disc", "square"] = "disc"
 
 
 # ------------------------------------------------------------------------------------------------ marks

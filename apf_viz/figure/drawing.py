@@ -21,6 +21,7 @@ class Disc:
     number: int
     light: str
     color: RGB
+    square: bool = False  # its light is drawn as a square (LightStyle.shape), not a disc
 
 
 @dataclass(frozen=True)
@@ -38,6 +39,7 @@ class Drawing:
     hidden: tuple[tuple[int, int], ...] = ()  # where the robots the selected one cannot see are
     selected: tuple[int, int] | None = None
     legend: tuple[tuple[str, RGB], ...] = ()  # the lights shown, in the algorithm's order
+    square_lights: tuple[str, ...] = ()  # those of them drawn as squares
     marks_legend: tuple[tuple[str, RGB], ...] = field(default=())  # the marks shown: (name, colour)
     caption: str = ""
     named: tuple[tuple[tuple[int, int], str], ...] = ()  # robots the caption names: (where, "r")
@@ -48,7 +50,13 @@ def drawing_of(view: SessionView, caption: str = "", marked: Marked | None = Non
     robot's rays (to what it saw) and the robots it cannot see; ``marked``: the robot a paper's caption
     names, and the lines it names by it (``L_I(r)``), drawn and labelled."""
     robots = tuple(
-        Disc(r.position, i, r.light, view.legend[r.light].color if r.light in view.legend else (0, 0, 0))
+        Disc(
+            r.position,
+            i,
+            r.light,
+            view.legend[r.light].color if r.light in view.legend else (0, 0, 0),
+            r.light in view.legend and view.legend[r.light].shape == "square",
+        )
         for i, r in enumerate(view.robots)
     )
     cells = next((m for m in view.overlays.marks if isinstance(m, Cells)), None)
@@ -93,6 +101,7 @@ def drawing_of(view: SessionView, caption: str = "", marked: Marked | None = Non
         hidden=hidden,
         selected=selected,
         legend=legend,
+        square_lights=tuple(light for light, _ in legend if view.legend[light].shape == "square"),
         marks_legend=tuple(marks),
         caption=caption,
         named=named,

@@ -45,11 +45,13 @@ def to_png(d: Drawing) -> bytes:
         for a, b in d.rays:
             ax.plot([a[0], b[0]], [a[1], b[1]], color=_c(MARK_COLORS["ray"]), lw=1.2, zorder=3)
         for disc in d.robots:
+            edge = _c(MARK_COLORS["outline"])
             ax.add_patch(
-                Circle(
-                    disc.at, 0.34, facecolor=_c(disc.color), edgecolor=_c(MARK_COLORS["outline"]), zorder=4
-                )
-            )
+                Rectangle((disc.at[0] - 0.34, disc.at[1] - 0.34), 0.68, 0.68, facecolor=_c(disc.color),
+                          edgecolor=edge, zorder=4)
+                if disc.square
+                else Circle(disc.at, 0.34, facecolor=_c(disc.color), edgecolor=edge, zorder=4)
+            )  # fmt: skip
             ax.annotate(str(disc.number), (disc.at[0] + 0.35, disc.at[1] + 0.35), fontsize=8, zorder=5)
         named = _c(MARK_COLORS["named"])
         for (x, y), name in d.named:  # the robot the caption names: ringed, its name at its lower left
@@ -63,7 +65,11 @@ def to_png(d: Drawing) -> bytes:
             )
         if d.selected is not None:
             ax.add_patch(Circle(d.selected, 0.5, fill=False, edgecolor="black", lw=1.5, zorder=6))
-        handles: list[Patch] = [Circle((0, 0), 1, color=_c(c), label=name) for name, c in d.legend]
+        handles: list[Patch] = [
+            Rectangle((0, 0), 1, 1, color=_c(c), label=name) if name in d.square_lights
+            else Circle((0, 0), 1, color=_c(c), label=name)
+            for name, c in d.legend
+        ]  # fmt: skip
         handles += [Rectangle((0, 0), 1, 1, color=_c(c), label=name) for name, c in d.marks_legend]
         if handles:
             ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=7, frameon=False)

@@ -123,7 +123,12 @@ def _robots(d: Drawing, p: _Page) -> list[str]:
     out = []
     for disc in d.robots:
         x, y = p.x(disc.at[0]), p.y(disc.at[1])
-        out.append(_el("circle", cx=x, cy=y, r=r, fill=_rgb(disc.color), stroke=outline, stroke_width=1.5))
+        fill = _rgb(disc.color)
+        if disc.square:
+            box = {"x": x - r, "y": y - r, "width": 2 * r, "height": 2 * r}
+            out.append(_el("rect", **box, fill=fill, stroke=outline, stroke_width=1.5))
+        else:
+            out.append(_el("circle", cx=x, cy=y, r=r, fill=fill, stroke=outline, stroke_width=1.5))
         out.append(_text(x + r, y - r, str(disc.number), size=NUMBER_PX))
     named = _rgb(MARK_COLORS["named"])
     for (nx, ny), name in d.named:  # the robot the caption names: ringed, its name at its lower left
@@ -160,7 +165,12 @@ def _robots(d: Drawing, p: _Page) -> list[str]:
 def _legend(d: Drawing, left: float) -> list[str]:
     out, y = [], 18.0
     for name, color in d.legend:
-        out.append(_el("circle", cx=left + 6, cy=y - 4, r=6, fill=_rgb(color), stroke="rgb(50,50,50)"))
+        if name in d.square_lights:
+            out.append(
+                _el("rect", x=left, y=y - 10, width=12, height=12, fill=_rgb(color), stroke="rgb(50,50,50)")
+            )
+        else:
+            out.append(_el("circle", cx=left + 6, cy=y - 4, r=6, fill=_rgb(color), stroke="rgb(50,50,50)"))
         out.append(_text(left + 18, y, name))
         y += 18
     for name, color in d.marks_legend:

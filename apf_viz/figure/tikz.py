@@ -102,7 +102,11 @@ def _robots(d: Drawing, colour: _Colours) -> list[str]:
     for disc in d.robots:
         x, y = disc.at
         style = rf"fill={colour(disc.color)}, draw={outline}, line width=0.6pt"
-        out.append(rf"\filldraw[{style}] ({x},{y}) circle (0.34);")
+        if disc.square:
+            box = f"({x - 0.34:g},{y - 0.34:g}) rectangle ({x + 0.34:g},{y + 0.34:g})"
+            out.append(rf"\filldraw[{style}] {box};")
+        else:
+            out.append(rf"\filldraw[{style}] ({x},{y}) circle (0.34);")
         # \footnotesize (8 pt) at a cell of 0.5 cm: a number a reader reads at the figure's printed size
         out.append(rf"\node[font=\footnotesize] at ({x + 0.5},{y + 0.5}) {{{disc.number}}};")
     named = colour(MARK_COLORS["named"])
@@ -120,7 +124,12 @@ def _robots(d: Drawing, colour: _Colours) -> list[str]:
 def _legend(d: Drawing, colour: _Colours, left: float, top: float) -> list[str]:
     out, y = [], top
     for name, c in d.legend:
-        out.append(rf"\filldraw[fill={colour(c)}, draw=black!70] ({left:g},{y:g}) circle (0.25);")
+        shape = (
+            f"({left - 0.25:g},{y - 0.25:g}) rectangle ({left + 0.25:g},{y + 0.25:g})"
+            if name in d.square_lights
+            else f"({left:g},{y:g}) circle (0.25)"
+        )
+        out.append(rf"\filldraw[fill={colour(c)}, draw=black!70] {shape};")
         out.append(rf"\node[right, font=\scriptsize] at ({left + 0.4:g},{y:g}) {{{tex_text(name)}}};")
         y -= 0.8
     for name, c in d.marks_legend:

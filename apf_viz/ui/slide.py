@@ -54,6 +54,8 @@ def _swatch(draw: ImageDraw.ImageDraw, entry: Entry, x: int, y: int, size: int) 
         return
     if entry.shape == "disc":
         draw.ellipse(box, fill=entry.color, outline=(50, 50, 50), width=max(1, size // 10))
+    elif entry.shape == "tile":  # a light drawn as a square robot
+        draw.rectangle(box, fill=entry.color, outline=(50, 50, 50), width=max(1, size // 10))
     elif entry.shape == "ring":
         draw.ellipse(box, outline=entry.color, width=max(2, size // 4))
     elif entry.shape == "burst":

@@ -17,7 +17,9 @@ LEGEND: dict[str, LightStyle] = {
     "decider": LightStyle((204, 121, 167), "Phase 2: one of the two robots that decide the leader"),
     "call": LightStyle((230, 159, 0), "Phase 2: answers the deciders (R_I symmetric, closest to K)"),
     "leader1": LightStyle((240, 228, 66), "Phase 2: elected, walking to a corner to become leader"),
-    "leader": LightStyle((213, 94, 0), "Phase 3: the leader r₀; its position fixes the frame"),
+    # A square: the one robot that fixes the frame is found at a glance, and told from a done robot
+    # ringed orange (computed) by its shape, not only its vermillion.
+    "leader": LightStyle((213, 94, 0), "Phase 3: the leader r₀; its position fixes the frame", "square"),
     "done": LightStyle((0, 158, 115), "Phase 3: on its target"),
 }
 

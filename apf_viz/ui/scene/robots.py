@@ -28,17 +28,26 @@ class RobotsLayer(Canvas):
         palette = light_colors(view)
         noses, rims = scene_detail(self.view_cells if self.view_cells is not None else self.visible_height())
         rimmed = pts if rims or not view.playing or len(pts) < RIM_CROWD else pts[:0]
-        self._points(
-            "/robots/outline",
-            xyz(rimmed, LAYER["outline"]),
-            MARK_COLORS["outline"],
-            SIZE["outline"],
-            "circle",
-        )
-        for light in set(self._sprite_lights) | set(lights.tolist()):
-            self._sprite_lights.add(light)
+        squares = np.array([view.legend[r.light].shape == "square" if r.light in view.legend else False
+                            for r in robots], dtype=bool)  # fmt: skip
+        for suffix, of_shape in (("", ~squares), ("-square", squares)):  # a rim of the robot's shape
+            self._points(
+                "/robots/outline" + suffix,
+                xyz(rimmed[of_shape[: len(rimmed)]], LAYER["outline"]),
+                MARK_COLORS["outline"],
+                SIZE["outline"],
+                "square" if suffix else "circle",
+            )
+        # A cloud a light and shape (a cloud's shape is fixed when it is made; another algorithm may draw
+        # a light of the same name otherwise).
+        pairs = zip(lights, squares, strict=True)
+        keys = np.array([f"{light}-square" if sq else str(light) for light, sq in pairs], dtype=object)
+        for key in set(self._sprite_lights) | set(keys.tolist()):
+            self._sprite_lights.add(key)
+            light, square = key.removesuffix("-square"), key.endswith("-square")
             color = palette.get(light, (0, 0, 0))
-            self._points(f"/robots/{light}", xyz(pts[lights == light], Z), color, SIZE["robot"], "circle")
+            at = xyz(pts[keys == key], Z)
+            self._points(f"/robots/{key}", at, color, SIZE["robot"], "square" if square else "circle")
         shown = pts if noses else pts[:0]
         sign = np.array([1.0 if r.y_up else -1.0 for r in robots[: len(shown)]], dtype=np.float32)
         nose = xyz(shown, LAYER["nose"])

@@ -9,7 +9,7 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from apf_viz.core.portrayal import Cells, Frame
+from apf_viz.core.portrayal import Cells, Frame, LightStyle
 from apf_viz.workbench.palette import MARK_COLORS, PHASE_COLORS, TARGET_COLORS
 
 if TYPE_CHECKING:
@@ -21,7 +21,8 @@ SYMBOL = re.compile(r"\b([A-Za-z])_(\{[^}]*\}|[A-Za-z0-9]+)(?:\^([A-Za-z]))?")
 
 @dataclass(frozen=True)
 class Entry:
-    """One legend line: a swatch (its colour and shape: "disc", "ring", "square", "burst", or "none" for
+    """One legend line: a swatch (its colour and shape: "disc", "tile" (a square robot), "ring", "square",
+    "burst", or "none" for
     a mark the canvas writes as a word) and words."""
 
     color: tuple[int, int, int]
@@ -42,6 +43,11 @@ def symbol_html(text: str) -> str:
     return SYMBOL.sub(typeset, html.escape(text))
 
 
+def _light_swatch(style: LightStyle) -> str:
+    """A light's swatch shape: its disc, or its square drawn with the robots' outline ("tile")."""
+    return "tile" if style.shape == "square" else "disc"
+
+
 def swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
     """A legend swatch drawn as the canvas draws the mark: a disc, a square, a ring, a square ring, a
     line or a burst."""
@@ -49,6 +55,7 @@ def swatch(color: tuple[int, int, int], shape: str = "disc") -> str:
     style = {
         "disc": f"border-radius:50%;background:rgb{tuple(color)};border:1.5px solid rgb{outline}",
         "square": f"border-radius:1px;background:rgb{tuple(color)}",
+        "tile": f"border-radius:1px;background:rgb{tuple(color)};border:1.5px solid rgb{outline}",
         "ring": f"border-radius:50%;border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
         "line": f"height:3px;margin-bottom:4px;background:rgb{tuple(color)}",
         "square-ring": f"border:3.5px solid rgb{tuple(color)};box-sizing:border-box",
@@ -144,7 +151,7 @@ def legend_html(view: SessionView) -> str:
 def _legend_html(view: SessionView) -> str:
     cells = [
         (
-            swatch(style.color),
+            swatch(style.color, _light_swatch(style)),
             f"<b>{html.escape(light)}</b>"
             + (f' <span style="color:#555">{symbol_html(style.meaning)}</span>' if style.meaning else ""),
             style.meaning or "",
@@ -181,9 +188,9 @@ def slide_legend(view: SessionView) -> list[Entry]:
     """The legend of a saved slide: the lights in use, then only the marks the picture shows."""
     c = MARK_COLORS
     out = [
-        Entry(view.legend[light].color, "disc", light, plain(view.legend[light].meaning))
-        for light in view.lights_in_use
-        if light in view.legend
+        Entry(style.color, _light_swatch(style), light, plain(style.meaning))
+        for light, style in ((light, view.legend.get(light)) for light in view.lights_in_use)
+        if style is not None
     ]
     marks = (
         (bool(view.targets), Entry(TARGET_COLORS["placed"], "square", "target cells")),
