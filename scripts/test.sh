@@ -35,9 +35,22 @@ if [ "${1:-}" = "--quick" ]; then  # lint, types, and every test but the browser
 fi
 # Four workers on two cores: a browser test mostly waits (on Chromium, on the server's frames), so two
 # more workers fill the waits (docs/PERFORMANCE.md, "The suite"). APF_VIZ_TEST_WORKERS=0: one process.
+if [ "$whole" = yes ]; then
+  # The lowest version of every direct dependency (scripts/lowest.txt), in a fresh virtual environment,
+  # installed while the suite runs (pip waits on the network and the disk, the suite on the CPU: 2.5 of
+  # the command's minutes, docs/PERFORMANCE.md); its tests after the suite.
+  bash scripts/test_lowest.sh --prepare > .lowest-prepare.log 2>&1 &
+  preparing=$!
+  trap 'kill "$preparing" 2>/dev/null || true' EXIT
+fi
 .venv/bin/python -m pytest -n "${APF_VIZ_TEST_WORKERS:-4}" --dist load --durations=15 "$@"
 if [ "$whole" = yes ]; then
-  # The lowest version of every direct dependency (scripts/lowest.txt), in a fresh virtual environment:
-  # installed, `apf-viz serve` answering a page, and the quick suite.
-  bash scripts/test_lowest.sh
+  if ! wait "$preparing"; then
+    cat .lowest-prepare.log
+    echo "the lowest versions' environment could not be made (above)" >&2
+    exit 1
+  fi
+  trap - EXIT
+  cat .lowest-prepare.log
+  bash scripts/test_lowest.sh --prepared  # installed, `apf-viz serve` answering a page, their tests
 fi

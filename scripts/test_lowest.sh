@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The lowest versions pyproject.toml allows (scripts/lowest.txt), in a fresh virtual environment that
 # sees no system packages: apf-viz installed on them, the tests that reach each dependency run (LOWEST_TESTS),
-# and `apf-viz serve` answering a page. Arguments go to pytest instead of that list.
+# and `apf-viz serve` answering a page. Other arguments go to pytest instead of that list.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-rm -rf .venv-lowest
-python3 -m venv .venv-lowest
-.venv-lowest/bin/python -m pip install -q -r scripts/lowest.txt
-.venv-lowest/bin/python -m pip install -q --no-deps -e .
-.venv-lowest/bin/python - <<'PY'
+prepare() {
+  rm -rf .venv-lowest
+  python3 -m venv .venv-lowest
+  .venv-lowest/bin/python -m pip install -q -r scripts/lowest.txt
+  .venv-lowest/bin/python -m pip install -q --no-deps -e .
+  .venv-lowest/bin/python - <<'PY'
 import importlib.metadata as m
 import re
 from pathlib import Path
@@ -19,6 +20,14 @@ for line in Path("scripts/lowest.txt").read_text().splitlines():
 print("apf-viz on the lowest versions:", ", ".join(l.split("==")[0] + " " + l.split("==")[1]
       for l in Path("scripts/lowest.txt").read_text().splitlines() if l and not l.startswith("#")))
 PY
+}
+# --prepare: only the environment (scripts/test.sh makes it while the suite runs: it waits on the network
+# and the disk, the suite on the CPU); --prepared: the environment is made, run the tests on it.
+case "${1:-}" in
+  --prepare) prepare; exit 0 ;;
+  --prepared) shift ;;
+  *) prepare ;;
+esac
 port=$(.venv-lowest/bin/python -c "from apf_viz.ui.network import free_port; print(free_port())")
 .venv-lowest/bin/apf-viz serve --port "$port" > /tmp/apf-viz-lowest-serve.log 2>&1 &
 server=$!
