@@ -307,7 +307,20 @@ def test_every_stop_reads_from_the_back_row_with_labels_on_their_robots_at_1024x
         if " I shows " in f" {stop.say} " or " I lists " in f" {stop.say} ":  # the words send the room to I
             problems += [f"{where}: {p}" for p in _details_shown(page, app, i, slug)]
         problems += settled_label_problems(app, page, screen, others, where)
+        if not _framed_on_the_run(app, screen):  # a stop's run to its moment grew it: framed again
+            problems.append(f"{where}: framed {screen.state.framed_bounds}, the run is {app.renderer.bounds}")
     assert not problems, "\n".join(problems)
+
+
+def _framed_on_the_run(app: App, screen, timeout: float = 10.0) -> bool:
+    """The projector's camera, which nobody moved, frames the run's own box at a stop (not one grown with
+    room to spare while the stop's run played to its moment: robots drawn at 60 % of their size)."""
+    end = time.time() + timeout
+    while screen.state.framed_bounds != app.renderer.bounds:
+        if time.time() > end:
+            return False
+        time.sleep(0.2)
+    return True
 
 
 def _details_shown(page, app: App, i: int, slug: str) -> list[str]:

@@ -132,6 +132,7 @@ class App:
         self._framed_end = False  # the cameras were framed on the run's end
         self._framed_twin = session.screen.twin  # the Compare the cameras were last framed with
         self._framed_playing = False  # the run was playing when the cameras were last kept framed
+        self._framed_stop: tuple[int, int] | None = None  # the lecture and stop they were kept for
         self.frames = 0
         self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
         self.room = Room(session, self._screens, self.seat_of)  # the class pages, for the presenter
@@ -439,9 +440,12 @@ class App:
         self._framed_end = ended
         paused = self._framed_playing and not self.session.playing
         self._framed_playing = self.session.playing
-        if paused and self.session.mode == "run":
-            # Play grew the framing with room to spare (robots drawn small); paused, the run fills the
-            # cameras that follow it again, as it did before Play.
+        lecturer = self.session.lecturer  # a stop reached plays to it without Play: framed as a pause
+        stop = (id(lecturer), lecturer.position) if lecturer is not None else None
+        moved_on, self._framed_stop = stop != self._framed_stop, stop
+        if (paused or (moved_on and not self.session.playing)) and self.session.mode == "run":
+            # Play (or a stop's run to its moment) grew the framing with room to spare (robots drawn
+            # small); paused, the run fills the cameras that follow it again, as it did before Play.
             self._frame_initial()
             for screen in screens:
                 if screen.state.camera == "framed":
