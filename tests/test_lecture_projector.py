@@ -32,7 +32,7 @@ LABEL_FONT_STACK = (
 )
 SCREEN_EM_PX = 12.0  # viser: a screen-sized label's em at font_screen_scale 1
 PADDING = 0.2  # viser: a label's background padding, a share of its line height
-NUMBER_PX = 14.0  # the smallest robot number a room reads
+NUMBER_PX = 18.0  # the smallest robot number the back row reads: 9 px in a picture at half size
 
 # The caption as the page lays it out: the size of each of its texts, its box and its scrolling.
 CAPTION_JS = """() => {

@@ -298,7 +298,7 @@ def test_zoomed_out_a_frames_label_does_not_cover_the_targets_label():
     from apf_viz.ui.scene import label_box, text_cells
 
     height = text_cells(80.0)  # the canvas shows 80 cells top to bottom
-    assert height > 1.0 and text_cells(10.0) == pytest.approx(0.35)
+    assert height > 1.0 and text_cells(5.0) == pytest.approx(0.35)  # zoomed in: the least
     cells = np.array([[x, y] for x in range(10) for y in range(1, 11)], dtype=np.float32)
     robots = np.array([[x, 10.0] for x in range(10)] + [[x, 0.0] for x in range(12, 40)], dtype=np.float32)
     spot = cells_label_at(cells, robots, "targets", height)  # robots on the top row: below the cells

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from apf_viz.ui.scene.style import STALE_MARK, Bounds
+from apf_viz.ui.scene.style import LABEL_SCALE, STALE_MARK, Bounds
 
 
 def number_labels(
@@ -132,8 +132,9 @@ def spec_box(spec: LabelSpec, height: float) -> Bounds:
 
 
 # A label's box on screen at LABEL_SCALE (viser's label renderer: the font's line height, 1.15 em for the
-# sans-serif fonts it uses, and a fifth of it as padding): 14.4 px × 1.15 × 1.2.
-LABEL_TEXT_PX = 21.0  # 20.0 measured, and a pixel of air: labels laid out touching would be read as one
+# sans-serif fonts it uses, and a fifth of it as padding): 12 px × LABEL_SCALE × 1.15 × 1.2, 20.0 px
+# measured at a scale of 1.2; and a pixel of air: labels laid out touching would be read as one.
+LABEL_TEXT_PX = 20.0 * LABEL_SCALE / 1.2 + 1.0
 CHAR_WIDTH = 0.5  # a character's advance, of a label's height: generous (digits and most letters are less)
 TYPICAL_CANVAS_PX = 800.0  # the canvas height labels are laid out for before a browser reports its own
 TEXT_CELLS_MIN = 0.35  # a label's height in cells when zoomed in (the layout's fixed offsets assume it)
@@ -251,6 +252,11 @@ def frame_label_at(
     lower = away - height - 0.3 if y_sign > 0 else away + height + 0.3  # past a robot's label under it
     left = ox - 0.6 - label_width(text, height)
     spots = [under, beyond_x, (ox - 0.4, tip, ox + 2.6), (ox, lower, ox + 3.0), (left, oy - 0.25, ox - 0.6)]
+    # Farther out, for a crowded corner (Compare's small runs): past the numbers over the y arm's tip,
+    # and a row below the lower place.
+    above_tip = tip + 1.2 * height + 0.3 if y_sign > 0 else tip - 1.2 * height - 0.3
+    lowest = lower + (-1 if y_sign > 0 else 1) * (height + 0.3)
+    spots += [(ox - 0.4, above_tip, ox + 2.6), (ox, lowest, ox + 3.0)]
     return free_label_spot(spots, robots, text, height, taken)
 
 

@@ -77,7 +77,9 @@ stall when first shown (docs/PERFORMANCE.md)."""
 # The canvas a new browser is framed for before it reports its own: 1024×768 with the panel docked
 # (about 640×768). A wider canvas then shows a margin; a narrower guess would cut a 1024 projector's view.
 NARROW_ASPECT = 0.83
-LABEL_SCALE = 1.2  # viser's em is 12 px at 1: robot numbers at 14.4 px, read from the back of a room
+# viser's em is 12 px at 1: robot numbers at 18 px, near the caption's words (WORDS_PX, 20 px), so that the
+# back row reads them (at 14.4 px they were 7 px in a projector's picture at half size; the words 10 px).
+LABEL_SCALE = 1.5
 
 
 def xyz(points, z: float) -> np.ndarray:
