@@ -7,6 +7,7 @@ algorithms only through the built-in lists, never a path or code.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from functools import cache
 from pathlib import Path
 from typing import Literal
@@ -140,6 +141,19 @@ def contradiction(text: str, stage_line: str) -> str | None:
         if said.search(text) and staged.search(stage_line):
             return f"its words {what}, the stage line says “{stage_line}”"
     return None
+
+
+def claimed_lights(text: str, lights: Iterable[str]) -> list[str]:
+    """The lights ``text`` says a robot shows: "lit L", "lights L", "light L", "L robot(s)" for a light L
+    of the algorithm (a word of the text that names a light in passing, "terminal1 light symmetric", is no
+    claim that one shows it; "light symmetric" is)."""
+    out = []
+    for light in lights:
+        name = re.escape(light)
+        claim = rf"\b(?:lit|lights?)\s+(?:as\s+)?{name}\b|\b{name}\s+robots?\b"
+        if re.search(claim, text, re.I):
+            out.append(light)
+    return out
 
 
 def panel_words(text: str) -> str | None:

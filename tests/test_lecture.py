@@ -138,6 +138,26 @@ def test_words_that_send_the_room_to_a_panel_fail_the_check(tmp_path, capsys):
     assert "its words name “The Paper panel”, which presentation mode hides" in capsys.readouterr().out
 
 
+def test_words_that_name_a_light_no_robot_shows_fail_the_check(tmp_path, capsys):
+    """The 12-stop lecture's third stop once said "both terminal1" over two robots lit symmetric: words
+    claiming a light ("lit L", "lights L", "L robots") that no robot shows at the stop fail the check;
+    a light named in passing ("were terminal1") does not."""
+    from apf_viz.lecture import claimed_lights
+
+    lights = ("off", "terminal1", "symmetric", "leader1", "leader")
+    assert claimed_lights("Both terminal1 robots stand on a line", lights) == ["terminal1"]
+    assert claimed_lights("then lit decider; it lights leader", (*lights, "decider")) == ["leader", "decider"]
+    assert claimed_lights("the robot that was leader1 turns to face", lights) == []
+    data = shipped_json("algorithm-in-12-stops")
+    data["stops"][2]["say"] = "Both terminal1 robots stand on one vertical line."
+    edited = tmp_path / "edited.json"
+    edited.write_text(json.dumps(data))
+    assert main(["lecture", "check", str(edited)]) == 1
+    out = capsys.readouterr().out
+    said = "its words say a robot is lit terminal1; none is at this stop (they show 8 off, 2 symmetric)"
+    assert said in out
+
+
 def test_a_shipped_lecture_is_checked_by_its_name_as_a_wheel_user_would(capsys):
     assert main(["lecture", "check", "where-the-paper-breaks"]) == 0
     assert main(["lecture", "check", "The algorithm in 12 stops"]) == 0

@@ -17,6 +17,7 @@ from apf_viz.lecture import (
     Lecture,
     Stop,
     Until,
+    claimed_lights,
     contradiction,
     frameless_coordinates,
     panel_words,
@@ -190,6 +191,11 @@ def broken_claims(stop: Stop, view: SessionView) -> tuple[str, ...]:
         out.append(f"its words give {pair} in no named frame (the leader's, a robot's own, on the grid)")
     if said := contradiction(f"{stop.title}. {stop.say}", view.stage_line):
         out.append(said)
+    lit = Counter(r.light for r in view.robots)
+    for light in claimed_lights(f"{stop.title}. {stop.say}", view.legend):
+        if not lit[light]:
+            showing = ", ".join(f"{n} {other}" for other, n in sorted(lit.items()))
+            out.append(f"its words say a robot is lit {light}; none is at this stop (they show {showing})")
     if stop.select is not None and stop.select >= len(view.robots):
         k = len(view.robots)
         out.append(f"selects robot {stop.select}, but the run has {k} robots (0–{k - 1})")
