@@ -552,3 +552,24 @@ def test_the_leader_is_a_square_robot_on_the_canvas_in_the_legend_and_in_a_figur
     svg = to_svg(drawing)
     assert svg.count('fill="rgb(213,94,0)"') >= 1 and "<rect" in svg
     assert "rectangle" in to_tikz(drawing)
+
+
+def test_the_right_hand_runs_title_in_compare_ends_inside_the_framed_box(renderer):
+    """Compare's second title ran from its run's left end off the canvas ("B: the default algorithm ·
+    ru…" at a lecture stop): it now ends where the room kept right of the runs ends."""
+    from apf_viz.ui.scene.compare_pair import ComparePair
+    from apf_viz.ui.scene.labels import spec_box
+
+    s = Session([(0, 0), (0, 1), (0, 2), (0, 4)], [(0, 1), (1, 1), (2, 1), (1, 0)])
+    s.compare_with("apf-opaque-grid-literal")
+    renderer.view_cells = 40.0  # zoomed out as a lecture's Compare stop is: a label is cells wide
+    pair = ComparePair(renderer)
+    pair.render(s.view(), s.config)
+    second = pair.second
+    assert second is not None
+    nodes = second.nodes()
+    title = next(h for n, h in nodes.items() if n.endswith("/title/0"))
+    assert title.text.startswith("B: ") and title.anchor == "bottom-right"
+    x1 = renderer.bounds[2]  # the box a framed camera shows: both runs and the room right of them
+    box = spec_box((title.text, tuple(title.position), "bottom-right"), second._text_height())
+    assert box[2] <= x1 and box[2] - box[0] > 10  # it ends inside, though many cells wide

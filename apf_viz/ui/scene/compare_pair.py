@@ -6,10 +6,9 @@ of its own."""
 from __future__ import annotations
 
 from apf_viz.ui.scene.renderer import SceneRenderer
+from apf_viz.ui.scene.style import LABEL_ROOM
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.view_model import SessionView
-
-LABEL_ROOM = 4.0  # cells right of two runs compared, for the labels of the one on the right
 
 
 class ComparePair:

@@ -10,11 +10,11 @@ from apf_viz.core.portrayal import Line
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.ui.scene.framing import Framing
 from apf_viz.ui.scene.grid import GridLayer
-from apf_viz.ui.scene.labels import label_box, number_labels, spec_box, spread
+from apf_viz.ui.scene.labels import number_labels, spec_box, spread
 from apf_viz.ui.scene.marks import MarksLayer
 from apf_viz.ui.scene.robots import RobotsLayer
 from apf_viz.ui.scene.selection import SelectionRenderer
-from apf_viz.ui.scene.style import DENSE, LAYER, Bounds, xyz
+from apf_viz.ui.scene.style import DENSE, LABEL_ROOM, LAYER, Bounds, xyz
 from apf_viz.workbench.palette import MARK_COLORS, MARK_SHAPES
 from apf_viz.workbench.view_model import SessionView
 
@@ -88,11 +88,18 @@ class SceneRenderer(RobotsLayer, GridLayer, MarksLayer, Framing):
         placed = self._marks(view, pts, said_boxes)
         self._anchor(view)
         self._studio(view)
-        x0, _, _, y1 = self.bounds
-        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it.
-        self._labels("/title", [(title, (x0 - 0.5, y1 - 1.0, 0.1))] if title else [])
+        x0, _, x1, y1 = self.bounds
+        # Inside the room the bounds keep for it (3 cells above the run): a framed camera shows it. The
+        # run on the right of Compare has its title end where the room kept right of it ends, running
+        # left over the gap between the runs: from its left end it ran off the canvas.
+        spec = (
+            (title, (x1 + LABEL_ROOM - 0.5, y1 - 1.0, 0.1), "bottom-right")
+            if self.prefix
+            else (title, (x0 - 0.5, y1 - 1.0, 0.1))
+        )
+        self._labels("/title", [spec] if title else [])
         height = self._text_height()
-        titled = [label_box(title, (x0 - 0.5, y1 - 1.0, x0 - 0.5), height)] if title else []
+        titled = [spec_box(spec, height)] if title else []
         self.label_boxes = placed[len(beside) :] + titled
         if self.selection is not None:
             self.selection.render(view)

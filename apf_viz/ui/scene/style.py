@@ -68,6 +68,7 @@ def light_colors(view: SessionView) -> dict[str, tuple[int, int, int]]:
     return {light: style.color for light, style in view.legend.items()}
 
 
+LABEL_ROOM = 4.0  # cells right of two runs compared, for the labels of the one on the right
 REGION_OPACITY = 0.13
 FULL_CANVAS_MATERIAL = "toon3"
 """The material of a surface that may fill much of the canvas (a region's shading, the paint surface):
