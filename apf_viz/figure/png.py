@@ -44,27 +44,7 @@ def to_png(d: Drawing) -> bytes:
             ax.annotate(label, (ox + 2.1, oy), fontsize=7, va="center")
         for a, b in d.rays:
             ax.plot([a[0], b[0]], [a[1], b[1]], color=_c(MARK_COLORS["ray"]), lw=1.2, zorder=3)
-        for disc in d.robots:
-            edge = _c(MARK_COLORS["outline"])
-            ax.add_patch(
-                Rectangle((disc.at[0] - 0.34, disc.at[1] - 0.34), 0.68, 0.68, facecolor=_c(disc.color),
-                          edgecolor=edge, zorder=4)
-                if disc.square
-                else Circle(disc.at, 0.34, facecolor=_c(disc.color), edgecolor=edge, zorder=4)
-            )  # fmt: skip
-            ax.annotate(str(disc.number), (disc.at[0] + 0.35, disc.at[1] + 0.35), fontsize=8, zorder=5)
-        named = _c(MARK_COLORS["named"])
-        for (x, y), name in d.named:  # the robot the caption names: ringed, its name at its lower left
-            ax.add_patch(Circle((x, y), 0.5, fill=False, edgecolor=named, lw=1.8, zorder=6))
-            ax.annotate(
-                name, (x - 0.55, y - 0.55), fontsize=10, fontweight="bold", color=named, ha="right", va="top"
-            )
-        for x, y in d.hidden:
-            ax.add_patch(
-                Circle((x, y), 0.34, facecolor=_c(MARK_COLORS["hidden"]), alpha=0.8, ls="--", zorder=5)
-            )
-        if d.selected is not None:
-            ax.add_patch(Circle(d.selected, 0.5, fill=False, edgecolor="black", lw=1.5, zorder=6))
+        _robots(ax, d)
         handles: list[Patch] = [
             Rectangle((0, 0), 1, 1, color=_c(c), label=name) if name in d.square_lights
             else Circle((0, 0), 1, color=_c(c), label=name)
@@ -80,3 +60,29 @@ def to_png(d: Drawing) -> bytes:
         return out.getvalue()
     finally:
         plt.close(fig)
+
+
+def _robots(ax, d: Drawing) -> None:
+    """Each robot in its light's colour and shape with its number; the robot a caption names ringed
+    and named; those the selected one cannot see veiled; the selected one ringed."""
+    from matplotlib.patches import Circle, Rectangle
+
+    for disc in d.robots:
+        edge = _c(MARK_COLORS["outline"])
+        ax.add_patch(
+            Rectangle((disc.at[0] - 0.34, disc.at[1] - 0.34), 0.68, 0.68, facecolor=_c(disc.color),
+                      edgecolor=edge, zorder=4)
+            if disc.square
+            else Circle(disc.at, 0.34, facecolor=_c(disc.color), edgecolor=edge, zorder=4)
+        )  # fmt: skip
+        ax.annotate(str(disc.number), (disc.at[0] + 0.35, disc.at[1] + 0.35), fontsize=8, zorder=5)
+    named = _c(MARK_COLORS["named"])
+    for (x, y), name in d.named:  # the robot the caption names: ringed, its name at its lower left
+        ax.add_patch(Circle((x, y), 0.5, fill=False, edgecolor=named, lw=1.8, zorder=6))
+        ax.annotate(
+            name, (x - 0.55, y - 0.55), fontsize=10, fontweight="bold", color=named, ha="right", va="top"
+        )
+    for x, y in d.hidden:
+        ax.add_patch(Circle((x, y), 0.34, facecolor=_c(MARK_COLORS["hidden"]), alpha=0.8, ls="--", zorder=5))
+    if d.selected is not None:
+        ax.add_patch(Circle(d.selected, 0.5, fill=False, edgecolor="black", lw=1.5, zorder=6))
