@@ -333,18 +333,23 @@ def test_a_test_that_starts_chromium_without_the_browser_mark_is_refused_at_coll
     assert unmarked_browser_tests(items) == ["b"]
 
 
+IMPORT_SHARDS = 4  # the modules split four ways: one interpreter each, run side by side by the workers
+
+
 @pytest.mark.slow
-def test_every_module_imports_on_its_own():
+@pytest.mark.parametrize("shard", range(IMPORT_SHARDS))
+def test_every_module_imports_on_its_own(shard):
     """A run-time import circle (a module importing, at its top, one that imports it back while it is
-    half made) shows only when that module is imported first. In one fresh interpreter, each module of
-    the package is imported with every apf_viz module forgotten before it: as if it were the first (the
+    half made) shows only when that module is imported first. In a fresh interpreter, each module of
+    the package (every fourth, from ``shard``: the whole took 20 s alone, the suite's slowest test but
+    one) is imported with every apf_viz module forgotten before it: as if it were the first (the
     third-party libraries stay loaded; a circle through them is not ours). ``__main__`` modules run."""
     script = textwrap.dedent(
         """
         import importlib, pkgutil, sys
         import apf_viz
         names = sorted(m.name for m in pkgutil.walk_packages(apf_viz.__path__, "apf_viz.")
-                       if not m.name.endswith("__main__"))
+                       if not m.name.endswith("__main__"))[SHARD::SHARDS]
         failed = []
         for name in names:
             for loaded in [n for n in sys.modules if n == "apf_viz" or n.startswith("apf_viz.")]:
@@ -357,10 +362,11 @@ def test_every_module_imports_on_its_own():
         print("\\n".join(failed))
         """
     )
+    script = script.replace("SHARD::SHARDS", f"{shard}::{IMPORT_SHARDS}")
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]
     count, *failed = done.stdout.strip().splitlines()
-    assert int(count) > 150 and not failed, failed
+    assert int(count) > 150 // IMPORT_SHARDS and not failed, failed
 
 
 def _assigned_names(tree: ast.Module) -> set[str]:

@@ -12,12 +12,18 @@ import pytest
 
 from apf_viz.ui.app import App, demo_session, free_port
 from tests.test_question_browser import LECTURE
-from tests.test_ui_browser import shot, wait_for
+from tests.test_ui_browser import inside_canvas, shot, wait_for
 
 pytest.importorskip("playwright.sync_api")
 pytestmark = pytest.mark.browser
 
 PHONES = {"portrait": {"width": 390, "height": 844}, "landscape": {"width": 844, "height": 390}}
+# The top of viser's bottom sheet on an upright phone: the fixed box that holds the panel's question.
+SHEET_TOP_JS = (
+    "() => Math.min(...[...document.querySelectorAll('*')].filter(n => getComputedStyle(n).position === "
+    "'fixed' && n.innerText && n.innerText.includes('Which robot moves next?'))"
+    ".map(n => n.getBoundingClientRect().top))"
+)
 
 
 @pytest.fixture
@@ -56,6 +62,12 @@ def test_a_class_page_on_a_phone_answers_by_one_tap_and_never_scrolls_sideways(b
         wait_for(lambda: poll.given(app.seat_of(cid)) == "1")
         page.get_by_text("Your answer: robot 1").first.wait_for()
         assert page.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
+        if held == "portrait":  # the run framed in the screen above the sheet, every robot whole
+            sheet = page.evaluate(SHEET_TOP_JS)
+            assert 0 < sheet < PHONES[held]["height"]
+            free = 1 - sheet / page.locator("canvas").first.bounding_box()["height"]
+            cells = [r.position for r in app.session.view().robots]
+            wait_for(lambda: not inside_canvas(app, page, cid, cells, free), timeout=20)
         shot(page, f"phone-{held}")
         assert poll.count == 1
     finally:

@@ -8,8 +8,9 @@ from typing import Protocol, cast
 import numpy as np
 
 from apf_viz.ui.attachment import Attachment
-from apf_viz.ui.caption_room import CAPTION_ROOM
+from apf_viz.ui.caption_room import CAPTION_ROOM, PHONE_SHEET_ROOM
 from apf_viz.ui.panels import Panels, SharedVerifier
+from apf_viz.ui.panels.presentation import upright_phone
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.ui.scene import (
     NARROW_ASPECT,
@@ -198,7 +199,10 @@ class BrowserScreen:
 
     def frame(self, renderer: SceneRenderer, bounds: Bounds | None = None) -> None:
         """Frame its camera on the run, or on ``bounds`` (the run with room to grow)."""
-        room = CAPTION_ROOM if self.panels.presenting else 0.0
+        if upright_phone(*canvas_size(self.client)):
+            room = PHONE_SHEET_ROOM  # the run above the sheet, caption or not (the caption is in it)
+        else:
+            room = CAPTION_ROOM if self.panels.presenting else 0.0
         self.panels.presentation.fit(self.client)  # the caption across the canvas as it is now
         position, self._framed_aspect = renderer.frame_camera(self.client.camera, room, bounds)
         if position is not None:

@@ -4,6 +4,10 @@ module, so that what frames a camera (the browser's screen, an exported page) do
 
 from __future__ import annotations
 
-__all__ = ["CAPTION_ROOM"]
+__all__ = ["CAPTION_ROOM", "PHONE_SHEET_ROOM"]
 
 CAPTION_ROOM = 0.35
+PHONE_SHEET_ROOM = 0.6
+"""On a phone held upright viser shows its panel as a sheet over the bottom of the screen, at most 60 %
+of its height (its client's BottomPanel), open when the page loads: a framed camera puts the run in the
+40 % above it (the question and the caption are in the sheet)."""
