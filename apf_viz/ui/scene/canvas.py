@@ -29,7 +29,7 @@ class Canvas:
         self.root = root
         self.fixed_origin: tuple[int, int] | None = None
         self.scene = owner.scene
-        self._sprite_lights: set[str] = set()
+        self._sprite_lights: set[tuple[str, bool]] = set()  # (light, drawn square) of every robot cloud
         self._ghost_lights: set[str] = set()
         self._trail_lights: set[str] = set()
         self._colors: dict[str, tuple[int, int, int]] = {}  # each point cloud's colour

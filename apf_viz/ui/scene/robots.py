@@ -40,14 +40,13 @@ class RobotsLayer(Canvas):
             )
         # A cloud a light and shape (a cloud's shape is fixed when it is made; another algorithm may draw
         # a light of the same name otherwise).
-        pairs = zip(lights, squares, strict=True)
-        keys = np.array([f"{light}-square" if sq else str(light) for light, sq in pairs], dtype=object)
-        for key in set(self._sprite_lights) | set(keys.tolist()):
-            self._sprite_lights.add(key)
-            light, square = key.removesuffix("-square"), key.endswith("-square")
+        drawn = list(zip(lights.tolist(), squares.tolist(), strict=True))
+        for light, square in set(self._sprite_lights) | set(drawn):
+            self._sprite_lights.add((light, square))
+            at = xyz(pts[[kind == (light, square) for kind in drawn]], Z)
+            name = f"/robots/{light}" + ("-square" if square else "")
             color = palette.get(light, (0, 0, 0))
-            at = xyz(pts[keys == key], Z)
-            self._points(f"/robots/{key}", at, color, SIZE["robot"], "square" if square else "circle")
+            self._points(name, at, color, SIZE["robot"], "square" if square else "circle")
         shown = pts if noses else pts[:0]
         sign = np.array([1.0 if r.y_up else -1.0 for r in robots[: len(shown)]], dtype=np.float32)
         nose = xyz(shown, LAYER["nose"])
