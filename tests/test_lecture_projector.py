@@ -315,11 +315,10 @@ def test_every_stop_reads_from_the_back_row_with_labels_on_their_robots_at_1024x
 def _framed_on_the_run(app: App, screen, timeout: float = 10.0) -> bool:
     """The projector's camera, which nobody moved, frames the run's own box at a stop (not one grown with
     room to spare while the stop's run played to its moment: robots drawn at 60 % of their size)."""
-    end = time.time() + timeout
-    while screen.state.framed_bounds != app.renderer.bounds:
-        if time.time() > end:
-            return False
-        time.sleep(0.2)
+    try:
+        wait_for(lambda: screen.state.framed_bounds == app.renderer.bounds, timeout)
+    except AssertionError:
+        return False
     return True
 
 
