@@ -22,7 +22,7 @@ from viser import _messages
 from websockets.typing import Subprotocol
 
 from apf_viz.ui.app import App, demo_session, free_port
-from apf_viz.ui.own_runs import OWN_SPEED
+from apf_viz.workbench.classroom import OWN_SPEED
 
 WINDOW_S = 10.0
 SPEED = 30.0
@@ -202,11 +202,11 @@ def lecture_hall(
                 screen.session.set_speed(OWN_SPEED)
                 screen.session.toggle_play()
                 continue
-            app.session.click(robots[i % len(robots)], cid)  # each has selected a robot of its own
+            app.classroom.click(cid, robots[i % len(robots)])  # each has selected a robot of its own
         app.request_render()
         time.sleep(2.0)
         cpu0, wall0 = time.process_time(), time.perf_counter()
-        owned = [x.session for x in app.own_runs.attached()]
+        owned = [x.own for x in app.classroom.own_pages() if x.own is not None]
         before = sum(run.engine.state.events for run in owned)
         full = _measure(app, projector, student, start_record)
         if own:
@@ -243,7 +243,7 @@ def lecture_hall(
         gc.collect()
         print(
             f"(server memory: {rss_alone:.0f} MB before the class, {rss_with:.0f} MB with it, "
-            f"{_rss_mb():.0f} MB after its {n} pages left; {len(app.own_runs.attached())} own runs left)"
+            f"{_rss_mb():.0f} MB after its {n} pages left; {len(app.classroom.own_pages())} own runs left)"
         )
         browser.close()
     app.stop()

@@ -58,7 +58,7 @@ def test_a_page_that_leaves_while_its_screen_is_made_is_let_go_of(monkeypatch):
         time.sleep(0.5)
         assert len(made) == PAGES
         assert app.screens == {} and app._gone == set()
-        assert app.session._browsers.keys() == set()  # no page's state kept in the run either
+        assert app.classroom.pages.all() == []  # no page kept in the class either
     finally:
         app.stop()
 

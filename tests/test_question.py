@@ -289,7 +289,7 @@ def test_a_class_pages_caption_says_its_own_answer_and_after_the_reveal_whether_
 
 
 def test_the_presenters_caption_counts_the_answers_of_the_seats_here():
-    """"2 of 5 answered": the seats connected now, and a seat that answered and left still among them;
+    """ "2 of 5 answered": the seats connected now, and a seat that answered and left still among them;
     with no seats known (no server: an exported page, a script) the count alone."""
     from apf_viz.workbench.view_model.caption import caption_html
 

@@ -42,7 +42,7 @@ def test_the_room_lists_the_laptops_shows_one_beside_and_hands_the_run_to_anothe
     try:
         projector.get_by_text(listed).wait_for()
     except Exception as err:  # say what the Room lists instead (it failed once, under the suite's load)
-        room = [page.words() for page in app.room.pages()]
+        room = [page.words() for page in app.classroom.listing()]
         body = projector.inner_text("body")[:1500]
         raise AssertionError(f"no “{listed}”; the room has {room}; the page: {body}") from err
     # Each laptop shows its own number, as the Room lists it: "laptop 1, your hand" is answerable.
@@ -78,7 +78,7 @@ def test_the_room_lists_the_laptops_shows_one_beside_and_hands_the_run_to_anothe
     follower.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.state.events == 1)
     projector.get_by_role("button", name="Take the run back").click()
-    wait_for(lambda: app.session.driver is None)
+    wait_for(lambda: app.classroom.driver is None)
     follower.keyboard.press("Enter")
     follower.wait_for_timeout(500)
     assert app.session.engine.state.events == 1

@@ -484,7 +484,7 @@ def test_without_numbers_manual_draws_no_label_per_robot_and_a_lone_stale_word_m
 
 
 def test_a_websocket_path_that_is_not_ascii_is_a_class_page():
-    from apf_viz.ui.roles import Roles
+    from apf_viz.workbench.classroom import Roles
 
     roles = Roles("secret")
     assert roles.role_of("/present/secret") == "presenter"

@@ -900,18 +900,18 @@ def test_two_browsers_select_apart_until_one_follows_the_presenter(browser, app)
     laptop = open_page(browser, app)
     wait_for(lambda: len(app.screens) == 2)
     ids = list(app.screens)
-    a = next(i for i in ids if app.session.is_presenter(i))
+    a = next(i for i in ids if app.classroom.is_presenter(i))
     b = next(i for i in ids if i != a)
     x, y = screen_of(app, projector, app.session.engine.current_points()[4])
     projector.mouse.click(x, y)
-    wait_for(lambda: app.session.view(a).selected == 4)
+    wait_for(lambda: app.session.view(app.classroom.state(a)).selected == 4)
     projector.get_by_text("Robot 4 —").first.wait_for()
     rays = app.screens[b].selection.nodes().get("/rays")
-    assert app.session.view(b).selected is None and (rays is None or not rays.visible)
+    assert app.session.view(app.classroom.state(b)).selected is None and (rays is None or not rays.visible)
     laptop.get_by_text("Click a robot to see what it sees").first.wait_for()
     shot(laptop, "laptop-unchanged-by-the-projector")
     laptop.get_by_label("Follow presenter").check()
-    wait_for(lambda: app.session.view(b).selected == 4)
+    wait_for(lambda: app.session.view(app.classroom.state(b)).selected == 4)
     laptop.get_by_text("Following the presenter's selection.").wait_for()
     laptop.get_by_text("Robot 4 —").first.wait_for()
     wait_for(lambda: app.screens[b].selection.nodes().get("/rays") is not None)
@@ -1564,13 +1564,13 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     wait_for(lambda: app.session.engine.step_index == 1)
     wait_for(lambda: event_value(follower) == 1)  # the class page follows the run
     presenter.get_by_label("Class may drive").check()
-    wait_for(lambda: app.session.class_may_drive)
+    wait_for(lambda: app.classroom.class_may_drive)
     follower.get_by_role("button", name="Step").wait_for()  # the class now has the controls
     follower.keyboard.press("Enter")
     wait_for(lambda: app.session.engine.step_index == 2)
     follower.get_by_role("button", name="Next move").wait_for()
     presenter.get_by_label("Class may drive").uncheck()
-    wait_for(lambda: not app.session.class_may_drive)
+    wait_for(lambda: not app.classroom.class_may_drive)
     follower.get_by_role("button", name="Step").wait_for(state="hidden")
     follower.get_by_role("button", name="Next move").wait_for(state="hidden")
     time.sleep(1.0)  # the checkbox gave the keys back: Space plays, and does not tick it again
@@ -1578,7 +1578,7 @@ def test_a_class_page_that_connects_first_follows_and_only_the_presenter_drives(
     wait_for(lambda: app.session.playing)
     presenter.keyboard.press(" ")
     wait_for(lambda: not app.session.playing)
-    assert not app.session.class_may_drive
+    assert not app.classroom.class_may_drive
     app.session.seek(2)
     app.request_render()
     follower.keyboard.press("Enter")
@@ -1618,7 +1618,7 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     student.get_by_role("button", name="Try it yourself").click()
     student.get_by_text("Your own run").first.wait_for()
     page = next(x for x in app.screens.values() if x.state.role == "class")
-    assert page.own is not None and page.session.private
+    assert page.own is not None and page.session is not app.session and page.page.own is page.session
     student.get_by_role("button", name="Step").wait_for()  # its own run's controls, and not the room's
     assert not student.get_by_role("button", name="Verify").is_visible()
     assert not student.get_by_label("Lecture").is_visible()
@@ -1652,9 +1652,9 @@ def test_a_class_page_tries_it_itself_while_the_projector_is_untouched_and_comes
     wait_for(lambda: page.own is None)
     wait_for(lambda: event_value(student) == app.session.engine.step_index)  # following again
     student.get_by_role("button", name="Try it yourself").click()  # again, and then the page leaves:
-    wait_for(lambda: len(app.own_runs.attached()) == 1)
+    wait_for(lambda: len(app.classroom.own_pages()) == 1)
     student.close()
-    wait_for(lambda: len(app.screens) == 1 and app.own_runs.attached() == [])  # its run is dropped
+    wait_for(lambda: len(app.screens) == 1 and app.classroom.own_pages() == [])  # its run is dropped
     presenter.close()
 
 

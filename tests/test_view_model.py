@@ -11,6 +11,7 @@ import pytest
 
 from apf_viz.core.formats import InputError
 from apf_viz.ui.app import demo_session
+from apf_viz.workbench.classroom import Classroom
 from apf_viz.workbench.screen_state import BrowserState
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import for_browser, present, present_run
@@ -116,13 +117,14 @@ def test_each_browser_has_its_own_selection_and_a_follower_shows_the_presenters(
 
 def test_a_click_selects_for_the_browser_that_clicked_only():
     s = demo_session()
-    s.join("projector")
-    s.join("laptop")
+    room = Classroom(s)
+    room.join("projector", "presenter")
+    room.join("laptop", "presenter")
     cell = s.engine.current_points()[3]
-    assert s.click(cell, "laptop") == "selected robot 3"
-    assert s.view("laptop").selected == 3 and s.view("projector").selected is None
+    assert room.click("laptop", cell) == []
+    assert s.view(room.state("laptop")).selected == 3 and s.view(room.state("projector")).selected is None
     s.reset()  # a new run clears every browser's selection
-    assert s.view("laptop").selected is None
+    assert s.view(room.state("laptop")).selected is None
 
 
 def test_targets_stay_where_the_pattern_forms_at_every_event_of_the_demo():

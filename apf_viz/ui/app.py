@@ -15,56 +15,27 @@ import warnings
 import viser
 
 from apf_viz.core.engine import Engine
-from apf_viz.core.formats import InputError
 from apf_viz.ui import broadcast, viser_compat
-from apf_viz.ui.browser_screen import CLASS_HZ, CLASS_REFRESHES, BrowserScreen, inside
+from apf_viz.ui.browser_screen import BrowserScreen, inside
 from apf_viz.ui.network import check_listen, reachable_host
 from apf_viz.ui.network import free_port as free_port  # where tests and benchmarks find it
 from apf_viz.ui.own_runs import OwnRuns
 from apf_viz.ui.page_errors import quiet_page_errors
 from apf_viz.ui.panels import Panels, SharedVerifier, tell
-from apf_viz.ui.roles import Roles
-from apf_viz.ui.room import Room
 from apf_viz.ui.scene import Bounds, SceneRenderer, grown_box, ray_through
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.seat import seat_token
+from apf_viz.workbench.classroom import Classroom, Note, Roles
+from apf_viz.workbench.classroom.play_clock import FPS, STEP_SHARE, StepPacer, play_budget
 from apf_viz.workbench.config import SessionConfig, session_from_config
 from apf_viz.workbench.screen_state import Role
 from apf_viz.workbench.seats import Seats
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.session.demo import demo_session as demo_session  # where tests and scripts find it
 
-FPS = 30
-STEP_SHARE = 0.6  # of each frame, at most, goes to stepping the engine while playing
 # A step that leaves this many robots to decide anew (a light a crowd sees: about 0.1 ms each) is shown
 # before the next step pays for them: the page sees the light a frame's worth of decisions sooner.
 DEAR_DECISIONS = 200
-
-
-def play_budget(budget: float, elapsed: float, speed: float) -> float:
-    """The steps a frame of Play may take: what is left over, plus ``speed`` for the time since the last
-    frame, capped at a frame's share plus one step in hand. The cap keeps a stalled frame from being
-    made up in a burst; the step in hand keeps a frame a little shorter than 1/FPS, at a speed near FPS,
-    from losing its fraction of a step (every other frame would step nothing: half the speed asked)."""
-    return min(budget + elapsed * speed, max(1.0, speed / FPS) + 1.0)
-
-
-class StepPacer:
-    """How many steps a call of Play may take in the time left of a frame's stepping share: a call is
-    one step or a walk of many (core/fast_forward.py), whose cost per step ranges from microseconds (a
-    same-sight walk) to a Look and a decision each (forced cycles in a crowd). The cost per step is the
-    dearest of the recent calls', forgotten a fifth a call, so a call stops near the frame's deadline
-    instead of running a whole frame's allowance past it."""
-
-    def __init__(self) -> None:
-        self.cost = 1e-4  # seconds a step, as last measured
-
-    def allowance(self, budget: float, seconds_left: float) -> int:
-        return max(1, min(int(budget), int(seconds_left / self.cost)))
-
-    def took(self, steps: int, seconds: float) -> None:
-        if steps:
-            self.cost = max(seconds / steps, 0.8 * self.cost, 1e-7)
 
 
 def settle_memory() -> None:
@@ -99,8 +70,10 @@ class App:
         seats_per_address: int = 1,
     ) -> None:
         self.session = session
-        self.roles = roles or Roles()  # which pages present: those opened at the presenter address
-        self.seats = Seats(seats_per_address)  # the class pages' seats, issued here (workbench/seats.py)
+        # The class around the run (workbench/classroom): which pages present (those opened at the
+        # presenter address), the seats issued here, who drives, answers, the room, runs of one's own.
+        self.classroom = Classroom(session, roles or Roles(), Seats(seats_per_address))
+        self.roles, self.seats = self.classroom.roles, self.classroom.seats
         self._host = host
         self.present = present  # a browser that opens while a lecture is followed opens presenting it
         broadcast.install()  # the shared scene's windows encoded once for all pages, not once a page
@@ -134,10 +107,8 @@ class App:
         self._framed_playing = False  # the run was playing when the cameras were last kept framed
         self._framed_stop: tuple[int, int] | None = None  # the lecture and stop they were kept for
         self.frames = 0
-        self.own_runs = OwnRuns(session, self._screens, self.request_render)  # Try it yourself
-        self.room = Room(session, self._screens, self.seat_of)  # the class pages, for the presenter
-        # Class pages brought up to date in turn while playing (:meth:`_due`): pages owed, whose turn next.
-        self._class_due, self._class_turn, self._last_due = 0.0, 0, time.monotonic()
+        self.own_runs = OwnRuns(self.classroom, self._screens, self.request_render)  # Try it yourself
+        self._last_due = time.monotonic()  # when class pages were last brought up to date (:meth:`_due`)
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -180,24 +151,6 @@ class App:
         """Roles are claimed by the presenter code: this viser does not say which address a page used."""
         return any(a.name == "websocket path" for a in self.missing)
 
-    def claim_presenter(self, client_id: int, code: str) -> str:
-        """A class page typed ``code``: if it is the presenter code, the page presents from now on."""
-        ok = self.roles.claims(client_id, code)
-        if ok is None:
-            return "too many wrong codes from this page: open the presenter address instead"
-        if not ok:
-            return "that is not the presenter code (the terminal printed it)"
-        state = self.session.promote(client_id)
-        screen = self._screen_by_id(client_id)
-        if screen is not None:
-            screen.state = state
-            screen.changed()
-        return "this page presents: it drives the shared run"
-
-    def _screen_by_id(self, client_id: int) -> BrowserScreen | None:
-        with self._screens_lock:
-            return self.screens.get(client_id)
-
     @property
     def panels(self) -> Panels | None:
         """The presenter's panel (the first browser's), if it is connected."""
@@ -220,8 +173,6 @@ class App:
         screen = BrowserScreen(self, client)
         screen.panels.ctx.try_alone = lambda: self.own_runs.try_alone(screen)
         screen.panels.ctx.back_to_lecture = lambda: self.own_runs.back(screen)
-        screen.panels.ctx.room = self.room
-        screen.panels.ctx.laptop = lambda: self.room.laptop(screen) if screen.state.role == "class" else None
         with self._screens_lock:
             left = cid in self._gone
             self._gone.discard(cid)
@@ -230,7 +181,6 @@ class App:
         if left:  # it left while its screen was made: let go of what the making joined
             self._let_go(cid)
             return
-        self._count_seats()
         screen.starts_framed(self.renderer)  # by the initial camera, which frames the run as it is
         if self.present and self.session.lecturer is not None:  # serve --lecture: the room's view
             screen.panels.presentation.present(True, client)
@@ -244,18 +194,7 @@ class App:
         self._let_go(client.client_id)
 
     def _let_go(self, client_id: int) -> None:
-        self.session.leave(client_id)
-        self.room.left(client_id)
-        self._count_seats()
-
-    def _count_seats(self) -> None:
-        """Tell the run which class pages' seats are here (a question's "3 of 5 answered")."""
-        seats = frozenset(
-            seat
-            for screen in self._screens()
-            if screen.state.role == "class" and (seat := self.seat_of(screen.client.client_id)) is not None
-        )
-        self.session.seat_the_room(seats)
+        self.classroom.leave(client_id)
         self.request_render()
 
     def request_render(self) -> None:
@@ -298,21 +237,16 @@ class App:
 
     def _on_click(self, event) -> None:
         page = self._screen(event.client)  # a page trying its own run clicks in its own run
-        session = page.session if page is not None else self.session
         renderer = page.renderer if page is not None else self.renderer
         cell = renderer.cell_of_ray(event.ray_origin, event.ray_direction)
-        if cell is not None and page is not None and page.own is None and page.state.role == "class":
-            try:  # a click answers a question that asks for a robot or a cell
-                said = self.session.answer_by_click(self.seat_of(event.client.client_id), cell)
-                if said:
-                    tell(event.client, "Question", said)
-            except InputError as err:
-                tell(event.client, "Question", str(err), error=True)
         if cell is not None:
-            try:
-                session.click(cell, event.client.client_id if event.client is not None else None)
+            key = event.client.client_id if event.client is not None else None
+            try:  # a class page's click may answer a question, then acts on the run it shows
+                notes = self.classroom.click(key, cell)
             except Exception as err:  # a click must never kill the server; only its browser is told
-                tell(event.client, "Click refused", str(err), error=True)
+                notes = [Note("Click refused", str(err), error=True)]
+            for note in notes:
+                tell(event.client, note.title, note.text, error=note.error)
         if page is not None:
             page.changed()
         else:
@@ -354,7 +288,9 @@ class App:
                 if was_playing:
                     settle_memory()
             was_playing = s.playing
-            own_playing = self.own_runs.play(1.0 / FPS, now - last)  # pages' own runs: a share of a frame
+            own_playing = self.own_runs.play(
+                self._screens(), 1.0 / FPS, now - last
+            )  # pages' own runs: a share of a frame
             if own_playing:
                 self._dirty.set()
             last = now
@@ -378,13 +314,13 @@ class App:
         due = self._due(screens)
         with self.session.lock:  # the run drawn and the run framed are one (a load may come in between)
             engine = self.session.engine
-            run_view, views = self.session.views([x.client.client_id for x in due])
+            run_view, views = self.session.views({x.client.client_id: x.state for x in due})
         cells = [x.cells for x in screens if x.cells is not None]
         self.renderer.view_cells = min(cells) if cells else None
         # Labels laid out for the framed page that shows them largest: apart there, apart on every page.
         heights = [h for x in screens if (h := x.text_height()) is not None]
         self.renderer.text_height = max(heights) if heights else None
-        run_view, beside = self.room.beside(run_view)  # a laptop's own run on the projector, beside it
+        run_view, beside = self.classroom.beside(run_view)  # a laptop's own run on the projector, beside it
         with self.server.atomic():
             self.pair.render(run_view, self.session.config, beside)
         for screen in due:
@@ -400,22 +336,12 @@ class App:
 
     def _due(self, screens: list[BrowserScreen]) -> list[BrowserScreen]:
         """The pages whose panel and selection are brought up to date in this frame: every page, but
-        while the run plays the class pages :data:`CLASS_HZ` times a second each, in turn, at most
-        :data:`CLASS_REFRESHES` in all (a share of them in each frame, so the work of a frame does not
-        grow with the class)."""
+        while the run plays the class pages in turn (the classroom's play clock: the work of a frame
+        does not grow with the class)."""
         now = time.monotonic()
-        since, self._last_due = min(0.25, now - self._last_due), now
-        if not self.session.playing:
-            return screens
-        pages = [x for x in screens if x.state.role == "class"]
-        rate = min(len(pages) * CLASS_HZ, CLASS_REFRESHES)  # refreshes a second, the class in all
-        self._class_due = min(len(pages), self._class_due + rate * since)
-        take = int(self._class_due)
-        self._class_due -= take
-        start = self._class_turn % max(1, len(pages))
-        self._class_turn = start + take
-        turn = {id(x) for x in (pages[start:] + pages[:start])[:take]}
-        return [x for x in screens if x.state.role != "class" or id(x) in turn]
+        since, self._last_due = now - self._last_due, now
+        due = set(self.classroom.due([x.client.client_id for x in screens], since))
+        return [x for x in screens if x.client.client_id in due]
 
     def _keep_framed(self, screens: list[BrowserScreen], engine: Engine) -> None:
         """A new run (Reset, a load, a switch of algorithm: a new engine) frames every browser's camera;

@@ -3,11 +3,10 @@ where the hand moved it)."""
 
 from __future__ import annotations
 
-from typing import Protocol, cast
+from typing import Protocol
 
 import numpy as np
 
-from apf_viz.ui.attachment import Attachment
 from apf_viz.ui.caption_room import CAPTION_ROOM, PHONE_SHEET_ROOM
 from apf_viz.ui.panels import Panels, SharedVerifier
 from apf_viz.ui.panels.presentation import upright_phone
@@ -23,23 +22,16 @@ from apf_viz.ui.scene import (
 )
 from apf_viz.ui.scene.compare_pair import ComparePair
 from apf_viz.ui.scene.selection import SelectionRenderer
-from apf_viz.workbench.screen_state import Role
+from apf_viz.workbench.classroom import Classroom, Page
+from apf_viz.workbench.screen_state import BrowserState, Role
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
-
-CLASS_HZ = 12.0
-CLASS_REFRESHES = 360.0
-"""How many class pages' panels and selections are brought up to date a second while the run plays, in
-all: a class of up to 30 gets :data:`CLASS_HZ` each; a larger one shares this (60 pages: 6 a second
-each), so the projector's frames do not pay for the size of the class."""
-"""How often a class page's panel and selection are brought up to date while the run plays (the canvas
-every page shares is drawn every frame, for all at once)."""
 
 
 class Host(Protocol):
     """What a browser's screen is given by the app that serves it (ui/app.py)."""
 
-    session: Session
+    classroom: Classroom
     renderer: SceneRenderer
     verifier: SharedVerifier
 
@@ -48,7 +40,6 @@ class Host(Protocol):
 
     def request_render(self) -> None: ...
     def role_of(self, client) -> Role: ...
-    def claim_presenter(self, client_id: int, code: str) -> str: ...
     def seat_of(self, client_id: int) -> str | None: ...
     def seat_offer(self, client) -> str | None: ...
     def frame_client(self, client) -> None: ...
@@ -63,11 +54,12 @@ class BrowserScreen:
 
     def __init__(self, app: Host, client) -> None:
         self.client = client
-        self.state = app.session.join(client.client_id, app.role_of(client))
+        # This page in the class: its role, its seat, its state, its own run (workbench/classroom).
+        self.page: Page = app.classroom.join(
+            client.client_id, app.role_of(client), app.seat_of(client.client_id)
+        )
+        self._classroom = app.classroom
         self.selection = SelectionRenderer(client, app.renderer, root="/own")
-        # The run it is attached to (the shared one, or its own: ui/own_runs.py); its panel's commands
-        # go there.
-        self.attachment = Attachment(app.session)
         self.own: SceneRenderer | None = None  # its own run, drawn in its own scene
         self._own_pair: ComparePair | None = None  # that run, and its Compare's second run beside it
         self._own_twin: object | None = None  # the Compare its camera was last framed with
@@ -79,7 +71,7 @@ class BrowserScreen:
         self.drawn_at = 0.0  # when its own run was last drawn (perf_counter): own runs are paced
         self.panels = Panels(
             client,
-            cast(Session, self.attachment),
+            app.classroom.shared,
             self.changed,
             app.frame_client,
             browser=client.client_id,
@@ -87,11 +79,9 @@ class BrowserScreen:
             frame_all=app.frame_all,
             point_at=app.point_at,
             class_address=lambda: app.addresses[1],
-            answer_key=lambda: app.seat_of(client.client_id),
+            classroom=app.classroom,
             seat_offer=lambda: app.seat_offer(client),
-            claim_presenter=(lambda code: app.claim_presenter(client.client_id, code))
-            if app.by_code
-            else None,
+            claim_presenter=self._claim if app.by_code else None,
         )
         self._sent: list[np.ndarray] = []  # the positions of the last poses sent to it
         self._renderer = app.renderer
@@ -114,9 +104,22 @@ class BrowserScreen:
         return text_cells(self.cells, canvas_size(self.client)[0])
 
     @property
+    def state(self) -> BrowserState:
+        """This page's state on the shared run: its selection, whether it follows, its camera."""
+        return self.page.state
+
+    @property
     def session(self) -> Session:
-        """The run this page is attached to."""
-        return self.attachment.target
+        """The run this page shows: its own, or the shared one."""
+        return self.page.own if self.page.own is not None else self._classroom.shared
+
+    def _claim(self, code: str) -> str:
+        """The presenter code typed on this page (where viser does not say the address it opened)."""
+        said = self._classroom.claim_presenter(self.page.key, code)
+        if self.own is not None and self.page.own is None:  # a page presenting has no run of its own
+            self.detach_own()
+        self.changed()
+        return said
 
     @property
     def renderer(self) -> SceneRenderer:
@@ -127,8 +130,6 @@ class BrowserScreen:
         """From now on this page shows and drives ``own``: the shared run is hidden on this page alone (a
         frame of its own of the same name shadows the shared one: viser draws a page's own variant of a
         node before the one every page shares), and the shared run's selection layer is cleared."""
-        own.join(self.client.client_id, "presenter")
-        self.attachment.own = own
         self._hiding = [self.client.scene.add_frame("/shared", show_axes=False, visible=False)]
         self.selection.clear()
         self.own = SceneRenderer(self.client, root="/mine")
@@ -147,7 +148,6 @@ class BrowserScreen:
 
     def detach_own(self) -> None:
         """Back to the shared run: its own run and everything drawn of it are dropped."""
-        self.attachment.own = None
         if self._own_pair is not None:
             self._own_pair.clear()
         self.own = self._own_pair = self._own_twin = None

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from apf_viz.ui.image import png_on_white
 from apf_viz.ui.recorder import render_view
 from apf_viz.ui.slide import compose
+from apf_viz.workbench.screen_state import BrowserState
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model.legend import plain, slide_legend
 
@@ -44,14 +45,14 @@ class LectureExport:
         self,
         session: Session,
         client,
-        browser,
+        state: BrowserState,
         changed: Callable[[], None],
         done: Callable[[bytes | None, str], None],
     ) -> None:
-        self.session, self.client, self.browser, self.changed, self.done = (
+        self.session, self.client, self.state, self.changed, self.done = (
             session,
             client,
-            browser,
+            state,
             changed,
             done,
         )
@@ -71,7 +72,7 @@ class LectureExport:
                     lecturer.go(i)
                     self.changed()
                     time.sleep(SETTLE_SECONDS)
-                    view = self.session.view(self.browser)
+                    view = self.session.view(self.state)
                     where = f"stop {i + 1} of {len(lecture.stops)}"
                     picture = compose(
                         render_view(self.client, "png"),

@@ -16,7 +16,8 @@ from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.studio import Studio
 
 Mode = Literal["run", "edit-pattern", "edit-robots"]
-# A page's role (ui/roles.py tells which a page is): a presenter drives the shared run; a class page follows.
+# A page's role (workbench/classroom/roles.py tells which a page is): a presenter drives the shared run;
+# a class page follows.
 Role = Literal["presenter", "class"]
 NUMBERS_UP_TO = 50  # robots: numbers are on by default up to this many (beyond, they hide the run)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Hashable
-from typing import Protocol
+from typing import Protocol, cast
 
 from apf_viz.ui.panels.adversary import AdversaryFolder
 from apf_viz.ui.panels.algorithm import AlgorithmFolder
@@ -31,6 +31,7 @@ from apf_viz.ui.panels.run import HistoryFolder, RunFolder
 from apf_viz.ui.panels.selected import SelectedFolder
 from apf_viz.ui.panels.shortcuts import Shortcuts
 from apf_viz.ui.panels.why import WhyFolder
+from apf_viz.workbench.classroom import Classroom
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
 
@@ -88,21 +89,27 @@ class Panels:
         frame_all: Callable[[], None] = lambda: None,
         point_at: Callable | None = None,
         class_address: Callable[[], str] | None = None,
-        answer_key: Callable[[], str | None] | None = None,
+        classroom: Classroom | None = None,
         seat_offer: Callable[[], str | None] | None = None,
         claim_presenter: Claim | None = None,
     ) -> None:
-        self.session = session
+        # Without a classroom (a panel of the server's own, a test), one around this run alone.
+        classroom = classroom or Classroom(session)
+        self.session = session = cast(Session, classroom.run_of(browser))
         self.ctx = PanelContext(
-            session, browser, changed, frame, frame_all, verifier or SharedVerifier(session, changed)
+            session,
+            browser,
+            changed,
+            frame,
+            frame_all,
+            verifier or SharedVerifier(classroom.shared, changed),
+            classroom,
         )
         self.ctx.client = owner if browser is not None else None
         if point_at is not None:
             self.ctx.point_at = point_at
         if class_address is not None:
             self.ctx.class_address = class_address
-        if answer_key is not None:
-            self.ctx.answer_key = answer_key
         if seat_offer is not None:
             self.ctx.seat_offer = seat_offer
         self.presentation = Presentation(owner.gui, self.ctx)
@@ -139,7 +146,7 @@ class Panels:
         """The controls that change the shared run, shown only where this page may drive it (a class
         page follows the lecture unless the presenter lets the class drive)."""
         drives = self.ctx.drives()
-        shared = not self.ctx.session.private  # a run of its own has no files, lectures or Demo
+        shared = not self.ctx.in_own_run()  # a run of its own has no files, lectures or Demo
         shown = (drives, shared)
         if shown != self._driving_shown:
             self._driving_shown = shown

@@ -76,7 +76,7 @@ class AdversaryFolder:
             self.ctx.session.set_all_activations(keep)
 
     def _on_verify(self, event) -> None:
-        if self.ctx.session.private:  # the verifier is the shared run's, one at a time for the room
+        if self.ctx.in_own_run():  # the verifier is the shared run's, one at a time for the room
             raise InputError("Verify is the lecture's: not in a run of your own")
         why_not = self.ctx.verifier.start(event.client)
         if why_not:

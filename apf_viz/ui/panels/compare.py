@@ -24,7 +24,7 @@ class CompareFolder:
             self.divergence.on_click(ctx.guard(self._to_divergence))
 
     def _to_divergence(self, event) -> None:
-        at = self.ctx.session.view(self.ctx.browser).divergence
+        at = self.ctx.view().divergence
         if at is not None:
             self.ctx.session.seek_event(at[0])
 

@@ -6,15 +6,14 @@ from __future__ import annotations
 import weakref
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 from apf_viz.core.formats import MAX_TRACE_BYTES, InputError
 from apf_viz.ui import viser_compat
+from apf_viz.workbench.classroom import Classroom
+from apf_viz.workbench.screen_state import BrowserState
 from apf_viz.workbench.session import Session
 from apf_viz.workbench.verifier import Status, Verifier
-
-if TYPE_CHECKING:
-    from apf_viz.ui.room import Room
+from apf_viz.workbench.view_model import SessionView
 
 FOLLOWING = (
     "this page follows the lecture: the presenter drives the shared run (select a robot to see what it "
@@ -103,20 +102,21 @@ def _problem_of(config) -> tuple:
 class PanelContext:
     """A browser's panel: whose it is, and the App's services."""
 
-    session: Session
+    session: Session  # the page's door to the run it drives (workbench/classroom/page_run.py)
     browser: Hashable | None  # the viser client id (None: a panel built on the server's own GUI)
     changed: Callable[[], None]  # ask for a frame
     frame: Callable[[object], None]  # point one browser's camera at the whole run
     frame_all: Callable[[], None]  # point every browser's camera at the whole run
     verifier: SharedVerifier
+    classroom: Classroom  # the class around the shared run: roles, who drives, answers, the room
     toggle_presentation: Callable = lambda event=None: None  # set by the browser's Presentation
     presenting: Callable[[], bool] = lambda: False  # set by the browser's Presentation
     release_focus: Callable[[], None] = lambda: None  # set by the Run folder: the keys drive the run again
     client: object | None = None  # the viser client whose panel this is (its own scene: a dragged box)
     # The grid point under a point of a browser's canvas (0..1 each way), or None: the App's projection.
     point_at: Callable[[object, tuple[float, float]], tuple[float, float] | None] = lambda client, point: None
-    class_address: Callable[[], str] = lambda: ""  # the address the class's laptops open (ui/roles.py)
-    answer_key: Callable[[], str | None] = lambda: "this page"  # its answers' key: its seat (ui/seat.py)
+    # The address the class's laptops open (workbench/classroom/roles.py).
+    class_address: Callable[[], str] = lambda: ""
     seat_offer: Callable[[], str | None] = lambda: None  # a seat's token for a class page that has none
     driving_handles: list = field(default_factory=list)  # shown only where the browser may drive
     shared_handles: list = field(default_factory=list)  # shown only where it drives the shared run
@@ -124,15 +124,40 @@ class PanelContext:
     # sets these (a panel without an App has no own runs).
     try_alone: Callable[[], str] = lambda: "no runs of one's own here"
     back_to_lecture: Callable[[], str] = lambda: "this page follows the lecture"
-    room: Room | None = None  # the class pages, for the presenter's Room folder (ui/room.py)
-    # This page's number in the Room's list, for a class page (None: a presenter, or no room): shown on
-    # the page, so that the lecturer can hand the run to the laptop whose student raised a hand.
-    laptop: Callable[[], int | None] = lambda: None
 
     def drives(self) -> bool:
-        """Whether this browser may change the shared run (a presenter page, or the class when the
-        presenter lets it)."""
-        return self.session.may_drive(self.browser)
+        """Whether this browser may change the run it shows (a presenter page, the class when the
+        presenter lets it, or a page's own run)."""
+        return self.classroom.may_drive(self.browser)
+
+    @property
+    def state(self) -> BrowserState:
+        """This page's state on the run it shows (its selection, whether it follows, its camera)."""
+        return self.classroom.state(self.browser)
+
+    def view(self) -> SessionView:
+        """What this page shows now."""
+        return self.session.view(self.state)
+
+    def in_own_run(self) -> bool:
+        """Whether this page drives a run of its own (no files, lectures or Demo there)."""
+        page = self.classroom.page(self.browser)
+        return page is not None and page.own is not None
+
+    @property
+    def shared(self) -> Session:
+        """The shared run, which holds the stop's question, also for a page trying a run of its own."""
+        return self.classroom.shared
+
+    def laptop(self) -> int | None:
+        """This page's number in the Room's list, for a class page (None: a presenter): shown on the
+        page, so that the lecturer can hand the run to the laptop whose student raised a hand."""
+        return self.classroom.laptop(self.browser) if self.browser is not None else None
+
+    def answer_key(self) -> str | None:
+        """The key this page's answers are held under: its seat (None: none yet)."""
+        page = self.classroom.page(self.browser)
+        return page.seat if page is not None else None
 
     def may(self, event) -> bool:
         """:meth:`drives`; when it may not, the browser that tried is told so, and its controls are
@@ -176,7 +201,7 @@ class PanelContext:
         phase; why nothing ran goes to the browser that asked."""
         s = self.session
         s.pause()
-        if not s.step(self.browser):
+        if not s.step(self.state):
             tell(event.client, "Step", s.why_not_step())
 
     def from_browser(self, fn: Callable, title: str = "apf-viz", mine: bool = False) -> Callable:

@@ -146,7 +146,7 @@ class EditFolder:
         point = self.ctx.point_at(client, screen) if screen is not None else None
         cell = (round(point[0]), round(point[1])) if point is not None else None
         session = self.ctx.session
-        if not session.may_drive(client.client_id):
+        if not self.ctx.drives():
             return
         try:
             session.stroke(phase, cell)

@@ -130,7 +130,7 @@ class FilesFolder:
         if event.client is None:
             return ""
         copy = branch(self.ctx.session)
-        view = self.ctx.session.view(self.ctx.browser)
+        view = self.ctx.view()
         if copy.engine.step_index == 0:
             return "nothing to export yet: step or play the run first"
         exported = export_run(copy, f"{view.algorithm_title or view.algorithm}, {view.scheduler}")
@@ -143,7 +143,7 @@ class FilesFolder:
 
         if event.client is None:
             return ""
-        view = self.ctx.session.view(self.ctx.browser)
+        view = self.ctx.view()
         stage = f" — {view.stage}" if view.stage else ""
         name, data = figure_zip(view, f"{view.algorithm_title or view.algorithm}, event {view.event}{stage}")
         event.client.send_file_download(name, data, save_immediately=True)
@@ -162,7 +162,7 @@ class FilesFolder:
             client.add_notification("Screenshot failed", str(err), color="red", auto_close_seconds=8.0)
             return
         if self.explained.value:
-            view = self.ctx.session.view(self.ctx.browser)
+            view = self.ctx.view()
             rgba = compose(rgba, slide_caption(view), slide_legend(view))
         client.send_file_download(name, png_on_white(rgba), save_immediately=True)
 
@@ -210,7 +210,7 @@ class FilesFolder:
         self.exporting = LectureExport(
             self.ctx.session,
             client,
-            self.ctx.browser,
+            self.ctx.state,
             self.ctx.changed,
             lambda z, why: self._exported(client, z, why),
         )

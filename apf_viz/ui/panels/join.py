@@ -55,7 +55,7 @@ class Join:
         if key == self._stop:
             return
         self._stop = key
-        if stop is not None and stop.class_address and session.is_presenter(self.ctx.browser):
+        if stop is not None and stop.class_address and self.ctx.classroom.is_presenter(self.ctx.browser):
             self.show()
             self._by_stop = True
         elif self._by_stop:

@@ -18,7 +18,6 @@ import viser
 
 from apf_viz.ui.caption_room import CAPTION_ROOM
 from apf_viz.ui.panels.context import PanelContext
-from apf_viz.ui.panels.question import shared_session
 from apf_viz.ui.recorder import canvas_size
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.caption import DETAILS_KEY, caption_html
@@ -136,16 +135,15 @@ class Presentation:
 
     def _page(self) -> str:
         """What this page is, for its caption: presenting, following, driving with the class, its own."""
-        s = self.ctx.session
-        if s.private:
+        if self.ctx.in_own_run():
             return "own"
-        if s.browser(self.ctx.browser).role == "presenter":
+        if self.ctx.state.role == "presenter":
             return "presenting"
         return "class-drives" if self.ctx.drives() else "following"
 
     def _mine(self) -> str:
         """This page's own answer to the stop's question (kept under its seat: a reload keeps it)."""
-        poll = shared_session(self.ctx).screen.poll
+        poll = self.ctx.shared.screen.poll
         return poll.told(self.ctx.answer_key()) if poll is not None else ""
 
     def refresh(self, view: SessionView) -> None:

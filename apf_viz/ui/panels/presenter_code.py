@@ -9,7 +9,7 @@ from collections.abc import Callable
 from apf_viz.ui.panels.context import PanelContext
 from apf_viz.workbench.view_model import SessionView
 
-CODE_LENGTH = 10  # ui/roles.py's presenter code: 10 hex digits
+CODE_LENGTH = 10  # workbench/classroom/roles.py's presenter code: 10 hex digits
 Claim = Callable[[str], str]  # a code typed → what to tell the page (the App checks it)
 
 
@@ -33,6 +33,6 @@ class PresenterCode:
         return self.claim(code)
 
     def refresh(self, view: SessionView) -> None:
-        shown = self.claim is not None and self.ctx.session.role(self.ctx.browser) == "class"
+        shown = self.claim is not None and self.ctx.classroom.role(self.ctx.browser) == "class"
         if self.field.visible != shown:
             self.field.visible = shown

@@ -9,7 +9,6 @@ from apf_viz.ui.panels.context import PanelContext, put
 from apf_viz.ui.seat import seat_js
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.question import choice_words
-from apf_viz.workbench.session import Session
 from apf_viz.workbench.view_model import SessionView
 from apf_viz.workbench.view_model.poll_caption import REVEAL_KEY, SPREAD_KEY
 
@@ -17,11 +16,6 @@ NONE = "—"
 TAP_MOST = 12
 """A question of at most this many choices is answered by one tap on its button (a phone, a laptop alike);
 more go in a dropdown."""
-
-
-def shared_session(ctx: PanelContext) -> Session:
-    """The shared run's session, which holds the question, also for a page trying a run of its own."""
-    return getattr(ctx.session, "shared", ctx.session)
 
 
 class QuestionFolder:
@@ -56,8 +50,8 @@ class QuestionFolder:
 
     def _presenter_only(self, act):
         def run(event) -> str | None:
-            shared = shared_session(self.ctx)
-            if not shared.is_presenter(self.ctx.browser):
+            shared = self.ctx.shared
+            if not self.ctx.classroom.is_presenter(self.ctx.browser):
                 return "the presenter shows the answers and reveals them"
             said = act(shared)
             return None if self.ctx.presenting() else said  # the caption says it; a notice would cover robots
@@ -69,12 +63,11 @@ class QuestionFolder:
         return None if value == NONE else self._give(self._words.get(value, value))
 
     def _give(self, choice: str) -> str:
-        return shared_session(self.ctx).answer_question(self.ctx.answer_key(), choice)
+        return self.ctx.classroom.answer(self.ctx.browser, choice)
 
     def refresh(self, view: SessionView) -> None:
-        shared = shared_session(self.ctx)
-        poll = shared.screen.poll
-        shown = poll is not None and not shared.is_presenter(self.ctx.browser)
+        poll = self.ctx.shared.screen.poll
+        shown = poll is not None and not self.ctx.classroom.is_presenter(self.ctx.browser)
         put(self.folder, visible=shown)
         if not shown or poll is None:
             return

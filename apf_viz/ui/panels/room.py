@@ -1,7 +1,7 @@
-"""The Room folder, on the presenter's page only (ui/room.py): every class page in a line (anonymous:
-"laptop 7"), which follow the lecture and which try a run of their own (how far, what outcome, whether
-it answered the stop's question); a laptop's run put beside the shared run on the projector and taken
-down; the shared run handed to one laptop and taken back."""
+"""The Room folder, on the presenter's page only (workbench/classroom/room_list.py): every class page in
+a line (anonymous: "laptop 7"), which follow the lecture and which try a run of their own (how far, what
+outcome, whether it answered the stop's question); a laptop's run put beside the shared run on the
+projector and taken down; the shared run handed to one laptop and taken back."""
 
 from __future__ import annotations
 
@@ -39,11 +39,9 @@ class RoomFolder:
         self.take_back.on_click(ctx.guard(lambda e: self._room().hand(None, ctx.browser), "Room"))
 
     def _room(self):
-        if self.ctx.room is None:
-            raise InputError("no class pages here")
-        if not self.ctx.session.is_presenter(self.ctx.browser):
+        if not self.ctx.classroom.is_presenter(self.ctx.browser):
             raise InputError("the Room is the presenter's")
-        return self.ctx.room
+        return self.ctx.classroom
 
     def _chosen(self) -> int:
         value = self.laptop.value
@@ -56,14 +54,10 @@ class RoomFolder:
         self.ctx.changed()
 
     def refresh(self, view: SessionView) -> None:
-        room = self.ctx.room
-        mine = (
-            room is not None
-            and self.ctx.session.is_presenter(self.ctx.browser)
-            and not self.ctx.session.private
-        )
+        room = self.ctx.classroom
+        mine = room.is_presenter(self.ctx.browser) and not self.ctx.in_own_run()
         put(self.folder, visible=mine)
-        if not mine or room is None:
+        if not mine:
             return
         now = time.monotonic()
         if now - self._listed < LIST_EVERY_S:
@@ -74,7 +68,7 @@ class RoomFolder:
                 timer.start()
             return
         self._listed = now
-        pages = room.pages()
+        pages = room.listing()
         lines = [f"- {page.words()}" for page in pages]
         own = sum(page.own for page in pages)
         head = (

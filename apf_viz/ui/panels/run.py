@@ -145,13 +145,13 @@ class RunFolder:
         self.restore.on_click(self.ctx.guard(lambda e: s.return_to_set_aside()))
 
     def _on_class_drives(self, event) -> None:
-        self.ctx.session.set_class_may_drive(self.class_drives.value, self.ctx.browser)
+        self.ctx.classroom.set_class_may_drive(self.class_drives.value, self.ctx.browser)
         # The keys drive the run again: a checkbox left with the focus took Space for itself (and gave
         # the class the run by a press meant for Play).
         self.release_focus()
 
     def _to_fatal(self, event) -> None:
-        step = self.ctx.session.view(self.ctx.browser).fatal[1]
+        step = self.ctx.view().fatal[1]
         if step is not None:
             self.ctx.session.seek(step)
 
@@ -260,33 +260,33 @@ class RunFolder:
 
     def _refresh_role(self) -> None:
         """What this page is: presenting (with the class's permission to drive), or following."""
-        s, browser = self.ctx.session, self.ctx.browser
-        own = s.private
-        presenter = s.role(browser) == "presenter" and not own
+        room, browser = self.ctx.classroom, self.ctx.browser
+        own = self.ctx.in_own_run()
+        presenter = room.role(browser) == "presenter" and not own
         laptop = self.ctx.laptop()
         seat = f" · **laptop {laptop}**" if laptop is not None else ""
         if own:
             said = f"**Your own run**{seat} · the projector is untouched"
         elif presenter:
-            said = "**Presenting**" + (" · the class may drive" if s.class_may_drive else "")
+            said = "**Presenting**" + (" · the class may drive" if room.class_may_drive else "")
         else:
             said = f"**Following the lecture**{seat}" + (
-                " · the presenter lets the class drive" if s.class_may_drive else " · the presenter drives"
+                " · the presenter lets the class drive" if room.class_may_drive else " · the presenter drives"
             )
         if self.role.content != said:
             self.role.content = said
-        keys = KEYS_DRIVING if s.may_drive(browser) else KEYS_FOLLOWING
+        keys = KEYS_DRIVING if room.may_drive(browser) else KEYS_FOLLOWING
         if self.keys.content != keys:
             self.keys.content = keys
         if self.class_drives.visible != presenter:
             self.class_drives.visible = presenter
-        trying = not own and s.role(browser) == "class"
+        trying = not own and room.role(browser) == "class"
         if self.alone.visible != trying:
             self.alone.visible = trying
         if self.back.visible != own:
             self.back.visible = own
-        if self.class_drives.value != s.class_may_drive:
-            self.class_drives.value = s.class_may_drive
+        if self.class_drives.value != room.class_may_drive:
+            self.class_drives.value = room.class_may_drive
 
     def _refresh_lecture(self, view: SessionView) -> None:
         words = ""

@@ -20,15 +20,15 @@ class SelectedFolder:
             )
             self.follow.on_update(
                 ctx.from_browser(
-                    lambda e: ctx.session.set_follow(ctx.browser, bool(self.follow.value)), mine=True
+                    lambda e: ctx.classroom.set_follow(ctx.browser, bool(self.follow.value)), mine=True
                 )
             )
 
     def refresh(self, view: SessionView) -> None:
-        presenting = self.ctx.session.is_presenter(self.ctx.browser)
+        presenting = self.ctx.classroom.is_presenter(self.ctx.browser)
         if self.follow.visible == presenting:
             self.follow.visible = not presenting  # the presenter follows nobody
-        following = self.ctx.session.browser(self.ctx.browser).follow  # a click on a robot ends it
+        following = self.ctx.state.follow  # a click on a robot ends it
         if self.follow.value != following:
             self.follow.value = following
         head = "<small>Following the presenter's selection.</small>\n\n" if view.follows_presenter else ""

@@ -56,7 +56,7 @@ class Shortcuts:
     def _stop(ctx: PanelContext, said: str) -> str | None:
         """What a stage stop has to tell: nothing in presentation mode when it reached a stage (the
         caption on the canvas names it; a message would cover it), else the message."""
-        view = ctx.session.view(ctx.browser)
+        view = ctx.view()
         reached = said.startswith(view.stage) or bool(view.outcome and said.startswith(view.outcome))
         return None if reached and ctx.presenting() else said
 

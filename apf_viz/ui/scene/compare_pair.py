@@ -21,7 +21,8 @@ class ComparePair:
 
     def render(self, view: SessionView, config: RunConfig, beside: str | None = None) -> None:
         """One frame of both; the caller wraps it in the scene's ``atomic()``. ``beside``: the second
-        run is a class page's (ui/room.py), titled so, and the first is the lecture's."""
+        run is a class page's (workbench/classroom/room_list.py), titled so, and the first is the
+        lecture's."""
         if beside is not None:
             state = view.outcome.upper() if view.outcome else "running"
             titles: tuple[str | None, str | None] = (f"the lecture's run · {state}", beside)

@@ -24,6 +24,5 @@ def branch(shared: Session) -> Session:
         own.screen.twin = Twin(compared, plugins)
     for record in records:
         own.engine.apply(record)
-    own.private = True
     own.numbers = numbers
     return own

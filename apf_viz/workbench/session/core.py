@@ -1,10 +1,9 @@
-"""The session's core: the browsers and their own state, the shared screen's fields, the run read-only,
-building a new run from a configuration, and what each browser is shown (the view model's view, made
-under the run's lock). The commands build on it (workbench/session/*_commands.py)."""
+"""The session's core: the shared screen's fields, the run read-only, building a new run from a
+configuration, and what a page with a given state is shown (the view model's view, made under the
+run's lock). The commands build on it (workbench/session/*_commands.py)."""
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable, Hashable, Mapping, Sequence
 from typing import Any, Generic, Self, TypeVar
 
@@ -22,11 +21,11 @@ from apf_viz.workbench.library import PatternLibrary
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.run_config import RunConfig
 from apf_viz.workbench.run_controller import RunController
-from apf_viz.workbench.screen_state import BrowserState, Mode, Role, SharedScreen
+from apf_viz.workbench.screen_state import BrowserState, Mode, SharedScreen
 from apf_viz.workbench.view_model import SessionView, browser_key, for_browser, present, present_run
 
-F = TypeVar("F", bound=Callable[..., Any])
 T = TypeVar("T")
+K = TypeVar("K", bound=Hashable)
 
 
 def shape_key(cells: Sequence[Point]) -> tuple[Point, ...]:
@@ -35,22 +34,6 @@ def shape_key(cells: Sequence[Point]) -> tuple[Point, ...]:
         return ()
     mx, my = min(x for x, _ in cells), min(y for _, y in cells)
     return tuple(sorted((x - mx, y - my) for x, y in cells))
-
-
-def shared_only(command: F) -> F:
-    """A command refused in a page's run of its own (ui/own_runs.py): files and uploads, lectures, the
-    pattern library on the server's disk, the class's permission. Refused here, in the session, so that
-    no control or key can reach it from a class page."""
-
-    @functools.wraps(command)
-    def refusing(self: Any, *args: Any, **kwargs: Any) -> Any:
-        if self.private:
-            raise InputError(
-                f"{command.__name__.replace('_', ' ')}: not in a run of your own (Back to the lecture first)"
-            )
-        return command(self, *args, **kwargs)
-
-    return refusing  # type: ignore[return-value]
 
 
 SCHEDULER_LABELS = {kind.label: kind.name for kind in SCHEDULER_REGISTRY}
@@ -118,14 +101,10 @@ class SessionCore:
         self.lock = self.run.lock
         self.screen = SharedScreen(Editor(config.robots, config.y_up, config.pattern))
         self.kept_drafts = False  # a load replaced drafts never run (:meth:`take_kept_drafts_note`)
-        # The presenter's browser state: the first presenter page to connect holds it (the projector),
-        # and so do the calls made without a browser (scripts, tests). Other pages get their own.
+        # The presenter's state: the selection the calls made without a page (scripts, tests) act on,
+        # which the page presenting the run holds and the class pages may follow (workbench/classroom).
         self.presenter = BrowserState()
-        self._browsers: dict[Hashable, BrowserState] = {}
-        self._presenter_of: Hashable | None = None
-        self.class_may_drive = False  # the presenter opened the shared run to the class pages
-        self.driver: Hashable | None = None  # the one class page the presenter handed the run to
-        self.private = False  # a class page's run of its own (ui/own_runs.py): no files, no lectures
+        self._new_run_listeners: list[Callable[[], None]] = []  # :meth:`on_new_run`
         self.lecturer: Lecturer | None = None  # a guided lecture being followed (PageDown: its next stop)
         # Each asked stop's answers, by (lecture, stop): a stop visited again keeps the room's answers.
         self.polls: dict[tuple[str, int], Poll] = {}
@@ -143,86 +122,16 @@ class SessionCore:
         """The name the pattern of these cells was saved or loaded under, wherever it is drawn now."""
         return self.pattern_names.get(shape_key(cells))
 
-    # ------------------------------------------------------------------ browsers
-    def join(self, browser: Hashable, role: Role = "presenter") -> BrowserState:
-        """A page connects. A presenter page drives the shared run (the first one, or the first after it
-        left, holds the state the others may follow); a class page follows the lecture: it shows the
-        presenter's selection until it selects a robot of its own, and drives only if the class may."""
-        with self.lock:
-            if role == "presenter" and self._presenter_of is None:
-                self._presenter_of = browser
-                state = self.presenter
-            else:
-                state = BrowserState(role=role, follow=role == "class")
-            self._browsers[browser] = state
-            return state
-
-    def promote(self, browser: Hashable) -> BrowserState:
-        """A class page becomes a presenter page (it gave the presenter code): it holds the presenter's
-        state if no page does, else it drives with a state of its own."""
-        with self.lock:
-            if self._presenter_of is None or self._presenter_of == browser:
-                self._presenter_of = browser
-                state = self.presenter
-            else:
-                state = BrowserState(role="presenter")
-            self._browsers[browser] = state
-            return state
-
-    def leave(self, browser: Hashable) -> None:
-        with self.lock:
-            self._browsers.pop(browser, None)
-            if browser == self.driver:
-                self.driver = None  # the run comes back to the presenter when that page leaves
-            if browser == self._presenter_of:
-                self._presenter_of = None  # the next presenter page to connect holds it (a reload)
-
-    def browser(self, browser: Hashable | None) -> BrowserState:
-        """That browser's state (the presenter's for None or an unknown browser)."""
-        return self._browsers.get(browser, self.presenter) if browser is not None else self.presenter
-
-    def is_presenter(self, browser: Hashable | None) -> bool:
-        """Whether the browser holds the presenter's state (the one the others follow)."""
-        return self.browser(browser) is self.presenter
-
-    def role(self, browser: Hashable | None) -> Role:
-        return self.browser(browser).role
-
-    def may_drive(self, browser: Hashable | None) -> bool:
-        """Whether the browser may change the shared run: a presenter page, any page while the
-        presenter lets the class drive, or the one class page it handed the run to."""
-        state = self.browser(browser)
-        return (
-            state.role == "presenter"
-            or self.class_may_drive
-            or (browser is not None and browser == self.driver)
-        )
-
-    @shared_only
-    def hand_run_to(self, page: Hashable | None, browser: Hashable | None = None) -> str:
-        """Let one class page (``page``) drive the shared run beside the presenter; None: take it back
-        (a presenter page's choice only)."""
-        if self.role(browser) != "presenter":
-            raise InputError("only a presenter page hands the run to a class page")
-        with self.lock:
-            if page is not None and self._browsers.get(page) is None:
-                raise InputError("that page has left")
-            self.driver = page
-        return "the presenter drives the run alone" if page is None else "that page may drive the run too"
-
-    @shared_only
-    def set_class_may_drive(self, on: bool, browser: Hashable | None = None) -> str:
-        """Open the shared run to the class pages, or close it (a presenter page's choice only)."""
-        if self.role(browser) != "presenter":
-            raise InputError("only a presenter page opens the run to the class")
-        with self.lock:
-            self.class_may_drive = bool(on)
-        return "the class may drive the run" if on else "only the presenter drives the run"
+    # ------------------------------------------------------------------ pages' selections
+    def on_new_run(self, listener: Callable[[], None]) -> None:
+        """Call ``listener`` (under the run's lock) whenever a new run makes every selection stale: the
+        classroom clears its pages' selections (a robot of the old run is no robot of the new one)."""
+        self._new_run_listeners.append(listener)
 
     def _clear_selections(self) -> None:
         self.presenter.selected = None
-        for state in self._browsers.values():
-            state.selected = None
+        for listener in self._new_run_listeners:
+            listener()
 
     # ------------------------------------------------------------------ the screen, shared
     editor = _ScreenField[Editor]("editor")
@@ -283,30 +192,24 @@ class SessionCore:
         return list(self.run.config.y_up)
 
     # ------------------------------------------------------------------ what to show
-    def view(self, browser: Hashable | None = None) -> SessionView:
-        """What that browser shows (the presenter's view for None)."""
+    def view(self, state: BrowserState | None = None) -> SessionView:
+        """What a page with that state shows (the presenter's view for None)."""
         with self.lock:
-            return present(self.run, self.screen, self.browser(browser), self.presenter)
+            return present(self.run, self.screen, state or self.presenter, self.presenter)
 
-    def views(self, browsers: Sequence[Hashable]) -> tuple[SessionView, dict[Hashable, SessionView]]:
-        """The run's view (what every browser shares) and each browser's, made at one instant: the
-        run's part once, each browser's selection laid over it."""
+    def views(self, pages: Mapping[K, BrowserState]) -> tuple[SessionView, dict[K, SessionView]]:
+        """The run's view (what every page shares) and each page's, made at one instant: the run's part
+        once, each page's selection laid over it."""
         with self.lock:
             shared = present_run(self.run, self.screen)
             made: dict[tuple[Any, ...], SessionView] = {}  # one view per browser_key: a class shares a few
             own = {}
-            for b in browsers:
-                state = self.browser(b)
+            for b, state in pages.items():
                 key = browser_key(state, self.presenter)
                 if key not in made:
                     made[key] = for_browser(shared, self.run, self.screen, state, self.presenter)
                 own[b] = made[key]
             return shared, own
-
-    def set_follow(self, browser: Hashable | None, follow: bool) -> None:
-        """That browser shows the presenter's selection (True) or its own (False)."""
-        with self.lock:
-            self.browser(browser).follow = bool(follow)
 
     def compare_with(self, algorithm: str | None) -> None:
         """Compare: draw the same run (start, pattern, flips, adversary) under ``algorithm`` beside it,

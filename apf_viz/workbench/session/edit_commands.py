@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Hashable
-
 import numpy as np
 
 from apf_viz.core import shapes
@@ -11,8 +9,8 @@ from apf_viz.core.formats import InputError
 from apf_viz.core.grid import COORD_LIMIT, Point, short_int
 from apf_viz.core.schedulers import BY_HAND
 from apf_viz.workbench.library import PatternLibrary
-from apf_viz.workbench.screen_state import Mode
-from apf_viz.workbench.session.core import SessionCore, shared_only
+from apf_viz.workbench.screen_state import BrowserState, Mode
+from apf_viz.workbench.session.core import SessionCore
 from apf_viz.workbench.studio import PAINTING
 from apf_viz.workbench.studio import Mode as EditMode
 
@@ -25,13 +23,13 @@ class EditCommands(SessionCore):
         hits = np.flatnonzero((self.engine.positions == np.array(cell)).all(axis=1))
         return int(hits[0]) if hits.size else None
 
-    def click(self, cell: Point, browser: Hashable | None = None) -> str:
-        """A click on a grid cell by one browser, interpreted by the current mode: in Run it selects the
-        robot there for that browser (and in Manual runs its next phase). Returns what happened; a click
-        outside the supported grid is refused (InputError)."""
+    def click(self, cell: Point, state: BrowserState | None = None, drives: bool = True) -> str:
+        """A click on a grid cell by one page (``state``: its state; the presenter's for None), which
+        ``drives`` the run or only follows it, interpreted by the current mode: in Run it selects the
+        robot there for that page (and in Manual, if it drives, runs its next phase). Returns what
+        happened; a click outside the supported grid is refused (InputError)."""
         with self.lock:
             _on_grid(cell)
-            drives = self.may_drive(browser)
             if self.mode != "run":
                 if not drives:
                     raise InputError("the presenter is drawing: a class page follows the drawing")
@@ -39,7 +37,7 @@ class EditCommands(SessionCore):
                 studio.said = studio.click(self.editor, self.mode, cell)
                 return studio.said
             r = self.robot_at(cell)
-            state = self.browser(browser)
+            state = state or self.presenter
             if r is None:
                 state.selected = None
                 return "nothing here"
@@ -95,12 +93,10 @@ class EditCommands(SessionCore):
         with self.lock:
             self.editor.clear_pattern()
 
-    @shared_only
     def use_library(self, library: PatternLibrary) -> None:
         with self.lock:
             self.library, self.saved = library, library.names()
 
-    @shared_only
     def save_pattern(self, name: str) -> str:
         """The pattern the page shows saved under ``name`` in the library: the one being drawn in either
         Edit mode (the robots' mode shows and counts it too), the run's in Run."""

@@ -19,7 +19,7 @@ from apf_viz.core.schedule import Schedule, ScheduleError, follow, schedule_of_s
 from apf_viz.demos import pattern_of_size, scenarios
 from apf_viz.workbench import loader
 from apf_viz.workbench.run_config import RunConfig
-from apf_viz.workbench.session.core import SCHEDULER_LABELS, SessionCore, shared_only
+from apf_viz.workbench.session.core import SCHEDULER_LABELS, SessionCore
 
 
 def _with_schedule_adversary(
@@ -46,7 +46,6 @@ class FileCommands(SessionCore):
     """Commands on files: loading a pattern, robots, a scenario, a trace or a schedule; the files to save."""
 
     # ------------------------------------------------------------------ files
-    @shared_only
     def load_pattern(self, filename: str, content: bytes) -> str | None:
         """A pattern file; if its size fits the robots the run restarts with it, otherwise it becomes the
         pattern being drawn (Edit pattern), so nothing is lost; then what to do is returned."""
@@ -65,7 +64,6 @@ class FileCommands(SessionCore):
                 "edit the pattern or the robots, then switch back to Run"
             )
 
-    @shared_only
     def load_robots(self, filename: str, content: bytes) -> str | None:
         """A robots file. If the current pattern has another size, a demo pattern of the robots' size
         is taken instead (the draft keeps the old one for Edit pattern), and said; an unsolvable start
@@ -121,7 +119,6 @@ class FileCommands(SessionCore):
             self.scenario_note = scenario.shows
         return scenario.shows + (f"  \n{problem}" if problem else "")
 
-    @shared_only
     def load_trace(self, filename: str, content: bytes, limit: int = loader.MAX_TRACE_UPLOAD_BYTES) -> None:
         """Replay a trace: checked event by event; the current run is untouched if it does not replay."""
         loaded = loader.trace_upload(filename, content, self.run.plugins, self.config.max_events, limit)
@@ -141,7 +138,6 @@ class FileCommands(SessionCore):
             self.mode = "run"
             self._clear_selections()
 
-    @shared_only
     def load_schedule(self, filename: str, content: bytes) -> str | None:
         """Replay a schedule file from the start of the current run (same start, pattern, algorithm);
         Step then follows it. A line that cannot be followed keeps the run up to it, and is returned."""

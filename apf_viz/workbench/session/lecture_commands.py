@@ -9,7 +9,6 @@ from apf_viz.workbench.lecturer import Lecturer, Reached
 from apf_viz.workbench.poll import Poll
 from apf_viz.workbench.question import cell_choice
 from apf_viz.workbench.screen_state import LectureStop
-from apf_viz.workbench.session.core import shared_only
 from apf_viz.workbench.session.file_commands import FileCommands
 from apf_viz.workbench.session.run_commands import RunCommands
 from apf_viz.workbench.view_model.story import MAX_TRAIL
@@ -20,14 +19,12 @@ class LectureCommands(RunCommands, FileCommands):
     commands, which a lecture drives (a Lectern: workbench/lecturer.py)."""
 
     # ------------------------------------------------------------------ a guided lecture
-    @shared_only
     def start_lecture(self, lecture: Lecture | None) -> str:
         """Follow ``lecture`` (None: stop following one) from its first stop."""
         self.lecturer = Lecturer(self, lecture) if lecture is not None else None
         self.screen.lecture = self.screen.poll = None
         return self.next_stop() if lecture is not None else "no lecture: PageDown stops at the run's stages"
 
-    @shared_only
     def load_lecture(self, filename: str, content: bytes) -> str:
         """A lecture file uploaded (checked whole first: a bad one leaves the run and lecture as they are)."""
         return self.start_lecture(loader.lecture_upload(filename, content))
@@ -94,7 +91,6 @@ class LectureCommands(RunCommands, FileCommands):
             on = [i for i, p in enumerate(self.engine.current_points()) if tuple(p) == tuple(cell)]
             return poll.give(who, str(on[0])) if on else None
 
-    @shared_only
     def seat_the_room(self, seats: frozenset[str]) -> None:
         """The class pages' seats connected now: the question's count says how many of them answered."""
         with self.lock:
@@ -109,7 +105,6 @@ class LectureCommands(RunCommands, FileCommands):
             poll.spread_shown = not poll.spread_shown
             return f"the room's answers {'shown' if poll.spread_shown else 'hidden'}: {poll.count} answered"
 
-    @shared_only
     def reveal(self) -> str:
         """The answer: the run plays from the stop to where it shows it (pressed again while it plays:
         there at once), and the answer is marked."""

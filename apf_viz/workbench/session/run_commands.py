@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Hashable
 from typing import Literal
 
 from apf_viz.core.schedulers import BY_HAND
+from apf_viz.workbench.screen_state import BrowserState
 from apf_viz.workbench.session.core import SCHEDULER_LABELS, SessionCore
 from apf_viz.workbench.view_model import stage_of
 
@@ -39,9 +39,9 @@ class RunCommands(SessionCore):
             self._clear_selections()
 
     # ------------------------------------------------------------------ stepping
-    def step(self, browser: Hashable | None = None) -> bool:
-        """One step chosen by the scheduler (in Manual: the robot that browser selected). False if
-        nothing ran."""
+    def step(self, state: BrowserState | None = None) -> bool:
+        """One step chosen by the scheduler (in Manual: the robot selected in ``state``, a page's; the
+        presenter's for None). False if nothing ran."""
         with self.lock:
             if self.mode != "run":
                 return False
@@ -49,7 +49,7 @@ class RunCommands(SessionCore):
                 twin = self.screen.twin
                 return twin is not None and twin.step_alone(self.engine, self.run.config)
             if self.scheduler_name in BY_HAND and not self.run.following:
-                selected = self.browser(browser).selected
+                selected = (state or self.presenter).selected
                 if selected is None:
                     return False
                 self.run.step_robot(selected)
