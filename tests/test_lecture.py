@@ -513,3 +513,32 @@ def test_an_authors_right_to_left_controls_never_reorder_the_pages_own_words():
     s.next_stop()
     shown = " ".join(s.view().lecture or ())
     assert "\u2068" + evil + "\u202c\u2069" in shown
+
+
+def test_colour_words_are_held_to_what_the_stop_draws(tmp_path, capsys):
+    """"The grey squares" at the stuck stop of "Where the paper breaks" are the robots that will never
+    act; the same words at its first stop (nothing stuck yet) fail the check, and so do "robots drawn
+    blue" at the last stop of the 12-stop lecture, where every robot is done (green)."""
+    from apf_viz.workbench.colour_words import claimed_colours, colour_name
+    from apf_viz.workbench.palette import MARK_COLORS
+
+    assert [colour_name(MARK_COLORS[m]) for m in ("never", "ray", "selected", "collision", "last")] == [
+        "grey", "yellow", "black", "magenta", "brown",
+    ]  # fmt: skip
+    assert claimed_colours("a thin gray line; robots drawn in Blue; the old light named blue") == [
+        ("gray line", "grey", "line"),
+        ("drawn in Blue", "blue", "any"),
+    ]
+    data = shipped_json("where-the-paper-breaks")
+    data["stops"][0]["say"] += " The grey squares are robots that will never act."
+    edited = tmp_path / "grey.json"
+    edited.write_text(json.dumps(data))
+    assert main(["lecture", "check", str(edited)]) == 1
+    out = capsys.readouterr().out
+    assert "its words say “grey squares”; no grey square is drawn at this stop" in out
+    assert out.count("grey squares") == 1  # the stuck stop's own words hold: grey squares are drawn there
+    data = shipped_json("algorithm-in-12-stops")
+    data["stops"][-1]["say"] += " The robots drawn blue are done."
+    edited.write_text(json.dumps(data))
+    assert main(["lecture", "check", str(edited)]) == 1
+    assert "its words say “drawn blue”; nothing blue is drawn at this stop (green" in capsys.readouterr().out

@@ -22,6 +22,7 @@ from apf_viz.lecture import (
     frameless_coordinates,
     panel_words,
 )
+from apf_viz.workbench.colour_words import untrue_colours
 from apf_viz.workbench.question import Answer, answer
 from apf_viz.workbench.screen_state import RunMark, SharedScreen
 from apf_viz.workbench.view_model import SessionView, stage_of
@@ -196,6 +197,7 @@ def broken_claims(stop: Stop, view: SessionView) -> tuple[str, ...]:
         if not lit[light]:
             showing = ", ".join(f"{n} {other}" for other, n in sorted(lit.items()))
             out.append(f"its words say a robot is lit {light}; none is at this stop (they show {showing})")
+    out += untrue_colours(f"{stop.title}. {stop.say}", view)
     if stop.select is not None and stop.select >= len(view.robots):
         k = len(view.robots)
         out.append(f"selects robot {stop.select}, but the run has {k} robots (0–{k - 1})")

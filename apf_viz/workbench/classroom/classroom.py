@@ -71,6 +71,7 @@ class Classroom:
         self.shared.seat_the_room(seats)
 
     def page(self, key: Hashable | None) -> Page | None:
+        """The page connected as ``key`` (None: no such page)."""
         return self.pages.get(key)
 
     def run_of(self, key: Hashable) -> PageRun:
@@ -101,9 +102,11 @@ class Classroom:
         return "this page presents: it drives the shared run"
 
     def is_presenter(self, key: Hashable | None) -> bool:
+        """Whether the page holds the presenter's state (the one the class pages follow)."""
         return self.pages.is_presenter(key)
 
     def role(self, key: Hashable | None) -> Role:
+        """The page's role ("presenter" for None or a page not here: scripts drive as the presenter)."""
         return self.pages.state(key).role
 
     def may_drive(self, key: Hashable | None) -> bool:
@@ -114,13 +117,16 @@ class Classroom:
 
     @property
     def class_may_drive(self) -> bool:
+        """Whether the presenter opened the shared run to every class page."""
         return self.pages.class_may_drive
 
     @property
     def driver(self) -> Hashable | None:
+        """The one class page the presenter handed the shared run to (None: none)."""
         return self.pages.driver
 
     def set_class_may_drive(self, on: bool, by: Hashable | None) -> str:
+        """Open the shared run to the class pages, or close it: page ``by``'s choice, if it presents."""
         return self.pages.set_class_may_drive(on, by)
 
     def set_follow(self, key: Hashable | None, follow: bool) -> None:
@@ -149,10 +155,12 @@ class Classroom:
         return self.room.show(laptop)
 
     def beside(self, run_view: SessionView) -> tuple[SessionView, str | None]:
+        """The shared run's view with the shown laptop's run beside it, and that run's title."""
         return self.room.beside(run_view)
 
     # ------------------------------------------------------------------ runs of one's own
     def own_pages(self) -> list[Page]:
+        """The pages trying a run of their own now."""
         return [x for x in self.pages.all() if x.own is not None]
 
     def try_alone(self, key: Hashable) -> str:

@@ -43,6 +43,7 @@ class PageRun:
 
     @property
     def target(self) -> Session:
+        """The Session the page drives now: its own run, or the shared one."""
         own = self._page.own
         return own if own is not None else self._shared
 

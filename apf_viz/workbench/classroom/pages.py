@@ -25,6 +25,7 @@ class Page:
 
     @property
     def role(self) -> Role:
+        """Its role: a presenter page drives the shared run, a class page follows it."""
         return self.state.role
 
 
@@ -81,10 +82,12 @@ class Pages:
             return page
 
     def get(self, key: Hashable | None) -> Page | None:
+        """The page connected as ``key`` (None: no such page)."""
         with self._lock:
             return self._pages.get(key) if key is not None else None
 
     def all(self) -> list[Page]:
+        """Every connected page, in the order they joined."""
         with self._lock:
             return list(self._pages.values())
 

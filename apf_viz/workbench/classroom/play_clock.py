@@ -57,9 +57,11 @@ class StepPacer:
         self.cost = 1e-4  # seconds a step, as last measured
 
     def allowance(self, budget: float, seconds_left: float) -> int:
+        """Steps the next call may take: the budget's, within the seconds left at the measured cost."""
         return max(1, min(int(budget), int(seconds_left / self.cost)))
 
     def took(self, steps: int, seconds: float) -> None:
+        """A call took ``steps`` in ``seconds``: the cost per step it is paced by from now on."""
         if steps:
             self.cost = max(seconds / steps, 0.8 * self.cost, 1e-7)
 

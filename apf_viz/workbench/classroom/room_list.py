@@ -32,6 +32,7 @@ class RoomPage:
     answered: bool  # it answered the stop's question
 
     def words(self) -> str:
+        """Its line in the presenter's Room folder ("laptop 7: its own run, event 40, running")."""
         state = self.outcome.upper() if self.outcome != "running" else "running"
         doing = f"its own run, event {self.event}, {state}" if self.own else "follows the lecture"
         marks = [
@@ -94,6 +95,7 @@ class RoomList:
         return out
 
     def page(self, laptop: int) -> Page:
+        """The class page numbered ``laptop``; refused in one line if it is not in the room now."""
         for page in self.class_pages():
             if self.laptop(page) == laptop:
                 return page
