@@ -516,9 +516,9 @@ def test_an_authors_right_to_left_controls_never_reorder_the_pages_own_words():
 
 
 def test_colour_words_are_held_to_what_the_stop_draws(tmp_path, capsys):
-    """"The grey squares" at the stuck stop of "Where the paper breaks" are the robots that will never
-    act; the same words at its first stop (nothing stuck yet) fail the check, and so do "robots drawn
-    blue" at the last stop of the 12-stop lecture, where every robot is done (green)."""
+    """The words "the grey squares" at the stuck stop of "Where the paper breaks" are the robots that
+    will never act; the same words at its first stop (nothing stuck yet) fail the check, and so do
+    "robots drawn blue" at the last stop of the 12-stop lecture, where every robot is done (green)."""
     from apf_viz.workbench.colour_words import claimed_colours, colour_name
     from apf_viz.workbench.palette import MARK_COLORS
 
