@@ -206,6 +206,40 @@ def test_rooms_of_one_job_no_module_over_500_lines_no_function_over_60():
     assert long_modules == [] and long_functions == []
 
 
+DOCUMENTED = ("core", "workbench", "api")
+"""The packages whose every public function and class says what it does: the engine, the rooms of the
+workbench and the library's API."""
+Definition = ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef
+
+
+def _public_definitions(body: list[ast.stmt], prefix: str = "") -> list[tuple[str, Definition]]:
+    """Every function and class of a module's (or class's) body whose name is public, with the classes'
+    own, recursively; a function nested in a function's body is its caller's detail, and is left out."""
+    found: list[tuple[str, Definition]] = []
+    for node in body:
+        if isinstance(node, Definition):
+            if not node.name.startswith("_"):
+                found.append((prefix + node.name, node))
+            if isinstance(node, ast.ClassDef):
+                found += _public_definitions(node.body, f"{prefix}{node.name}.")
+    return found
+
+
+def test_every_public_function_and_class_of_the_core_workbench_and_api_has_a_docstring():
+    """A maintainer reads what a function does before how it does it: a sentence or two on each (an
+    overload, a property and a protocol's member too)."""
+    seen, missing = 0, []
+    for path in sorted(_modules().values()):
+        if path.relative_to(PACKAGE).parts[0] not in DOCUMENTED:
+            continue
+        for qualname, node in _public_definitions(ast.parse(path.read_text()).body):
+            seen += 1
+            if ast.get_docstring(node) is None:
+                missing.append(f"{path.relative_to(ROOT)}:{node.lineno} {qualname}")
+    assert seen > 500, seen  # the walk reached the packages
+    assert missing == [], "no docstring:\n" + "\n".join(missing)
+
+
 def test_viser_is_entered_by_one_door():
     """Every name viser does not publish (``viser._…``, ``viser.infra``, a handle's ``_impl`` or
     ``_marks``, the server's ``_websock_server``, the producer, its client's Mantine class names) is used

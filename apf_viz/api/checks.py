@@ -71,6 +71,7 @@ class Verdict:
 
     @property
     def failed(self) -> bool:
+        """Whether a schedule forces a failure: there is a counterexample to replay or save."""
         return self.verdict not in ("verified", "budget", "absent")
 
     def replay(self) -> Run:
@@ -163,6 +164,13 @@ def replay_schedule(schedule: str | None, start: Start, algorithm: Algorithm, ve
 
 
 def write_schedule(schedule: str | None, path: str | os.PathLike[str], verdict: str) -> None:
+    """Write a schedule found as a schedule file (what :meth:`Worst.save_schedule` writes).
+
+    Args:
+        schedule: the schedule file's text; None when the search found none (an InputError).
+        path: the file to write.
+        verdict: the search's verdict, named in the error when there is no schedule.
+    """
     from apf_viz.api.runs import write_file
 
     if schedule is None:
@@ -186,7 +194,11 @@ def check(
     worst: None = None,
     want: Wanted | None = None,
     progress: bool = True,
-) -> Verdict: ...
+) -> Verdict:
+    """Without ``worst``: the search's :class:`Verdict`."""
+    ...
+
+
 @overload
 def check(
     robots: Points,
@@ -203,7 +215,11 @@ def check(
     worst: Measure,
     want: None = None,
     progress: bool = True,
-) -> Worst: ...
+) -> Worst:
+    """With ``worst`` (``"moves"`` or ``"events"``): the :class:`Worst` instead of a verdict."""
+    ...
+
+
 def check(
     robots: Points,
     pattern: Points,

@@ -31,6 +31,7 @@ class StopChecked:
 
     @property
     def holds(self) -> bool:
+        """Whether the stop was met and every claim at it holds."""
         return self.met and not self.broken
 
 
@@ -43,6 +44,7 @@ class LectureChecked:
 
     @property
     def passed(self) -> bool:
+        """Whether every stop holds."""
         return all(stop.holds for stop in self.stops)
 
     def __repr__(self) -> str:

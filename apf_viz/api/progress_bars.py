@@ -36,6 +36,12 @@ class ProgressBar:
             )
 
     def to(self, n: int, note: str = "") -> None:
+        """Move the bar to ``n``; nothing shows before the call has taken :data:`QUIET_FOR_S`.
+
+        Args:
+            n: how far the call is (of ``total``, when it has one).
+            note: a few words after the count (e.g. ``frontier 1,234``); empty: none.
+        """
         if not self.enabled:
             return
         if self._bar is None:
@@ -50,6 +56,7 @@ class ProgressBar:
         self._bar.update(n - self._bar.n)  # update, not refresh: it keeps the quiet spell (delay)
 
     def close(self) -> None:
+        """End the bar (without tqdm: a last ``done`` line, if the progress line was shown at all)."""
         if not self.enabled:
             return
         if self._bar is not None:

@@ -273,30 +273,37 @@ class Run:
     # ------------------------------------------------------------------ the numbers
     @property
     def outcome(self) -> str:
+        """How the run ended: ``formed``, ``collision``, ``stuck``, ``limit`` (or ``schedule-end``)."""
         return self.summary.outcome
 
     @property
     def moves(self) -> int:
+        """The robots' moves, in all."""
         return self.summary.moves
 
     @property
     def events(self) -> int:
+        """The Look, Compute and Move events the run took."""
         return self.summary.events
 
     @property
     def cycles(self) -> int:
+        """The Look-Compute-Move cycles the robots completed."""
         return self.summary.cycles
 
     @property
     def k(self) -> int:
+        """The number of robots."""
         return self.summary.k
 
     @property
     def D(self) -> int:
+        """The paper's D: max(m, n, M, N, k) of the start and the pattern."""
         return self.summary.D
 
     @property
     def moves_per_kD(self) -> float:
+        """The moves per k·D, the paper's measure of cost (rounded to 6 places)."""
         return self.summary.moves_per_kD
 
     @property

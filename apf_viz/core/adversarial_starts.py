@@ -53,6 +53,8 @@ def _distance(rng: random.Random, far: int) -> int:
 
 
 def packed_far(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[Point]]:
+    """``packed-far``: k − 1 robots packed in a small box, one far above or below them (and a pattern of k
+    points)."""
     pattern = _pattern(k, rng)
     packed = _packed(k - 1, rng, _side(k))
     x = rng.randrange(-1, _side(k) + 1)
@@ -61,6 +63,8 @@ def packed_far(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[
 
 
 def on_column(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[Point]]:
+    """``on-column``: ``packed-far`` with the far robot on (or next to) the column a target would take in the
+    leader's frame: a walk that may come down its own target's column."""
     pattern = _pattern(k, rng)
     packed = _packed(k - 1, rng, _side(k))
     # A target's column in the leader's frame is a packed robot's column (the leader is likely one of
@@ -72,6 +76,8 @@ def on_column(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[P
 
 
 def on_row(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[Point]]:
+    """``on-row``: the far robot far to the left or right on a row of the packed robots or the pattern: a long
+    horizontal walk along a row that holds robots."""
     pattern = _pattern(k, rng)
     packed = _packed(k - 1, rng, _side(k))
     rows = sorted({p[1] for p in packed} | {p[1] for p in pattern})
@@ -80,6 +86,8 @@ def on_row(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[Poin
 
 
 def spread(k: int, rng: random.Random, far: int) -> tuple[list[Point], list[Point]]:
+    """``spread``: k robots anywhere in a box up to ``far`` wide, every one likely far from the others (and a
+    small pattern)."""
     width = _distance(rng, far)
     cells: set[Point] = set()
     while len(cells) < k:

@@ -105,10 +105,14 @@ class Algorithm(Protocol):
 
     # Read-only members: a class attribute (``lights = ("off", "done")``) or a property provides them.
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """The registry name (``apf-viz run --algorithm NAME``)."""
+        ...
 
     @property
-    def lights(self) -> tuple[str, ...]: ...
+    def lights(self) -> tuple[str, ...]:
+        """Every light it may set; ``lights[0]`` is every robot's light at the start."""
+        ...
 
     def decide(self, view: Snapshot, pattern: Pattern) -> Decision:
         """Compute: must be deterministic and depend on nothing but its arguments."""

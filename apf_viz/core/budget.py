@@ -26,6 +26,8 @@ EVENTS_PER_MOVE_PER_ROBOT = 4  # all activations: ~3 per robot per move measured
 
 
 class Budget(NamedTuple):
+    """A run's caps: past either it ends as ``limit`` (:func:`run_budget` gives the default)."""
+
     max_moves: int
     max_events: int
 

@@ -139,10 +139,12 @@ class EngineCore:
 
     @property
     def outcome(self) -> Outcome | None:
+        """How the run ended (``formed``, ``stuck``, ``limit``, ``collision``), or None while it goes on."""
         return self.state.outcome
 
     @property
     def finished(self) -> bool:
+        """Whether the run is over: it has an outcome."""
         return self.state.outcome is not None
 
     @property
@@ -361,6 +363,7 @@ class EngineCore:
         return noop
 
     def current_points(self) -> list[Point]:
+        """The robots' positions now, global frame, as a list of points (robot i's at index i)."""
         return list(map(tuple, self.state.positions.tolist()))
 
     # ------------------------------------------------------------------ internals

@@ -64,6 +64,8 @@ class EngineState:
     skipped: int = 0
 
     def copy(self) -> EngineState:
+        """A copy that shares nothing mutable with this one (a checkpoint, a branch): its arrays, lists and
+        set copied."""
         return EngineState(
             positions=self.positions.copy(),
             lights=list(self.lights),

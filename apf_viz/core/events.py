@@ -38,6 +38,7 @@ class Events:
         return _new(Event, (r, "move", None, None, None, None, to, round, False, None))
 
     def look(self, r: int, round: int | None) -> Event:
+        """Robot r's Look: a snapshot of what it sees, in its own frame, kept until its Compute."""
         core = self.core
         st = core.state
         snap, ids = core._observe(r)
@@ -50,6 +51,8 @@ class Events:
         return _new(Event, (r, "look", ids, None, None, None, None, round, False, None))
 
     def compute(self, r: int, round: int | None) -> Event:
+        """Robot r's Compute on the snapshot of its Look: its decision is pending until its Move, and a new
+        light is visible from here on (the watches are told)."""
         core = self.core
         st = core.state
         snap = st.snapshot[r]

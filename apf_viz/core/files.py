@@ -156,6 +156,7 @@ def check_readable(path: Path | str) -> None:
 
 
 def too_large(p: Path | str, limit: int) -> InputError:
+    """The error for a file over ``limit`` bytes (not raised: the caller raises it)."""
     return InputError(f"{p}: file is too large (more than {limit:,} bytes)")
 
 

@@ -124,6 +124,7 @@ class TraceEvent(BaseModel):
         return self
 
     def to_event(self) -> Event:
+        """The event this line describes, as the engine records it."""
         return Event(
             robot=self.robot,
             phase=self.phase,
@@ -204,18 +205,22 @@ def parse_json_model(model: type[BaseModel], text: str, where: str) -> Any:
 
 
 def parse_robots(text: str, where: str = "robots") -> RobotsFile:
+    """A robots file from its JSON text; every problem an :class:`InputError` naming ``where``."""
     return _validate(RobotsFile, _parse_json(text, where), where)
 
 
 def parse_pattern(text: str, where: str = "pattern") -> PatternFile:
+    """A pattern file from its JSON text; every problem an :class:`InputError` naming ``where``."""
     return _validate(PatternFile, _parse_json(text, where), where)
 
 
 def load_robots(path: Path | str) -> RobotsFile:
+    """Read and check a robots file (at most :data:`MAX_INPUT_BYTES`)."""
     return parse_robots(read_text(path, MAX_INPUT_BYTES), str(path))
 
 
 def load_pattern(path: Path | str) -> PatternFile:
+    """Read and check a pattern file (at most :data:`MAX_INPUT_BYTES`)."""
     return parse_pattern(read_text(path, MAX_INPUT_BYTES), str(path))
 
 
@@ -255,10 +260,12 @@ def parse_trace_lines(
 
 
 def parse_trace(text: str, where: str = "trace") -> tuple[TraceHeader, list[Event]]:
+    """A trace's header and events from its whole text (blank lines skipped)."""
     return parse_trace_lines(numbered_lines(text), where)
 
 
 def load_trace(path: Path | str) -> tuple[TraceHeader, list[Event]]:
+    """Read a trace file (at most :data:`MAX_TRACE_BYTES`), line by line as it comes."""
     return parse_trace_lines(read_lines(path, MAX_TRACE_BYTES), str(path))
 
 
@@ -272,12 +279,14 @@ def size_problem(pattern_points: int, robots: int) -> str | None:
 
 
 def check_sizes(robots: RobotsFile, pattern: PatternFile, pattern_name: str = "pattern") -> None:
+    """Refuse a pattern that does not have one point per robot, naming ``pattern_name``."""
     problem = size_problem(len(pattern.points), len(robots.robots))
     if problem:
         raise InputError(f"{pattern_name}: {problem}")
 
 
 def robots_json(robots: Iterable[Point], y_up: Sequence[bool] | None = None) -> str:
+    """A robots file's text: the points, and the flips when given."""
     data: dict[str, Any] = {"robots": [list(p) for p in robots]}
     if y_up is not None:
         data["y_up"] = list(y_up)
@@ -285,6 +294,7 @@ def robots_json(robots: Iterable[Point], y_up: Sequence[bool] | None = None) -> 
 
 
 def pattern_json(points: Iterable[Point], name: str | None = None) -> str:
+    """A pattern file's text: the points, and the name when given."""
     data: dict[str, Any] = {}
     if name:
         data["name"] = name
@@ -293,6 +303,7 @@ def pattern_json(points: Iterable[Point], name: str | None = None) -> str:
 
 
 def trace_text(header: TraceHeader, events: Iterable[Event]) -> str:
+    """A trace file's text: the header's line, then a line for each event."""
     lines = [header.model_dump_json(exclude_none=True)]
     lines += [json.dumps(event_to_json(e)) for e in events]
     return "\n".join(lines) + "\n"

@@ -18,11 +18,23 @@ def to_local(offset: Point, y_up: bool) -> Point:
 
 
 @overload
-def move_to_global(move: Direction, y_up: bool) -> Direction: ...
+def move_to_global(move: Direction, y_up: bool) -> Direction:
+    """A move: its global direction."""
+    ...
+
+
 @overload
-def move_to_global(move: None, y_up: bool) -> None: ...
+def move_to_global(move: None, y_up: bool) -> None:
+    """Staying: None."""
+    ...
+
+
 @overload
-def move_to_global(move: Direction | None, y_up: bool) -> Direction | None: ...
+def move_to_global(move: Direction | None, y_up: bool) -> Direction | None:
+    """A move or None: the global direction, or None."""
+    ...
+
+
 def move_to_global(move: Direction | None, y_up: bool) -> Direction | None:
     """The global direction of a move the robot computed in its own frame (None = stay)."""
     if move is None or y_up or move in (Direction.LEFT, Direction.RIGHT):

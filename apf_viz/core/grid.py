@@ -62,10 +62,12 @@ class Direction(Enum):
 
     @property
     def delta(self) -> Point:
+        """The move as a grid offset (dx, dy)."""
         return _DELTAS[self]
 
     @classmethod
     def from_delta(cls, dx: int, dy: int) -> Direction:
+        """The direction of a unit offset (a ValueError for any other)."""
         d = _FROM_DELTA.get((dx, dy))
         if d is None:
             raise ValueError(f"({dx}, {dy}) is not a unit grid move")

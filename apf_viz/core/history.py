@@ -61,6 +61,8 @@ class StepRecord(NamedTuple):
 
 
 class RecordedStep(NamedTuple):
+    """One recorded step, unpacked: the scheduler's choice and the events it caused."""
+
     record: StepRecord
     events: tuple[Event, ...]
 
@@ -266,6 +268,7 @@ class History:
 
     @property
     def length(self) -> int:
+        """Steps recorded (a fast-forwarded walk counts as each of its steps)."""
         return self._length
 
     @property

@@ -21,6 +21,7 @@ def normalise(points: Iterable[Point]) -> tuple[Point, ...]:
 
 
 def mirror_y(points: Iterable[Point]) -> list[Point]:
+    """The points mirrored in y (y → −y): the pattern as it looks formed upside down."""
     return [(x, -y) for x, y in points]
 
 

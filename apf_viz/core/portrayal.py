@@ -167,10 +167,12 @@ class Evidence:
         return value
 
     def region(self, mark: Mark) -> None:
+        """Record a region the rule looked at (once, however often it looks)."""
         if mark not in self.regions:
             self.regions.append(mark)
 
     def explanation(self, decision: Decision) -> Explanation:
+        """The decision with the evidence collected for it."""
         return Explanation(decision, tuple(self.predicates), tuple(self.regions))
 
 
@@ -178,9 +180,11 @@ class _NoEvidence(Evidence):
     active = False
 
     def test(self, symbol: str, value: T, meaning: str) -> T:
+        """Keep nothing: the value, as ``decide`` needs it."""
         return value
 
     def region(self, mark: Mark) -> None:
+        """Keep nothing."""
         pass
 
 
@@ -257,19 +261,33 @@ class Pseudocode:
 class Portrayed(Protocol):
     """The optional half of an algorithm: how it describes itself. Any subset may be provided."""
 
-    def legend(self) -> dict[str, LightStyle]: ...
+    def legend(self) -> dict[str, LightStyle]:
+        """Every light with its colour, shape and meaning (:func:`legend_of`)."""
+        ...
 
-    def overlays(self, config: Configuration) -> Overlays: ...
+    def overlays(self, config: Configuration) -> Overlays:
+        """The marks over the whole run in this configuration, and its stage (:func:`overlays_of`)."""
+        ...
 
-    def stage(self, config: Configuration) -> str: ...
+    def stage(self, config: Configuration) -> str:
+        """The stage of this configuration, without drawing the marks (:func:`stage_of`)."""
+        ...
 
-    def pseudocode(self) -> Pseudocode: ...
+    def pseudocode(self) -> Pseudocode:
+        """The algorithm's paper, line by line (:func:`pseudocode_of`)."""
+        ...
 
-    def explain(self, view: Snapshot, pattern: Pattern) -> Explanation: ...
+    def explain(self, view: Snapshot, pattern: Pattern) -> Explanation:
+        """The decision on this view with the predicates and regions it tested (:func:`explain`)."""
+        ...
 
-    def title(self) -> str: ...
+    def title(self) -> str:
+        """The algorithm in words (:func:`title_of`)."""
+        ...
 
-    def rules(self) -> dict[str, str]: ...
+    def rules(self) -> dict[str, str]:
+        """Every rule id its decisions carry, with its words (:func:`rules_of`)."""
+        ...
 
 
 def title_of(algorithm: Algorithm) -> str:

@@ -96,6 +96,8 @@ class RunSummary:
 def trace_header(
     engine: Engine, scheduler: str, seed: int | None, options: dict[str, Any] | None = None
 ) -> TraceHeader:
+    """The first line of the engine's trace file: its start, flips, pattern and algorithm, how it was
+    scheduled, and the run's ``options``."""
     return TraceHeader(
         format="apf-viz-trace",
         version=1,

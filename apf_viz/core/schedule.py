@@ -55,6 +55,7 @@ class Found(BaseModel):
     states: StrictInt | None = Field(default=None, ge=0, description="states the exact search explored")
 
     def words(self) -> str:
+        """The search's claim in one sentence, as the schedule's reader is told it."""
         if self.by == "check":
             return (
                 f"the worst any schedule forces, by apf-viz check --worst: {self.value:,} {self.maximize} "
@@ -134,6 +135,7 @@ class Schedule:
         self.found: Found | None = None  # the searched adversary's words on it, if it wrote it
 
     def add(self, number: int, line: Line) -> None:
+        """Add the line numbered ``number`` in the file (its note kept too)."""
         if line.note:
             self.notes[number] = line.note
         if isinstance(line, Activation) and 0 <= line.robot < self.k:
@@ -209,10 +211,12 @@ def parse_schedule_lines(numbered: Iterable[tuple[int, str]], where: str = "sche
 
 
 def parse_schedule(text: str, where: str = "schedule") -> Schedule:
+    """A schedule from its whole text (blank lines skipped)."""
     return parse_schedule_lines(numbered_lines(text), where)
 
 
 def load_schedule(path: Path | str) -> Schedule:
+    """Read a schedule file (at most :data:`MAX_SCHEDULE_BYTES`), line by line as it comes."""
     return parse_schedule_lines(read_lines(path, MAX_SCHEDULE_BYTES), str(path))
 
 

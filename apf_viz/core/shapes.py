@@ -58,11 +58,13 @@ def merged(cells: Sequence[Point], added: Iterable[Point]) -> Cells:
 
 
 def removed(cells: Sequence[Point], gone: Iterable[Point]) -> Cells:
+    """``cells`` without those in ``gone``, in order."""
     drop = set(gone)
     return [p for p in cells if p not in drop]
 
 
 def toggled(cells: Sequence[Point], cell: Point) -> Cells:
+    """``cells`` with ``cell`` removed if drawn, else added last."""
     return removed(cells, [cell]) if cell in cells else [*cells, cell]
 
 
@@ -129,11 +131,13 @@ def _angle(p: Point, center: Point) -> float:
 
 
 def row(start: Point, length: int) -> Cells:
+    """``length`` cells from ``start`` to the right."""
     n = _size(length, "length")
     return [(start[0] + i, start[1]) for i in range(n)]
 
 
 def column(start: Point, length: int) -> Cells:
+    """``length`` cells from ``start`` upwards."""
     n = _size(length, "length")
     return [(start[0], start[1] + i) for i in range(n)]
 
@@ -174,6 +178,7 @@ def ascii_art(lines: Sequence[str], cell: str = "#") -> Cells:
 
 # ------------------------------------------------------------------------------------------ transforms
 def translated(cells: Sequence[Point], dx: int, dy: int) -> Cells:
+    """Every cell moved by (dx, dy), in order."""
     return [(x + dx, y + dy) for x, y in cells]
 
 

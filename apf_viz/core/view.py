@@ -93,6 +93,7 @@ class Snapshot:
 
     @property
     def robots(self) -> tuple[Seen, ...]:
+        """The visible robots, sorted by (dx, dy) (made from the arrays on first use)."""
         robots = self._robots
         if robots is None:
             assert self._columns is not None  # a snapshot holds one of the two
@@ -101,6 +102,7 @@ class Snapshot:
 
     @property
     def columns(self) -> Columns:
+        """The visible robots as arrays (made from :attr:`robots` on first use)."""
         columns = self._columns
         if columns is None:
             robots = self._robots
@@ -178,6 +180,7 @@ class Snapshot:
         return None
 
     def offsets(self) -> list[Point]:
+        """The visible robots' offsets (dx, dy), in the robot's own frame."""
         return [(s.dx, s.dy) for s in self.robots]
 
     def lights(self) -> set[str]:

@@ -63,6 +63,7 @@ def touches(
 
 
 def inside(p: Point, box: tuple[int, int, int, int] | None) -> bool:
+    """Whether ``p`` lies in ``box`` (x0, x1, y0, y1, bounds included); a box of None holds every point."""
     return box is None or (box[0] <= p[0] <= box[1] and box[2] <= p[1] <= box[3])
 
 

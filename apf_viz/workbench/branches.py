@@ -138,4 +138,5 @@ class Branches:
         return branch
 
     def labels(self) -> tuple[str, ...]:
+        """Every kept branch's :attr:`Branch.label`, oldest first (the Branches list)."""
         return tuple(b.label for b in self._kept)

@@ -133,6 +133,8 @@ def _differs(a: Event, b: Event) -> bool:
 
 
 def describe(ev: Event) -> str:
+    """An event in one line of words, as Compare shows where two runs part: its robot, phase, rule, light,
+    move or target."""
     if ev.phase == "compute":
         rule = f" by {ev.rule_id}" if ev.rule_id else ""
         where = f", to move {ev.move.value}" if ev.move is not None else ", to stay"

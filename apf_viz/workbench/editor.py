@@ -45,9 +45,11 @@ class Splice:
         return cls(head, tuple(old[head : len(old) - tail]), tuple(new[head : len(new) - tail]))
 
     def undone(self, now: list[Any]) -> list[Any]:
+        """The list as it was before the change, from the list ``now`` after it."""
         return [*now[: self.at], *self.before, *now[self.at + len(self.after) :]]
 
     def redone(self, then: list[Any]) -> list[Any]:
+        """The list as it is after the change, from the list ``then`` before it."""
         return [*then[: self.at], *self.after, *then[self.at + len(self.before) :]]
 
 
@@ -116,6 +118,7 @@ class Editor:
         self._gesture = False
 
     def undo(self) -> str:
+        """Take back the last change (a drag in progress ends first); returns what was done in words."""
         self.end_gesture()
         self._keep()
         if not self._undo:
@@ -126,6 +129,7 @@ class Editor:
         return "undone"
 
     def redo(self) -> str:
+        """Make again the last change undone; returns what was done in words."""
         self._keep()
         if not self._redo:
             return "nothing to redo"
@@ -178,11 +182,13 @@ class Editor:
         return said
 
     def toggle_target(self, cell: Point) -> str:
+        """A target at ``cell`` removed if there is one, else added; returns what was done in words."""
         if cell in self.pattern:
             return self.set_pattern([p for p in self.pattern if p != cell], f"removed target {cell}")
         return self.set_pattern([*self.pattern, cell], f"added target {cell}")
 
     def toggle_robot(self, cell: Point) -> str:
+        """A robot at ``cell`` removed if there is one, else added (+y up); returns what was done in words."""
         if cell in self.robots:
             return self.set_robots([p for p in self.robots if p != cell], f"removed robot {cell}")
         return self.set_robots([*self.robots, cell], f"added robot {cell}")
@@ -207,6 +213,7 @@ class Editor:
         return f"moved the robot at {start} to {end}"
 
     def clear_pattern(self) -> None:
+        """Every target removed (one Undo brings them back)."""
         self.set_pattern([], "cleared")
 
     # ------------------------------------------------------------------ what the drafts make

@@ -35,23 +35,39 @@ class Lectern(Protocol):
     selected: int | None
 
     @property
-    def engine(self) -> Engine: ...
+    def engine(self) -> Engine:
+        """The run's engine, where the run stands now."""
+        ...
 
     @property
-    def run(self) -> RunSource: ...
+    def run(self) -> RunSource:
+        """The run as the screen shows it: its engine, configuration and branches."""
+        ...
 
     @property
-    def screen(self) -> SharedScreen: ...
+    def screen(self) -> SharedScreen:
+        """What every page shows alike besides the run (a stop's marks, Compare, the poll)."""
+        ...
 
-    def load_scenario(self, name: str) -> str: ...
+    def load_scenario(self, name: str) -> str:
+        """Replace the run with a Demo scenario by its name; returns what it shows."""
+        ...
 
-    def compare_with(self, algorithm: str | None) -> None: ...
+    def compare_with(self, algorithm: str | None) -> None:
+        """Compare the run with ``algorithm`` beside it; None stops comparing."""
+        ...
 
-    def step(self) -> bool: ...
+    def step(self) -> bool:
+        """One step chosen by the scheduler; False if nothing ran."""
+        ...
 
-    def seek(self, step: float) -> None: ...
+    def seek(self, step: float) -> None:
+        """Go to that step of the history."""
+        ...
 
-    def view(self) -> SessionView: ...
+    def view(self) -> SessionView:
+        """What the presenter's page shows."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -85,6 +101,7 @@ class Lecturer:
 
     @property
     def stop(self) -> Stop | None:
+        """The stop the lecture stands at (None before the first)."""
         return self.lecture.stops[self.position] if self.position >= 0 else None
 
     def next(self) -> Reached | None:

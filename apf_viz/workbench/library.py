@@ -51,6 +51,8 @@ class PatternLibrary:
         return sorted(p.stem.replace("_", " ") for p in self.folder.glob("*.json") if NAME.fullmatch(p.stem))
 
     def save(self, name: str, cells: Sequence[Point]) -> Path:
+        """Save ``cells`` as the pattern called ``name`` (over one of that name); returns its file. An empty
+        pattern is refused."""
         if not cells:
             raise InputError("an empty pattern is not saved: draw at least one cell")
         path = self.folder / _file_name(name)
@@ -62,6 +64,7 @@ class PatternLibrary:
         return path
 
     def load(self, name: str) -> list[Point]:
+        """The cells of the saved pattern called ``name`` (only a name the folder lists is read)."""
         if name not in self.names():
             raise InputError(f"no saved pattern called {name[:60]!r}")
         return [as_point(p) for p in load_pattern(self.folder / _file_name(name)).points]

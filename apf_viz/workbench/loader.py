@@ -26,6 +26,7 @@ MAX_TRACE_UPLOAD_BYTES = 50_000_000  # a trace from a browser: about 500,000 eve
 
 
 def decode(filename: str, content: bytes, limit: int = MAX_UPLOAD_BYTES) -> str:
+    """An upload's text: at most ``limit`` bytes of UTF-8, or an :class:`InputError` naming ``filename``."""
     if len(content) > limit:
         raise InputError(f"{filename}: file is too large ({len(content):,} bytes, limit {limit:,})")
     try:
@@ -35,23 +36,29 @@ def decode(filename: str, content: bytes, limit: int = MAX_UPLOAD_BYTES) -> str:
 
 
 def robots_upload(filename: str, content: bytes) -> RobotsFile:
+    """A robots file uploaded, checked."""
     return parse_robots(decode(filename, content), filename)
 
 
 def pattern_upload(filename: str, content: bytes) -> PatternFile:
+    """A pattern file uploaded, checked."""
     return parse_pattern(decode(filename, content), filename)
 
 
 def lecture_upload(filename: str, content: bytes) -> Lecture:
+    """A lecture uploaded, checked (at most :data:`MAX_LECTURE_BYTES`)."""
     return parse_lecture(decode(filename, content, MAX_LECTURE_BYTES), filename)
 
 
 def schedule_upload(filename: str, content: bytes) -> Schedule:
+    """A schedule uploaded, parsed (at most :data:`MAX_TRACE_UPLOAD_BYTES`)."""
     return parse_schedule(decode(filename, content, MAX_TRACE_UPLOAD_BYTES), filename)
 
 
 @dataclass(frozen=True)
 class LoadedTrace:
+    """A trace uploaded: its header, the engine that replayed it and how many events it holds."""
+
     header: TraceHeader
     engine: Engine  # replayed to the trace's end, every event checked
     events: int  # how many events the trace holds

@@ -63,6 +63,7 @@ class Poll:
 
     @property
     def question(self) -> str:
+        """The question in words, as every page shows it."""
         return self.answer.question.words()
 
     def give(self, who: str | None, choice: str) -> str:
@@ -109,14 +110,17 @@ class Poll:
         return f"your answer: {said}" if said is not None else ""
 
     def forget(self, who: str) -> None:
+        """Drop ``who``'s answer, if it gave one."""
         self._given.pop(who, None)
 
     @property
     def count(self) -> int:
+        """How many pages have answered."""
         return len(self._given)
 
     @property
     def right_count(self) -> int:
+        """How many pages gave one of the run's right choices."""
         return sum(1 for c in self._given.values() if c in self.answer.right)
 
     def spread(self) -> list[Bar]:

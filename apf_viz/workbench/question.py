@@ -34,11 +34,17 @@ class Runs(Protocol):
     """What a question is answered on: a run that steps and seeks (a session: workbench/lecturer.py)."""
 
     @property
-    def engine(self) -> Engine: ...
+    def engine(self) -> Engine:
+        """The run's engine, where the run stands now."""
+        ...
 
-    def step(self) -> bool: ...
+    def step(self) -> bool:
+        """One step chosen by the scheduler; False if nothing ran."""
+        ...
 
-    def seek(self, step: float) -> None: ...
+    def seek(self, step: float) -> None:
+        """Go to that step of the history (how the run is put back)."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -52,6 +58,7 @@ class Answer:
     event: int
 
     def words(self) -> str:
+        """The right choices in words, joined by "or" (robots and cells in order)."""
         return " or ".join(choice_words(self.question.kind, c) for c in sorted(self.right, key=_order))
 
 
@@ -71,6 +78,7 @@ def choice_words(kind: str, choice: str) -> str:
 
 
 def cell_choice(x: int, y: int) -> str:
+    """A cell as a choice is spelled: ``x,y``."""
     return f"{x},{y}"
 
 

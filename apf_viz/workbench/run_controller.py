@@ -55,6 +55,7 @@ class RunController:
     # ------------------------------------------------------------------ reading
     @property
     def playing(self) -> bool:
+        """Whether Play is on."""
         return self._playing
 
     @property
@@ -64,6 +65,7 @@ class RunController:
 
     @property
     def series(self) -> MoveSeries:
+        """The run's (events, moves) after each recorded step (the moves chart)."""
         return self._series
 
     @property
@@ -150,6 +152,8 @@ class RunController:
 
     # ------------------------------------------------------------------ the adversary
     def set_scheduler(self, name: str) -> None:
+        """The adversary for the steps to come (the run goes on from where it stands); an unknown name is
+        refused before anything changes."""
         make_scheduler(name)  # validates the name before anything changes
         with self.lock:
             self.config = self.config.but(scheduler=name)
@@ -173,6 +177,8 @@ class RunController:
         self.restart(self.config.but(skip_noops=bool(skip)))
 
     def set_light_semantics(self, semantics: str) -> None:
+        """Restart the run under ``compute`` (a new light visible from the end of Compute) or ``lc-atomic``
+        (Look and Compute one atomic event); anything else is refused."""
         if semantics not in ("compute", "lc-atomic"):
             raise InputError(f"light semantics {semantics!r}: choose compute or lc-atomic")
         self.restart(self.config.but(light_semantics=semantics))
@@ -282,6 +288,7 @@ class RunController:
             return f"back to the start: robot {robot}'s cycle began there"
 
     def back(self) -> None:
+        """Stop playing and take back the last step."""
         with self.lock:
             self._playing = False
             self.engine.back(1)
@@ -297,6 +304,7 @@ class RunController:
 
     # ------------------------------------------------------------------ playing
     def play(self) -> None:
+        """Play until paused or the run ends (nothing plays once it has ended)."""
         with self.lock:
             self._playing, self._stop_at = not self.engine.finished, None
 
@@ -306,6 +314,7 @@ class RunController:
             self._playing, self._stop_at = not self.engine.finished, step
 
     def pause(self) -> None:
+        """Stop playing."""
         with self.lock:
             self._playing = False
 

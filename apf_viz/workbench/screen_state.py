@@ -50,6 +50,7 @@ class RunMark:
 
     @classmethod
     def of(cls, engine: Engine) -> RunMark:
+        """Where ``engine`` stands now."""
         return cls(weakref.ref(engine), engine.history.generation, engine.step_index)
 
     def on_history(self, engine: Engine) -> bool:

@@ -19,6 +19,7 @@ class Selection:
         self.clipboard: tuple[Point, ...] = ()
 
     def select(self, drawn: list[Point], a: Point, b: Point) -> str:
+        """Select the drawn cells in the box from ``a`` to ``b``; returns what was selected, in words."""
         self.cells = tuple(shapes.inside(drawn, a, b))
         self.box = (a, b) if self.cells else None
         if not self.cells:
@@ -26,6 +27,7 @@ class Selection:
         return f"selected {len(self.cells)} cell(s) in {a}–{b}: Copy, Cut, Delete, or Move all moves them"
 
     def clear(self) -> None:
+        """Select nothing (the clipboard is kept)."""
         self.cells, self.box = (), None
 
     def box_over(self, drawn: list[Point]) -> tuple[Point, Point] | None:
@@ -37,6 +39,8 @@ class Selection:
         return self.box if any(c in here for c in self.cells) else None
 
     def copy(self) -> str:
+        """Keep the selected cells on the clipboard, from their bottom-left corner; returns what was copied,
+        in words."""
         if not self.cells:
             return "nothing selected: choose the select tool and drag a box"
         x0, y0 = min(x for x, _ in self.cells), min(y for _, y in self.cells)

@@ -73,6 +73,7 @@ class Studio:
         self.said = ""  # what the last edit did, for the line under the tool
 
     def choose(self, tool: str) -> None:
+        """Take ``tool`` (a two-click tool's first click forgotten); an unknown one is refused."""
         if tool not in TOOLS:
             raise shapes.ShapeError(f"no tool {tool[:40]!r}; tools: {', '.join(TOOLS)}")
         self.tool, self.anchor = tool, None
@@ -161,6 +162,7 @@ class Studio:
         return self._paint(editor, mode, shapes.line(last, cell), erase, f"stroke to {cell}")
 
     def stroke_end(self, editor: Editor) -> None:
+        """The drag ends: all it painted or erased is one step of the history."""
         self._stroke = None
         editor.end_gesture()
 

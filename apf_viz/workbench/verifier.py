@@ -51,6 +51,7 @@ class Verifier:
 
     @property
     def status(self) -> Status:
+        """Where the verification stands (read from any thread)."""
         with self._lock:
             return self._status
 
@@ -73,9 +74,11 @@ class Verifier:
         return None
 
     def cancel(self) -> None:
+        """Ask the running verification to stop: it does at its next progress report."""
         self._cancel.set()
 
     def wait(self, timeout: float | None = None) -> None:
+        """Wait for the verification's thread to end (at most ``timeout`` seconds; None: for ever)."""
         if self._thread is not None:
             self._thread.join(timeout)
 

@@ -19,6 +19,8 @@ class AsyncScheduler(OneEventPerStep):
     summary = "one Look, Compute or Move of a random robot per step"
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        """The starved robot if one has waited past the fairness bound, else a random eligible one: its next
+        event."""
         mask = candidates(engine)
         r = most_starved(engine, mask)
         if r is None:  # with every robot eligible, the same draw as a scheduler that never skips

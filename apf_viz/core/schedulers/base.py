@@ -32,6 +32,8 @@ new_step = tuple.__new__  # builds a StepRecord without the NamedTuple's Python-
 
 
 class Scheduler(Protocol):
+    """What chooses each step: the adversary of the paper, under its registry ``name``."""
+
     name: str
     # True when, with one eligible robot, it can only activate that robot, one event per step (and so a
     # lone robot's repeating cycles may be fast-forwarded: core/fast_forward.py).
@@ -66,6 +68,7 @@ class OneEventPerStep:
 
 
 def starve_bound(engine: Engine) -> int:
+    """The steps an eligible robot may wait before a fair scheduler must activate it."""
     return max(16, 4 * engine.k)
 
 
@@ -118,9 +121,11 @@ class StepRandom:
         return z ^ (z >> 31)
 
     def random(self) -> float:
+        """A float in [0, 1), from the top 53 bits of the next draw."""
         return (self._next() >> 11) / float(1 << 53)
 
     def randrange(self, n: int) -> int:
+        """An integer in [0, n)."""
         # _next inlined: ASYNC draws one number per event, and a method call costs as much as the mixing.
         mask = self._MASK
         z = self._state = (self._state + 0x9E3779B97F4A7C15) & mask
@@ -129,6 +134,7 @@ class StepRandom:
         return (z ^ (z >> 31)) % n  # bias below 2**-40 for any n we simulate
 
     def choice(self, seq: Sequence[T]) -> T:
+        """An element of ``seq``, uniformly."""
         return seq[self.randrange(len(seq))]
 
 

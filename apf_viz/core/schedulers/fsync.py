@@ -19,4 +19,5 @@ class FsyncScheduler(RoundScheduler):
     summary = "every robot in every round"
 
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
+        """Every robot that can change something (all of them when none can)."""
         return tuple(candidates(engine).nonzero()[0].tolist())

@@ -30,9 +30,12 @@ class ManualScheduler:
         self._queue: list[int] = []
 
     def pick(self, robot: int) -> None:
+        """Queue ``robot``: a later step runs its next phase."""
         self._queue.append(robot)
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        """The next queued robot's phase; with none queued, the fallback's choice (a LookupError when there is
+        none)."""
         if self._queue:
             return StepRecord((self._queue.pop(0),))
         if self.fallback is None:

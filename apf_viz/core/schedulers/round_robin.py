@@ -21,6 +21,8 @@ class RoundRobinScheduler(OneEventPerStep):
     summary = "robots in turn, each a whole Look-Compute-Move cycle"
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        """The robot in the middle of a cycle, if any (it finishes it); else the eligible robot whose last
+        Move is oldest (ties: the lowest index)."""
         st = engine.state
         busy = st.phase.nonzero()[0]
         if busy.size:

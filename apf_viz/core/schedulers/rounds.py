@@ -23,6 +23,8 @@ class RoundScheduler:
     forced_when_alone = False  # a round numbers its events
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        """The next phase of the round in progress (its Looked robots Compute, then its Computed robots
+        Move), or a new round of :meth:`subset`."""
         st = engine.state
         for phase in (int(Phase.LOOKED), int(Phase.COMPUTED)):
             group = (st.phase == phase).nonzero()[0]
@@ -31,4 +33,5 @@ class RoundScheduler:
         return StepRecord(self.subset(engine, rng), round=st.round + 1)
 
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
+        """The robots a new round takes (the subclass says which)."""
         raise NotImplementedError

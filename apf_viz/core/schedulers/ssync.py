@@ -20,6 +20,8 @@ class SsyncScheduler(RoundScheduler):
     summary = "each round a random non-empty subset of the robots"
 
     def subset(self, engine: Engine, rng: StepRandom) -> tuple[int, ...]:
+        """Each eligible robot with probability 1/2, plus any that waited past the fairness bound; one at
+        random if that is none."""
         st = engine.state
         bound = starve_bound(engine)
         pool = candidates(engine).nonzero()[0].tolist()

@@ -24,6 +24,8 @@ class StaleFirstScheduler(OneEventPerStep):
     summary = "ASYNC delaying every Move: the oldest snapshot moves last"
 
     def choose(self, engine: Engine, rng: StepRandom) -> StepRecord:
+        """A starved robot first; else a random eligible robot that has not Computed yet; else the robot whose
+        pending Move rests on the oldest snapshot."""
         st = engine.state
         mask = candidates(engine)
         starved = most_starved(engine, mask)

@@ -115,6 +115,8 @@ class SessionCore:
         self.pattern_names: dict[tuple[Point, ...], str] = {}
 
     def name_pattern(self, cells: Sequence[Point], name: str) -> None:
+        """Remember ``name`` for the pattern of these cells, wherever it is drawn (a blank name is
+        ignored)."""
         if name.strip():
             self.pattern_names[shape_key(cells)] = name.strip()
 
@@ -148,47 +150,58 @@ class SessionCore:
 
     @selected.setter
     def selected(self, robot: int | None) -> None:
+        """Select ``robot`` on the presenter's page (None: no robot)."""
         self.presenter.selected = robot
 
     # ------------------------------------------------------------------ the run, read-only
     @property
     def engine(self) -> Engine:
+        """The run's engine, where the run stands now."""
         return self.run.engine
 
     @property
     def config(self) -> RunConfig:
+        """How the run was configured: start, flips, pattern, algorithm, scheduler, seed."""
         return self.run.config
 
     @property
     def playing(self) -> bool:
+        """Whether Play is on."""
         return self.run.playing
 
     @property
     def speed(self) -> float:
+        """Steps per second while playing."""
         return self.run.speed
 
     @property
     def scheduler_name(self) -> str:
+        """The scheduler's registry name (``async``, ``ssync``, …)."""
         return self.run.config.scheduler
 
     @property
     def seed(self) -> int:
+        """The run's seed."""
         return self.run.config.seed
 
     @property
     def algorithm_name(self) -> str:
+        """The algorithm's registry name."""
         return self.run.config.algorithm
 
     @property
     def robots(self) -> list[Point]:
+        """The run's start, global frame."""
         return list(self.run.config.robots)
 
     @property
     def pattern(self) -> list[Point]:
+        """The run's pattern."""
         return list(self.run.config.pattern)
 
     @property
     def y_up(self) -> list[bool]:
+        """The robots' flips: whether each one's +y is the global +y."""
         return list(self.run.config.y_up)
 
     # ------------------------------------------------------------------ what to show

@@ -20,6 +20,7 @@ class EditCommands(SessionCore):
 
     # ------------------------------------------------------------------ clicks
     def robot_at(self, cell: Point) -> int | None:
+        """The robot standing on ``cell`` now, or None."""
         hits = np.flatnonzero((self.engine.positions == np.array(cell)).all(axis=1))
         return int(hits[0]) if hits.size else None
 
@@ -90,10 +91,12 @@ class EditCommands(SessionCore):
             e.pattern = shapes.translated(e.pattern, dx, dy)
 
     def clear_pattern(self) -> None:
+        """Remove every target being drawn (one Undo brings them back)."""
         with self.lock:
             self.editor.clear_pattern()
 
     def use_library(self, library: PatternLibrary) -> None:
+        """Save and load patterns in ``library`` from now on (``serve --library``)."""
         with self.lock:
             self.library, self.saved = library, library.names()
 
@@ -122,6 +125,7 @@ class EditCommands(SessionCore):
 
     # ------------------------------------------------------------------ the pattern studio
     def set_tool(self, tool: str) -> None:
+        """The studio's tool for the next gestures (an unknown one is refused)."""
         with self.lock:
             self.screen.studio.choose(tool)
 
@@ -138,6 +142,7 @@ class EditCommands(SessionCore):
             self.screen.studio.size = int(size)
 
     def set_tool_text(self, text: str) -> None:
+        """The text tool's word (refused before anything changes if the font lacks a character)."""
         shapes.text(text, (0, 0))  # refuses a character the font has not, before anything changes
         with self.lock:
             self.screen.studio.text = text

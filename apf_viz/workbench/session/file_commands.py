@@ -170,6 +170,8 @@ class FileCommands(SessionCore):
             return schedule_text(e.k, lines, e.y_up, e.light_semantics)
 
     def robots_file(self) -> str:
+        """The robots the page shows as a robots file: the drawn ones in Edit robots, the run's start
+        elsewhere."""
         with self.lock:
             if self.mode == "edit-robots":
                 return robots_json(self.editor.robots, self.editor.y_up)

@@ -37,6 +37,7 @@ class LectureCommands(RunCommands, FileCommands):
         return self._at_stop(self.lecturer.next(), "the lecture's last stop")
 
     def previous_stop(self) -> str:
+        """The lecture's previous stop (PageUp), replayed; what happened, for a notification."""
         if self.lecturer is None:
             return "no lecture loaded"
         self.pause()
@@ -130,6 +131,7 @@ class LectureCommands(RunCommands, FileCommands):
             return f"the run's answer: {poll.answer.words()}; {right} of {poll.count} answered it"
 
     def set_numbers(self, on: bool) -> None:
+        """Robot numbers on the canvas, on or off."""
         with self.lock:
             self.screen.numbers = bool(on)
 

@@ -34,6 +34,8 @@ class RunCommands(SessionCore):
             self._clear_selections()
 
     def set_light_semantics(self, semantics: str) -> None:
+        """Restart the run under ``compute`` or ``lc-atomic`` light semantics (every page's selection
+        cleared)."""
         with self.lock:
             self.run.set_light_semantics(semantics)
             self._clear_selections()
@@ -124,6 +126,7 @@ class RunCommands(SessionCore):
             return f"no {wanted} within {limit:,} steps"
 
     def back(self) -> None:
+        """Stop playing and take back the last step."""
         self.run.back()
 
     def seek(self, step: float) -> None:
@@ -167,12 +170,15 @@ class RunCommands(SessionCore):
             return f"{previous} from step {e.step_index}"
 
     def set_scheduler(self, label_or_name: str) -> None:
+        """The adversary for the steps to come, by its label in the dropdown or its registry name."""
         self.run.set_scheduler(SCHEDULER_LABELS.get(label_or_name, label_or_name))
 
     def set_seed(self, seed: float) -> None:
+        """The seed for the steps to come (a whole number in 0 .. 2^63 − 1)."""
         self.run.set_seed(seed)
 
     def set_speed(self, speed: float) -> None:
+        """Steps per second while playing (clamped)."""
         self.run.set_speed(speed)
 
     def toggle_play(self) -> str | None:
@@ -192,6 +198,7 @@ class RunCommands(SessionCore):
         return f"{control} runs in Run mode: switch Mode back to Run"
 
     def pause(self) -> None:
+        """Stop playing."""
         self.run.pause()
 
 

@@ -32,6 +32,7 @@ class SeenRobot(NamedTuple):
 
     @property
     def changed(self) -> bool:
+        """Whether the robot has moved or changed its light since it was seen."""
         return self.seen_at != self.now_at or self.seen_light != self.now_light
 
     def describe(self) -> str:

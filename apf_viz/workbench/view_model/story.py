@@ -134,6 +134,8 @@ def last_decision(e: Engine) -> tuple[int, str] | None:
 
 
 def last_actor(e: Engine) -> int | None:
+    """The robot of the last step when one robot alone took it (ASYNC, Manual), else None (at the start, or a
+    round)."""
     if e.step_index == 0:
         return None
     events = e.history.steps[e.step_index - 1].events
@@ -267,6 +269,8 @@ def banner(
 
 
 def stats(algorithm: str, numbers: Mapping[str, object]) -> str:
+    """The Stats panel's text (Markdown): the algorithm, moves, cycles, step, stage, moves/(k·D), robot·steps
+    passed over and the lights in use."""
     n = numbers
     skipped = n["skipped"]
     return (
