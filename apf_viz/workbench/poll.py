@@ -109,10 +109,6 @@ class Poll:
             return f"you answered {said}: {'right' if mine in self.answer.right else 'not this time'}"
         return f"your answer: {said}" if said is not None else ""
 
-    def forget(self, who: str) -> None:
-        """Drop ``who``'s answer, if it gave one."""
-        self._given.pop(who, None)
-
     @property
     def count(self) -> int:
         """How many pages have answered."""
