@@ -145,13 +145,44 @@ def test_the_play_clock_refreshes_each_of_sixty_class_pages_six_times_a_second_w
     room = Classroom(s)
     room.join("projector", "presenter")
     keys = ["projector", *_class(room)]
-    assert room.due(keys, 1 / FPS) == keys  # paused: every page, every frame
-    s.toggle_play()
     refreshed = {k: 0 for k in keys}
-    for _ in range(FPS):  # one second of frames
-        due = room.due(keys, 1 / FPS)
-        assert "projector" in due and len(due) <= 1 + 360 / FPS + 1
+    for _ in range(FPS):  # one second of frames, each showing a change (the run plays)
+        due = room.due(keys, changed=True)
+        assert "projector" in due and len(due) <= 1 + 360 / FPS
         for k in due:
             refreshed[k] += 1
     assert refreshed.pop("projector") == FPS
     assert set(refreshed.values()) == {6}  # CLASS_REFRESHES shared: 360 a second, 6 each
+
+
+def test_a_change_to_a_paused_run_reaches_every_class_page_a_few_pages_a_frame():
+    """200 pages beside a paused run: a step (one change) is brought to each of them once, twelve a
+    frame, the presenter's page at once; then frames bring nothing more until the next change. Before,
+    every frame refreshed every page (86 ms a frame at 200 pages, docs/PERFORMANCE.md)."""
+    s = demo_session()
+    room = Classroom(s, seats=Seats(per_address=200))
+    room.join("projector", "presenter")
+    keys = ["projector", *_class(room, 200)]
+    assert room.due(keys, changed=False) == ["projector"]  # nothing changed: no class page's turn
+    seen: list[str] = []
+    frames = 0
+    changed = True
+    while frames == 0 or room.turns.owing:
+        due = room.due(keys, changed)
+        changed = False
+        assert due[0] == "projector" and len(due) <= 1 + 360 / FPS
+        seen += due[1:]
+        frames += 1
+    assert sorted(seen) == sorted(keys[1:]) and frames == 200 * FPS // 360 + 1  # each once, in 0.6 s
+    room.due(keys, changed=True)  # a second change mid-way: the pages not yet reached keep their place
+    first = room.due(keys, changed=True)[1:]
+    assert first and first[0] not in room.due(keys, changed=False)
+
+
+def test_a_page_that_acts_is_brought_up_to_date_first():
+    s = demo_session()
+    room = Classroom(s, seats=Seats(per_address=200))
+    keys = list(_class(room, 200))
+    room.due(keys, changed=True)
+    room.turns.hurry(keys[-1])  # the last of the line tapped an answer
+    assert keys[-1] in room.due(keys, changed=False)  # in the next frame, not 0.55 s later

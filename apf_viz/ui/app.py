@@ -98,7 +98,8 @@ class App:
         # callbacks on a pool of threads, so a page that stays a moment (a reload, a script) can be gone
         # while its panels are still being built. Each id here is taken out by its own connect callback.
         self._gone: set[int] = set()
-        self._dirty = threading.Event()
+        self._dirty = threading.Event()  # a frame is wanted
+        self._changed = False  # and it shows a change every page is owed (not only the class's turns)
         self._stop = threading.Event()
         self._framed_engine = session.engine  # the run the cameras were last framed on
         self._initial_bounds: tuple[float, float, float, float] | None = None
@@ -108,7 +109,6 @@ class App:
         self._framed_stop: tuple[int, int] | None = None  # the lecture and stop they were kept for
         self.frames = 0
         self.own_runs = OwnRuns(self.classroom, self._screens, self.request_render)  # Try it yourself
-        self._last_due = time.monotonic()  # when class pages were last brought up to date (:meth:`_due`)
         self.server.scene.on_click()(self._on_click)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -198,6 +198,8 @@ class App:
         self.request_render()
 
     def request_render(self) -> None:
+        """A frame, for a change every page is owed (the class pages get it in turn: :meth:`_due`)."""
+        self._changed = True
         self._dirty.set()
 
     def frame_client(self, client) -> None:
@@ -282,7 +284,7 @@ class App:
                     budget -= taken
                     if s.engine.pending_decisions >= DEAR_DECISIONS:
                         break
-                self._dirty.set()
+                self.request_render()
             else:
                 budget = 0.0
                 if was_playing:
@@ -335,12 +337,13 @@ class App:
         self._keep_framed(screens, engine)
 
     def _due(self, screens: list[BrowserScreen]) -> list[BrowserScreen]:
-        """The pages whose panel and selection are brought up to date in this frame: every page, but
-        while the run plays the class pages in turn (the classroom's play clock: the work of a frame
-        does not grow with the class)."""
-        now = time.monotonic()
-        since, self._last_due = now - self._last_due, now
-        due = set(self.classroom.due([x.client.client_id for x in screens], since))
+        """The pages whose panel and selection are brought up to date in this frame: every presenter
+        page, and the class pages in turn (the classroom's play clock: the work of a frame does not grow
+        with the class); while some are owed, another frame follows."""
+        changed, self._changed = self._changed, False
+        due = set(self.classroom.due([x.client.client_id for x in screens], changed))
+        if self.classroom.turns.owing:
+            self._dirty.set()
         return [x for x in screens if x.client.client_id in due]
 
     def _keep_framed(self, screens: list[BrowserScreen], engine: Engine) -> None:

@@ -92,8 +92,9 @@ class BrowserScreen:
 
     def changed(self) -> None:
         """This page did something (a command, a click, a zoom): a frame, in which its own run, if it
-        tries one, is drawn anew."""
+        tries one, is drawn anew, and its panel before the rest of the class's."""
         self.stale = True
+        self._classroom.turns.hurry(self.page.key)
         self._request_render()
 
     def text_height(self) -> float | None:

@@ -213,9 +213,10 @@ class Classroom:
         return notes
 
     # ------------------------------------------------------------------ the play clock
-    def due(self, keys: list[Hashable], since: float) -> list[Hashable]:
+    def due(self, keys: list[Hashable], changed: bool) -> list[Hashable]:
         """Of the pages following the shared run (``keys``), those brought up to date in this frame:
-        every presenter page; the class pages in turn while the run plays (:class:`ClassTurns`)."""
+        every presenter page; the class pages in turn (:class:`ClassTurns`). ``changed``: the frame
+        shows a change (every class page is owed a refresh)."""
         roles = {k: self.role(k) for k in keys}
-        turn = set(self.turns.due([k for k in keys if roles[k] == "class"], self.shared.playing, since))
+        turn = set(self.turns.due([k for k in keys if roles[k] == "class"], changed))
         return [k for k in keys if roles[k] != "class" or k in turn]
