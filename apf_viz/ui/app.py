@@ -290,9 +290,8 @@ class App:
                 if was_playing:
                     settle_memory()
             was_playing = s.playing
-            own_playing = self.own_runs.play(
-                self._screens(), 1.0 / FPS, now - last
-            )  # pages' own runs: a share of a frame
+            # Pages' own runs: a share of a frame.
+            own_playing = self.own_runs.play(self._screens(), 1.0 / FPS, now - last)
             if own_playing:
                 self._dirty.set()
             last = now

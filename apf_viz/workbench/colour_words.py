@@ -91,8 +91,9 @@ def _run_colours(view: SessionView, drawn: Drawn) -> None:
     for r in view.robots:
         style = view.legend.get(r.light)
         if style is not None:
-            _add(drawn, "square" if style.shape == "square" else "robot", style.color)
             _add(drawn, "robot", style.color)
+            if style.shape == "square":
+                _add(drawn, "square", style.color)
         if r.phase in PHASE_COLORS and r.phase != "idle":
             _add(drawn, "ring", PHASE_COLORS[r.phase])
         if r.pending is not None:

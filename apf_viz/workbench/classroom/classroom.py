@@ -43,16 +43,14 @@ class Classroom:
         self.seats = seats or Seats()  # the class pages' seats, issued here
         self.pages = Pages(shared)
         self.room = RoomList(shared, self.pages.all)
-        self.own_runs = OwnRuns(shared)
+        self.own_runs = OwnRuns(shared, self.pages.all)
         self.turns = ClassTurns()
-        self._doors: dict[Hashable, PageRun] = {}
 
     # ------------------------------------------------------------------ pages
     def join(self, key: Hashable, role: Role, seat: str | None = None) -> Page:
         """A page connects as ``role`` (the address it opened says which: :meth:`Roles.role_of`), with
         its seat (None: it has none yet, or is a presenter's)."""
         page = self.pages.join(key, role, seat)
-        self._doors[key] = PageRun(self.shared, page)
         self._count_seats()
         return page
 
@@ -61,7 +59,6 @@ class Classroom:
         page = self.pages.leave(key)
         if page is not None:
             page.own = None
-        self._doors.pop(key, None)
         self.room.left(key)
         self._count_seats()
 
@@ -75,12 +72,9 @@ class Classroom:
         return self.pages.get(key)
 
     def run_of(self, key: Hashable) -> PageRun:
-        """The page's door to the run it drives: its own, or the shared one (a page not here: shared)."""
-        door = self._doors.get(key)
-        if door is None:
-            page = self.pages.get(key) or Page(key, self.shared.presenter)
-            door = PageRun(self.shared, page)
-        return door
+        """The page's door to the run it drives: its own, or the shared one (a page not here: shared).
+        The door holds nothing of its own: it reads the page's run each time it is used."""
+        return PageRun(self.shared, self.pages.get(key) or Page(key, self.shared.presenter))
 
     def state(self, key: Hashable | None) -> BrowserState:
         """The page's state on the run it shows: on its own run, that run's presenter state."""
@@ -166,7 +160,7 @@ class Classroom:
     def try_alone(self, key: Hashable) -> str:
         """Branch a run of the page's own from the shared run as it is now."""
         page = self._page(key)
-        return self.own_runs.try_alone(page, len(self.own_pages()))
+        return self.own_runs.try_alone(page)
 
     def back(self, key: Hashable) -> str:
         """Drop the page's own run: it follows the shared run again."""
@@ -203,11 +197,9 @@ class Classroom:
                     notes.append(Note("Question", said))
             except InputError as err:
                 notes.append(Note("Question", str(err), error=True))
+        run = page.own if page is not None and page.own is not None else self.shared
         try:
-            if page is not None and page.own is not None:
-                page.own.click(cell, page.own.presenter, True)
-            else:
-                self.shared.click(cell, self.pages.state(key), self.pages.may_drive(key))
+            run.click(cell, self.state(key), self.may_drive(key))
         except InputError as err:
             notes.append(Note("Click refused", str(err), error=True))
         return notes

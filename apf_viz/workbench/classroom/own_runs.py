@@ -13,7 +13,7 @@ from __future__ import annotations
 import threading
 import time
 import weakref
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from apf_viz.core.formats import InputError
 from apf_viz.workbench.classroom.pages import Page
@@ -60,20 +60,20 @@ class OwnPlay:
 class OwnRuns:
     """The class pages' own runs: a page branches one and goes back; the bound on how many at once."""
 
-    def __init__(self, shared: Session) -> None:
+    def __init__(self, shared: Session, pages: Callable[[], Iterable[Page]]) -> None:
         self.shared = shared
+        self._pages = pages  # the connected pages, whose own runs count against the bound
         self._lock = threading.Lock()  # two pages asking at once cannot pass the bound together
         self.pacer = OwnPlay()
 
-    def try_alone(self, page: Page, trying: int) -> str:
-        """Branch a run of ``page``'s own from the shared run as it is now (``trying``: how many pages
-        run their own already). What the page is told."""
+    def try_alone(self, page: Page) -> str:
+        """Branch a run of ``page``'s own from the shared run as it is now. What the page is told."""
         if page.own is not None:
             return "this page already runs its own"
         if page.role != "class":
             raise InputError("Try it yourself is a class page's: a presenter page drives the shared run")
-        with self._lock:
-            if trying >= MAX_OWN_RUNS:
+        with self._lock:  # counted under the lock: two pages asking at once cannot pass the bound together
+            if sum(1 for x in self._pages() if x.own is not None) >= MAX_OWN_RUNS:
                 raise InputError(
                     f"{MAX_OWN_RUNS} pages are trying runs of their own, the most this server allows: "
                     "try again when one goes back to the lecture"
